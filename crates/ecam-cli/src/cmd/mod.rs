@@ -1,0 +1,8 @@
+//! One module per subcommand.
+
+pub mod law;
+pub mod plc;
+pub mod pmd;
+pub mod serve;
+pub mod simulate;
+pub mod table;

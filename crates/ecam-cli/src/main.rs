@@ -1,0 +1,55 @@
+//! `ecam`: the command line of the ecam electronic cam system.
+//!
+//! Thin glue: every subcommand parses its arguments and calls into the
+//! library crates. The output formats of `law`, `plc run`, `pmd run` and
+//! `simulate` are contracts (see `docs/cli.md`).
+
+mod cmd;
+
+use clap::{Parser, Subcommand};
+
+/// Electronic cam design, simulation and PLC / motion-processor emulation.
+#[derive(Parser)]
+#[command(name = "ecam", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Normalised motion laws: list them, or print one as CSV.
+    Law(cmd::law::Args),
+    /// Design cam tables: generate, summarise, plot.
+    #[command(subcommand)]
+    Table(cmd::table::Command),
+    /// Run a scenario file through the engine in simulated time.
+    Simulate(cmd::simulate::Args),
+    /// The LX3V PLC face: run instruction-list programs.
+    #[command(subcommand)]
+    Plc(cmd::plc::Command),
+    /// The motion-processor face: run command scripts.
+    #[command(subcommand)]
+    Pmd(cmd::pmd::Command),
+    /// Run the PLC in real time behind Modbus TCP and HTTP.
+    Serve(cmd::serve::Args),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Law(args) => cmd::law::run(args),
+        Command::Table(command) => cmd::table::run(command),
+        Command::Simulate(args) => cmd::simulate::run(args),
+        Command::Plc(command) => cmd::plc::run(command),
+        Command::Pmd(command) => cmd::pmd::run(command),
+        Command::Serve(args) => cmd::serve::run(args),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("ecam: {err:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

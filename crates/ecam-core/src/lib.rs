@@ -1,0 +1,34 @@
+//! # ecam-core: designing cams
+//!
+//! Everything about a cam that does not move: normalised motion laws, cam
+//! tables (point tables, evenly spaced tables, segment profiles), the table
+//! generators of the LX3V PLC's `ECAMTBX` instruction, and validation with
+//! the PLC's error codes. No I/O, no clocks: pure functions over `alloc`.
+//!
+//! The engine (`ecam-engine`) runs any [`CamCurve`]; this crate makes them.
+//!
+//! ```
+//! use ecam_core::{CamCurve, Cursor, PointTable};
+//!
+//! // Document 001's four-point table.
+//! let table = PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)])?;
+//! let mut cursor = Cursor::new();
+//! assert_eq!(table.position(5000.0, &mut cursor), 1000.0);
+//! assert_eq!(table.stroke(), 1500);
+//! # Ok::<(), ecam_core::TableError>(())
+//! ```
+#![no_std]
+
+extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
+
+mod curve;
+mod error;
+mod kinematics;
+pub mod table;
+
+pub use curve::{CamCurve, Cursor};
+pub use error::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, TableError};
+pub use kinematics::Kinematics;
+pub use table::{CamPoint, PointTable};

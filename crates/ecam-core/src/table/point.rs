@@ -1,0 +1,182 @@
+//! Point tables: (master, slave) pairs joined by straight lines, as the PLC's
+//! DECAM register block and the motion controller's E-CAM table hold them.
+
+use alloc::vec::Vec;
+
+use crate::{CamCurve, Cursor, Kinematics, TableError};
+
+/// One point of a point table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct CamPoint {
+    /// Master position, in master counts.
+    pub master: i64,
+    /// Slave position, in slave pulses.
+    pub slave: i64,
+}
+
+impl CamPoint {
+    /// A point at `(master, slave)`.
+    pub const fn new(master: i64, slave: i64) -> Self {
+        Self { master, slave }
+    }
+}
+
+/// A validated point table: at least two points, master strictly increasing.
+///
+/// Between points the slave is interpolated linearly, as both devices do.
+/// The Rust API puts no upper bound on the number of points; the PLC face
+/// checks its own limit of 512 sections when writing a register image.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct PointTable {
+    points: Vec<CamPoint>,
+}
+
+impl PointTable {
+    /// Checks and wraps `points`.
+    ///
+    /// # Errors
+    /// [`TableError::SectionCount`] for fewer than two points,
+    /// [`TableError::MasterNotIncreasing`] naming the first point whose master
+    /// is not greater than its predecessor's.
+    pub fn new(points: Vec<CamPoint>) -> Result<Self, TableError> {
+        if points.len() < 2 {
+            return Err(TableError::SectionCount {
+                count: points.len(),
+                min: 2,
+                max: usize::MAX,
+            });
+        }
+        if let Some(bad) = points.windows(2).position(|w| w[1].master <= w[0].master) {
+            return Err(TableError::MasterNotIncreasing { section: bad + 1 });
+        }
+        Ok(Self { points })
+    }
+
+    /// Builds a table from `(master, slave)` pairs.
+    ///
+    /// # Errors
+    /// As [`PointTable::new`].
+    pub fn from_pairs(pairs: &[(i64, i64)]) -> Result<Self, TableError> {
+        Self::new(pairs.iter().map(|&(m, s)| CamPoint::new(m, s)).collect())
+    }
+
+    /// The points, in master order.
+    pub fn points(&self) -> &[CamPoint] {
+        &self.points
+    }
+
+    /// Gives the points back.
+    pub fn into_points(self) -> Vec<CamPoint> {
+        self.points
+    }
+
+    /// Index `i` of the segment `[points[i], points[i+1]]` holding `master`,
+    /// trying the cursor's segment and its neighbours before a binary search.
+    fn locate(&self, master: f64, cursor: &mut Cursor) -> usize {
+        let last_segment = self.points.len() - 2;
+        let holds = |i: usize| {
+            let lo = self.points[i].master as f64;
+            let hi = self.points[i + 1].master as f64;
+            (master >= lo || i == 0) && (master <= hi || i == last_segment)
+        };
+        let guess = cursor.segment.min(last_segment);
+        let found = if holds(guess) {
+            guess
+        } else if guess < last_segment && holds(guess + 1) {
+            guess + 1
+        } else if guess > 0 && holds(guess - 1) {
+            guess - 1
+        } else {
+            // First point whose master exceeds `master`, minus one.
+            let upper = self.points.partition_point(|p| (p.master as f64) <= master);
+            upper.saturating_sub(1).min(last_segment)
+        };
+        cursor.segment = found;
+        found
+    }
+}
+
+impl CamCurve for PointTable {
+    fn master_first(&self) -> i64 {
+        self.points[0].master
+    }
+    fn master_last(&self) -> i64 {
+        self.points[self.points.len() - 1].master
+    }
+    fn slave_first(&self) -> i64 {
+        self.points[0].slave
+    }
+    fn slave_last(&self) -> i64 {
+        self.points[self.points.len() - 1].slave
+    }
+    fn segment_count(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    fn eval(&self, master: f64, cursor: &mut Cursor) -> Kinematics {
+        let i = self.locate(master, cursor);
+        let (p0, p1) = (self.points[i], self.points[i + 1]);
+        let span = (p1.master - p0.master) as f64;
+        let rise = (p1.slave - p0.slave) as f64;
+        let m = master.clamp(self.master_first() as f64, self.master_last() as f64);
+        let u = (m - p0.master as f64) / span;
+        Kinematics {
+            s: p0.slave as f64 + rise * u,
+            v: rise / span,
+            a: 0.0,
+            j: 0.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn doc001() -> PointTable {
+        PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)])
+            .unwrap()
+    }
+
+    #[test]
+    fn interpolates_linearly_between_points() {
+        let t = doc001();
+        let mut c = Cursor::new();
+        assert_eq!(t.position(5000.0, &mut c), 1000.0);
+        assert_eq!(t.position(15000.0, &mut c), 1250.0);
+        assert_eq!(t.position(30000.0, &mut c), 2000.0);
+        assert_eq!(t.eval(25000.0, &mut c).v, 0.1);
+    }
+
+    #[test]
+    fn clamps_outside_the_cycle() {
+        let t = doc001();
+        let mut c = Cursor::new();
+        assert_eq!(t.position(-10.0, &mut c), 500.0);
+        assert_eq!(t.position(40000.0, &mut c), 2000.0);
+    }
+
+    #[test]
+    fn cursor_and_binary_search_agree() {
+        let t = doc001();
+        let mut seq = Cursor::new();
+        for m in (0..=30000).step_by(7) {
+            let mut fresh = Cursor::new();
+            assert_eq!(t.position(m as f64, &mut seq), t.position(m as f64, &mut fresh));
+        }
+    }
+
+    #[test]
+    fn rejects_non_increasing_master_with_section_number() {
+        let err = PointTable::from_pairs(&[(0, 0), (10, 1), (10, 2)]).unwrap_err();
+        assert_eq!(err, TableError::MasterNotIncreasing { section: 2 });
+        assert_eq!(err.code(), 6782);
+        assert_eq!(err.section(), Some(2));
+    }
+
+    #[test]
+    fn rejects_too_few_points() {
+        let err = PointTable::from_pairs(&[(0, 0)]).unwrap_err();
+        assert_eq!(err.code(), 6783);
+    }
+}

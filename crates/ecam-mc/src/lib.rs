@@ -1,0 +1,3 @@
+//! # ecam-mc: the motion-controller (Repeat-type) face
+//!
+//! (Being written.)

@@ -1,0 +1,3 @@
+//! # ecam-plc: the LX3V PLC face
+//!
+//! (Being written.)

@@ -1,0 +1,3 @@
+//! # ecam-pmd: the motion-processor face
+//!
+//! (Being written.)
