@@ -31,8 +31,6 @@ enum Command {
     /// The motion-processor face: run command scripts.
     #[command(subcommand)]
     Pmd(cmd::pmd::Command),
-    /// Run the PLC in real time behind Modbus TCP and HTTP.
-    Serve(cmd::serve::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -43,7 +41,6 @@ fn main() -> std::process::ExitCode {
         Command::Simulate(args) => cmd::simulate::run(args),
         Command::Plc(command) => cmd::plc::run(command),
         Command::Pmd(command) => cmd::pmd::run(command),
-        Command::Serve(args) => cmd::serve::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -1,3 +1,5 @@
 //! # ecam-plc: the LX3V PLC face
 //!
 //! (Being written.)
+
+pub mod devices;
