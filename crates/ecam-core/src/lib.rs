@@ -24,6 +24,7 @@ extern crate alloc;
 extern crate std;
 
 mod curve;
+pub mod gen;
 mod error;
 mod kinematics;
 pub mod table;

@@ -3,3 +3,4 @@
 //! (Being written.)
 
 pub mod devices;
+pub mod operation_error;
