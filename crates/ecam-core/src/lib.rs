@@ -24,7 +24,7 @@ extern crate alloc;
 extern crate std;
 
 mod curve;
-pub mod gen;
+pub mod generator;
 mod error;
 mod kinematics;
 pub mod table;
