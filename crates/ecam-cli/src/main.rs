@@ -5,6 +5,15 @@
 //! `simulate` are contracts (see `docs/cli.md`).
 
 mod cmd;
+mod derivatives;
+mod expr;
+mod generate;
+mod plot;
+mod progress;
+mod scenario;
+mod table_file;
+mod table_source;
+mod trace;
 
 use clap::{Parser, Subcommand};
 

@@ -92,7 +92,10 @@ impl fmt::Display for TableError {
                 "section count error ({CODE_SECTION_COUNT}): {count} sections, allowed {min} to {max}"
             ),
             Self::Infeasible { reason } => {
-                write!(f, "parameter error ({CODE_PARAMETER}): cannot generate: {reason}")
+                write!(
+                    f,
+                    "parameter error ({CODE_PARAMETER}): cannot generate: {reason}"
+                )
             }
         }
     }

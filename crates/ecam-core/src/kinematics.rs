@@ -20,7 +20,12 @@ pub struct Kinematics {
 impl Kinematics {
     /// A point at rest at `s`.
     pub const fn at_rest(s: f64) -> Self {
-        Self { s, v: 0.0, a: 0.0, j: 0.0 }
+        Self {
+            s,
+            v: 0.0,
+            a: 0.0,
+            j: 0.0,
+        }
     }
 
     /// Maps a normalised law value onto a segment that rises by `stroke` over

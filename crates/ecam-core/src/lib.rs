@@ -17,6 +17,27 @@
 //! assert_eq!(table.stroke(), 1500);
 //! # Ok::<(), ecam_core::TableError>(())
 //! ```
+//!
+//! Designing with motion laws (see `docs/design.md`):
+//!
+//! ```
+//! use ecam_core::{CamCurve, CamPoint, Cursor, MotionLaw, Segment, SegmentProfile};
+//!
+//! let cam = SegmentProfile::new(
+//!     CamPoint::new(0, 0),
+//!     vec![
+//!         Segment::new(9000, 0, MotionLaw::Cycloid),          // dwell
+//!         Segment::new(18000, 3600, MotionLaw::ModifiedSine), // rise by 3600
+//!         Segment::new(36000, 0, MotionLaw::Poly345),         // return
+//!     ],
+//! )?;
+//! let mut cursor = Cursor::new();
+//! let k = cam.eval(13500.0, &mut cursor);
+//! assert_eq!(k.s, 1800.0);
+//! let table = cam.sample(200)?; // the 200-point table a PLC runs
+//! assert_eq!(table.points().len(), 200);
+//! # Ok::<(), ecam_core::TableError>(())
+//! ```
 #![no_std]
 
 extern crate alloc;
@@ -24,12 +45,17 @@ extern crate alloc;
 extern crate std;
 
 mod curve;
-pub mod generator;
 mod error;
+pub mod generator;
+#[cfg(feature = "std")]
+pub mod io;
 mod kinematics;
+pub mod law;
+pub mod register_image;
 pub mod table;
 
 pub use curve::{CamCurve, Cursor};
 pub use error::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, TableError};
 pub use kinematics::Kinematics;
-pub use table::{CamPoint, PointTable};
+pub use law::MotionLaw;
+pub use table::{CamPoint, CamTable, PointTable, Segment, SegmentProfile, UniformTable};

@@ -1,4 +1,71 @@
 //! # ecam-engine: the cam runtime
 //!
-//! (Being written.) One `tick()` per control cycle.
+//! Runs a slave axis against a master through any [`ecam_core::CamCurve`],
+//! one [`CamAxis::tick`] per control cycle: plain input in
+//! ([`TickInput`]), plain output out ([`TickOutput`]): commanded slave
+//! position, pulses and direction under a frequency limit, the pulse
+//! backlog, sync windows, state, flags and events. `#![no_std]`, no
+//! allocation and no panic in `tick`, bounded work per call.
+//!
+//! Positions are `i64` counts. Which cycle the master is in, the stroke a
+//! repeat cam has accumulated and both zooms are exact integer arithmetic,
+//! so the commanded slave is a pure function of the master position and
+//! the engage instant: a cam that runs for a year drifts by zero pulses.
+//!
+//! The PLC (document 003 `DECAM`) and motion-processor (document 002) faces
+//! build on [`CamAxis`]; Rust users may prefer the PLCopen-shaped
+//! [`plcopen`] module. Use something else when you need a trajectory
+//! generator (point-to-point moves): this crate only couples axes.
+//!
+//! ```
+//! use ecam_core::PointTable;
+//! use ecam_engine::{AxisConfig, CamAxis, Coupling, SlaveAlign, TickInput};
+//!
+//! // Document 002's incremental cam: three values over 100 master counts.
+//! let table = PointTable::from_pairs(&[(0, 0), (50, 100), (100, 200)])?;
+//! let config = AxisConfig {
+//!     coupling: Coupling::Repeat { min_stroke: 1 },
+//!     slave_align: SlaveAlign::Relative, // a start never bumps the slave
+//!     ..AxisConfig::default()
+//! };
+//! let mut axis = CamAxis::new(table, config)?;
+//! axis.arm()?;
+//! axis.tick(&TickInput::at(0, 1000));
+//! assert_eq!(axis.tick(&TickInput::at(100, 1000)).slave, 200);
+//! let out = axis.tick(&TickInput::at(101, 1000));
+//! assert_eq!(out.slave, 202);          // the table continues past its end
+//! assert_eq!(out.emitted, 202);        // every pulse went out
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![no_std]
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
+
+#[cfg(test)]
+extern crate std;
+
+mod axis;
+mod config;
+mod coupling;
+mod error;
+mod input;
+mod master;
+mod output;
+pub mod plcopen;
+mod pulse;
+mod ramp;
+mod start;
+mod stop;
+mod sync;
+mod zoom;
+
+pub use axis::CamAxis;
+pub use config::{
+    AxisConfig, Compare, Coupling, MAX_FREQUENCY_HZ, MasterAlign, RampIn, SlaveAlign, StartMode,
+};
+pub use error::EngineError;
+pub use input::TickInput;
+pub use master::{TimeBase, Unwrap32};
+pub use output::{AxisState, Events, TickOutput};
+pub use stop::StopKind;
+pub use sync::SyncWindow;
+pub use zoom::Zoom;

@@ -43,7 +43,10 @@ impl Device {
     pub fn parse(text: &str) -> Result<Self, DeviceError> {
         let text = text.trim();
         let mut chars = text.chars();
-        let prefix = chars.next().ok_or(DeviceError::Syntax)?.to_ascii_uppercase();
+        let prefix = chars
+            .next()
+            .ok_or(DeviceError::Syntax)?
+            .to_ascii_uppercase();
         let digits = chars.as_str();
         if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
             return Err(DeviceError::Syntax);
@@ -74,7 +77,11 @@ impl Device {
             Self::X(n) | Self::Y(n) => (n, XY_COUNT),
             Self::C(n) => (n, C_COUNT),
         };
-        if index < count { Ok(self) } else { Err(DeviceError::OutOfRange) }
+        if index < count {
+            Ok(self)
+        } else {
+            Err(DeviceError::OutOfRange)
+        }
     }
 
     /// True for the bit devices M, X, Y.
@@ -109,10 +116,10 @@ pub enum DeviceError {
 impl fmt::Display for DeviceError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            Self::Syntax => "not a device name (expected D, M, X, Y or C and a number; X/Y in octal)",
-            Self::OutOfRange => {
-                "device number out of range (D/M 0-8511, X/Y 0-377 octal, C 0-255)"
+            Self::Syntax => {
+                "not a device name (expected D, M, X, Y or C and a number; X/Y in octal)"
             }
+            Self::OutOfRange => "device number out of range (D/M 0-8511, X/Y 0-377 octal, C 0-255)",
             Self::WrongKind => "wrong kind of device for this access (bit vs word)",
         })
     }
@@ -153,7 +160,10 @@ impl Devices {
     /// # Errors
     /// [`DeviceError::OutOfRange`].
     pub fn word(&self, n: u16) -> Result<i16, DeviceError> {
-        self.d.get(usize::from(n)).map(|&w| w as i16).ok_or(DeviceError::OutOfRange)
+        self.d
+            .get(usize::from(n))
+            .map(|&w| w as i16)
+            .ok_or(DeviceError::OutOfRange)
     }
 
     /// Sets `Dn`.
@@ -161,7 +171,10 @@ impl Devices {
     /// # Errors
     /// [`DeviceError::OutOfRange`].
     pub fn set_word(&mut self, n: u16, value: i16) -> Result<(), DeviceError> {
-        let slot = self.d.get_mut(usize::from(n)).ok_or(DeviceError::OutOfRange)?;
+        let slot = self
+            .d
+            .get_mut(usize::from(n))
+            .ok_or(DeviceError::OutOfRange)?;
         *slot = value as u16;
         Ok(())
     }
@@ -218,7 +231,9 @@ impl Devices {
             Device::Y(n) => (&self.y, n),
             Device::D(_) | Device::C(_) => return Err(DeviceError::WrongKind),
         };
-        bits.get(usize::from(n)).copied().ok_or(DeviceError::OutOfRange)
+        bits.get(usize::from(n))
+            .copied()
+            .ok_or(DeviceError::OutOfRange)
     }
 
     /// Sets a bit device (M, X or Y).
@@ -232,7 +247,9 @@ impl Devices {
             Device::Y(n) => (&mut self.y, n),
             Device::D(_) | Device::C(_) => return Err(DeviceError::WrongKind),
         };
-        let slot = bits.get_mut(usize::from(n)).ok_or(DeviceError::OutOfRange)?;
+        let slot = bits
+            .get_mut(usize::from(n))
+            .ok_or(DeviceError::OutOfRange)?;
         *slot = on;
         Ok(())
     }
@@ -258,7 +275,10 @@ impl Devices {
     /// # Errors
     /// [`DeviceError::OutOfRange`].
     pub fn counter(&self, n: u16) -> Result<i32, DeviceError> {
-        self.c.get(usize::from(n)).copied().ok_or(DeviceError::OutOfRange)
+        self.c
+            .get(usize::from(n))
+            .copied()
+            .ok_or(DeviceError::OutOfRange)
     }
 
     /// Sets counter `Cn`; a 16-bit counter (C0–C199) keeps the low 16 bits, sign-extended.
@@ -266,8 +286,15 @@ impl Devices {
     /// # Errors
     /// [`DeviceError::OutOfRange`].
     pub fn set_counter(&mut self, n: u16, value: i32) -> Result<(), DeviceError> {
-        let slot = self.c.get_mut(usize::from(n)).ok_or(DeviceError::OutOfRange)?;
-        *slot = if n < C_32BIT_FIRST { i32::from(value as i16) } else { value };
+        let slot = self
+            .c
+            .get_mut(usize::from(n))
+            .ok_or(DeviceError::OutOfRange)?;
+        *slot = if n < C_32BIT_FIRST {
+            i32::from(value as i16)
+        } else {
+            value
+        };
         Ok(())
     }
 

@@ -1,6 +1,34 @@
 //! # ecam-plc: the LX3V PLC face
 //!
-//! (Being written.)
+//! What a user of the LX3VP electronic-cam PLC (document 003) programs:
+//! device memory (D, M, X, Y, C and the special registers), an
+//! instruction-list interpreter with the scan cycle, simulated hardware
+//! (pulse outputs Y0–Y3, PLSY/DPLSY, high-speed counters, loopback wires),
+//! the `DECAM` register block and `ECAMTBX` table generation.
+//!
+//! Use it to run IL programs in simulated time (the `ecam plc run` command is
+//! a thin layer over [`sim::run`]); it is not a real-time controller.
+//!
+//! ```
+//! use ecam_plc::{il, scan::Plc, sim};
+//! // Y1 drives 1000 pulses at 10 kHz into X0, counted by C235.
+//! let source = "LD M8000\nOUT C235 K1000\nDPLSY K10000 K1000 Y1\nLD C235\nOUT Y7\n";
+//! let mut plc = Plc::new(il::parse(source, "loop.il").unwrap()).unwrap();
+//! plc.hardware_mut().add_wire(ecam_plc::hardware::Wire::parse("Y1:X0").unwrap());
+//! sim::run(&mut plc, sim::Timing::default(), sim::RunLength::Millis(200), |_| {}).unwrap();
+//! assert_eq!(plc.devices().counter(235), Ok(1000));
+//! assert_eq!(plc.devices().bit(ecam_plc::devices::Device::Y(7)), Ok(true));
+//! ```
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
+pub mod decam;
 pub mod devices;
+pub mod ecamtbx;
+pub mod hardware;
+pub mod il;
+pub mod interpreter;
 pub mod operation_error;
+pub mod scan;
+pub mod sim;
+pub mod special;
+pub mod view;

@@ -14,10 +14,18 @@ pub struct OperationError {
     pub message: String,
 }
 
+/// FX code for an operand whose value is out of range (e.g. a PLSY frequency).
+pub const CODE_OPERAND: u16 = 6705;
+/// FX code for a device number out of range at run time.
+pub const CODE_DEVICE_RANGE: u16 = 6706;
+
 impl OperationError {
     /// An error with `code` and a message.
     pub fn new(code: u16, message: impl Into<String>) -> Self {
-        Self { code, message: message.into() }
+        Self {
+            code,
+            message: message.into(),
+        }
     }
 }
 

@@ -1,13 +1,249 @@
-//! `ecam table` (being written).
+//! `ecam table`: generate, summarise and plot cam tables.
+//!
+//! - `ecam table gen GENERATOR [params] [-o FILE.csv|.json] [--plot FILE.svg|.png]`
+//! - `ecam table show FILE`
+//! - `ecam table plot FILE -o OUT.svg|.png`
+
+use std::path::{Path, PathBuf};
+
+use anyhow::bail;
+use ecam_core::table::Summary;
+use serde::Serialize;
+
+use crate::generate::{self, GenCommand};
+use crate::plot::{self, Figure, Panel, Series};
+use crate::table_file::{self, Columns, TableFile};
 
 /// Subcommands of `ecam table`.
-#[derive(clap::Subcommand)]
+#[derive(clap::Subcommand, Debug)]
 pub enum Command {
-    /// Placeholder while being written.
-    Pending,
+    /// Generate a table (the PLC's ECAMTBX generators, key points, or a function of the master).
+    Gen(GenArgs),
+    /// Summarise a table file: sections, stroke, peak ratios, continuity.
+    Show(ShowArgs),
+    /// Plot a table file: displacement, velocity, acceleration, jerk.
+    Plot(PlotArgs),
+}
+
+/// Arguments of `ecam table gen`.
+#[derive(clap::Args, Debug)]
+pub struct GenArgs {
+    /// Which generator, with its parameters.
+    #[command(subcommand)]
+    pub generator: GenCommand,
+}
+
+/// Output options shared by every generator.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct Output {
+    /// Write the table here (CSV or JSON by extension); CSV on stdout when absent.
+    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json")]
+    pub output: Option<PathBuf>,
+    /// Also plot the table (SVG or PNG by extension).
+    #[arg(long, value_name = "FILE.svg|png")]
+    pub plot: Option<PathBuf>,
+    /// Write only the `master,slave` columns.
+    #[arg(long)]
+    pub minimal: bool,
+}
+
+/// Arguments of `ecam table show`.
+#[derive(clap::Args, Debug)]
+pub struct ShowArgs {
+    /// Table file (CSV or JSON).
+    pub file: PathBuf,
+    /// Print the summary as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `ecam table plot`.
+#[derive(clap::Args, Debug)]
+pub struct PlotArgs {
+    /// Table file (CSV or JSON).
+    pub file: PathBuf,
+    /// The picture to write (SVG or PNG by extension).
+    #[arg(short = 'o', long = "output", value_name = "OUT.svg|png")]
+    pub output: PathBuf,
+    /// Shade this master range as the synchronised zone (`LOW:HIGH`);
+    /// a JSON table's own `sync` is used when absent.
+    #[arg(long, value_name = "LOW:HIGH", value_parser = parse_range)]
+    pub sync: Option<(i64, i64)>,
+}
+
+fn parse_range(text: &str) -> Result<(i64, i64), String> {
+    let (lo, hi) = text
+        .split_once(':')
+        .ok_or_else(|| format!("expected LOW:HIGH, got {text:?}"))?;
+    let lo: i64 = lo.trim().parse().map_err(|e| format!("LOW {lo:?}: {e}"))?;
+    let hi: i64 = hi.trim().parse().map_err(|e| format!("HIGH {hi:?}: {e}"))?;
+    if hi < lo {
+        return Err(format!("LOW {lo} is above HIGH {hi}"));
+    }
+    Ok((lo, hi))
 }
 
 /// Runs `ecam table`.
-pub fn run(_command: Command) -> anyhow::Result<()> {
-    anyhow::bail!("ecam table is not built yet")
+pub fn run(command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Gen(args) => generate_table(args),
+        Command::Show(args) => show(&args),
+        Command::Plot(args) => plot_file(&args),
+    }
+}
+
+fn generate_table(args: GenArgs) -> anyhow::Result<()> {
+    let output = args.generator.output().clone();
+    // Refuse bad extensions before the (possibly slow) generation.
+    if let Some(path) = &output.output {
+        table_file::FileFormat::of(path)?;
+    }
+    if let Some(path) = &output.plot {
+        plot::Format::of(path)?;
+    }
+    let generated = generate::run(&args.generator)?;
+    let file = TableFile {
+        table: generated.table,
+        sync: generated.sync,
+        generator: Some(generated.name.to_string()),
+        kinematics: generated.kinematics,
+    };
+    let columns = if output.minimal {
+        Columns::Minimal
+    } else {
+        Columns::Full
+    };
+    table_file::write(&file, output.output.as_deref(), columns)?;
+    for (key, value) in &generated.outputs {
+        eprintln!("{key}: {value}");
+    }
+    if let Some(path) = &output.plot {
+        plot::draw(&table_figure(&file, generated.name), path)?;
+    }
+    Ok(())
+}
+
+/// What `ecam table show --json` prints.
+#[derive(Serialize)]
+struct ShowJson<'a> {
+    file: String,
+    points: usize,
+    master_first: i64,
+    master_last: i64,
+    slave_first: i64,
+    slave_last: i64,
+    sync: Option<(i64, i64)>,
+    #[serde(flatten)]
+    summary: &'a Summary,
+}
+
+fn show(args: &ShowArgs) -> anyhow::Result<()> {
+    let file = table_file::read(&args.file)?;
+    let summary = Summary::of(&file.table);
+    let points = file.table.points();
+    let (first, last) = match (points.first(), points.last()) {
+        (Some(f), Some(l)) => (*f, *l),
+        _ => bail!("the table has no points"),
+    };
+    if args.json {
+        let json = ShowJson {
+            file: args.file.display().to_string(),
+            points: points.len(),
+            master_first: first.master,
+            master_last: last.master,
+            slave_first: first.slave,
+            slave_last: last.slave,
+            sync: file.sync,
+            summary: &summary,
+        };
+        println!("{}", serde_json::to_string(&json)?);
+        return Ok(());
+    }
+    println!("file:              {}", args.file.display());
+    if let Some(generator) = &file.generator {
+        println!("generator:         {generator}");
+    }
+    println!("points:            {}", points.len());
+    println!("sections:          {}", summary.sections);
+    println!(
+        "master:            {} .. {} (span {})",
+        first.master, last.master, summary.master_span
+    );
+    println!(
+        "slave:             {} .. {} (stroke {}, range {} .. {})",
+        first.slave, last.slave, summary.stroke, summary.slave_min, summary.slave_max
+    );
+    println!(
+        "peak velocity:     {} pulses/count",
+        short(summary.peak_velocity)
+    );
+    println!(
+        "peak acceleration: {} pulses/count²",
+        short(summary.peak_acceleration)
+    );
+    println!("continuity:        {}", summary.continuity);
+    if let Some((lo, hi)) = file.sync {
+        println!("sync zone:         master {lo} .. {hi}");
+    }
+    Ok(())
+}
+
+fn short(v: f64) -> String {
+    format!("{v:.6}")
+        .trim_end_matches('0')
+        .trim_end_matches('.')
+        .to_string()
+}
+
+fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
+    plot::Format::of(&args.output)?;
+    let mut file = table_file::read(&args.file)?;
+    if args.sync.is_some() {
+        file.sync = args.sync;
+    }
+    let name = file
+        .generator
+        .clone()
+        .unwrap_or_else(|| display_name(&args.file));
+    plot::draw(&table_figure(&file, &name), &args.output)
+}
+
+fn display_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// Displacement, velocity, acceleration and jerk over the master.
+pub fn table_figure(file: &TableFile, name: &str) -> Figure {
+    let points = file.table.points();
+    let kin = file.kinematics();
+    let panel = |title: &str, values: Vec<f64>| Panel {
+        title: title.to_string(),
+        series: vec![Series {
+            name: title.split(' ').next().unwrap_or(title).to_string(),
+            values,
+        }],
+    };
+    Figure {
+        title: format!("cam table: {name}"),
+        x_label: "master (counts)".into(),
+        x: points.iter().map(|p| p.master as f64).collect(),
+        panels: vec![
+            panel(
+                "displacement (pulses)",
+                points.iter().map(|p| p.slave as f64).collect(),
+            ),
+            panel("velocity (pulses/count)", kin.iter().map(|k| k.v).collect()),
+            panel(
+                "acceleration (pulses/count²)",
+                kin.iter().map(|k| k.a).collect(),
+            ),
+            panel("jerk (pulses/count³)", kin.iter().map(|k| k.j).collect()),
+        ],
+        shaded: file
+            .sync
+            .map(|(lo, hi)| vec![(lo as f64, hi as f64)])
+            .unwrap_or_default(),
+    }
 }

@@ -1,5 +1,30 @@
 //! Cam tables: the shapes a cam is stored in.
+//!
+//! - [`PointTable`]: (master, slave) points joined by straight lines, what
+//!   the PLC register block holds;
+//! - [`UniformTable`]: evenly spaced slave values over `CamCounts`
+//!   (document 002's motion processor);
+//! - [`SegmentProfile`]: key points joined by motion laws (PC editor dialog,
+//!   ECAMTBX K2), exact, and sampled into a point table on demand;
+//! - [`CamTable`]: any of them behind one type;
+//! - [`sample_function`]: a point table from a function of the master;
+//! - [`Summary`]: a table's sections, stroke, peaks and continuity.
+//!
+//! All of them evaluate through [`crate::CamCurve`] with a [`crate::Cursor`]:
+//! O(1) when the master moves a little, a binary search after a jump.
 
+mod cam_table;
+mod function;
 mod point;
+mod resolution;
+mod segment;
+mod summary;
+mod uniform;
 
+pub use cam_table::CamTable;
+pub use function::sample_function;
 pub use point::{CamPoint, PointTable};
+pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
+pub use segment::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION, Segment, SegmentProfile};
+pub use summary::{Continuity, Summary};
+pub use uniform::{MAX_CAM_COUNTS, UniformTable};

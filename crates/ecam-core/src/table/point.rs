@@ -26,9 +26,23 @@ impl CamPoint {
 /// Between points the slave is interpolated linearly, as both devices do.
 /// The Rust API puts no upper bound on the number of points; the PLC face
 /// checks its own limit of 512 sections when writing a register image.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "RawPoints")]
 pub struct PointTable {
     points: Vec<CamPoint>,
+}
+
+/// The unchecked JSON shape of a point table; validated on the way in.
+#[derive(serde::Deserialize)]
+struct RawPoints {
+    points: Vec<CamPoint>,
+}
+
+impl TryFrom<RawPoints> for PointTable {
+    type Error = TableError;
+    fn try_from(raw: RawPoints) -> Result<Self, TableError> {
+        Self::new(raw.points)
+    }
 }
 
 impl PointTable {
@@ -77,7 +91,9 @@ impl PointTable {
         let holds = |i: usize| {
             let lo = self.points[i].master as f64;
             let hi = self.points[i + 1].master as f64;
-            (master >= lo || i == 0) && (master <= hi || i == last_segment)
+            // Half-open [lo, hi): a master exactly on a point belongs to the
+            // segment starting there, whichever way it was reached.
+            (master >= lo || i == 0) && (master < hi || i == last_segment)
         };
         let guess = cursor.segment.min(last_segment);
         let found = if holds(guess) {
@@ -114,11 +130,14 @@ impl CamCurve for PointTable {
     }
 
     fn eval(&self, master: f64, cursor: &mut Cursor) -> Kinematics {
+        let first = self.master_first() as f64;
+        let master = if master.is_nan() { first } else { master };
         let i = self.locate(master, cursor);
         let (p0, p1) = (self.points[i], self.points[i + 1]);
-        let span = (p1.master - p0.master) as f64;
-        let rise = (p1.slave - p0.slave) as f64;
-        let m = master.clamp(self.master_first() as f64, self.master_last() as f64);
+        // Differences in i128: any two i64 positions, no overflow.
+        let span = (i128::from(p1.master) - i128::from(p0.master)) as f64;
+        let rise = (i128::from(p1.slave) - i128::from(p0.slave)) as f64;
+        let m = master.clamp(first, self.master_last() as f64);
         let u = (m - p0.master as f64) / span;
         Kinematics {
             s: p0.slave as f64 + rise * u,
@@ -130,12 +149,12 @@ impl CamCurve for PointTable {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
 
     fn doc001() -> PointTable {
-        PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)])
-            .unwrap()
+        PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)]).unwrap()
     }
 
     #[test]
@@ -154,6 +173,14 @@ mod tests {
         let mut c = Cursor::new();
         assert_eq!(t.position(-10.0, &mut c), 500.0);
         assert_eq!(t.position(40000.0, &mut c), 2000.0);
+        assert_eq!(t.position(f64::NAN, &mut c), 500.0);
+    }
+
+    #[test]
+    fn extreme_positions_do_not_overflow() {
+        let t = PointTable::from_pairs(&[(i64::MIN, i64::MAX), (i64::MAX, i64::MIN)]).unwrap();
+        let k = t.eval(0.0, &mut Cursor::new());
+        assert!(k.s.abs() < 1e5 && (k.v + 1.0).abs() < 1e-12);
     }
 
     #[test]
@@ -162,7 +189,10 @@ mod tests {
         let mut seq = Cursor::new();
         for m in (0..=30000).step_by(7) {
             let mut fresh = Cursor::new();
-            assert_eq!(t.position(m as f64, &mut seq), t.position(m as f64, &mut fresh));
+            assert_eq!(
+                t.position(m as f64, &mut seq),
+                t.position(m as f64, &mut fresh)
+            );
         }
     }
 

@@ -1,0 +1,173 @@
+//! Arithmetic the user types: cam functions of the master and numeric flags.
+//!
+//! Expressions are parsed by `exmex` (floats: `+ - * / ^`, `sin`, `cos`,
+//! `tan`, `exp`, `ln`, `sqrt`, `abs`, …). The master is the variable `x`;
+//! `pi`, `tau` and `e` are accepted in lower case besides exmex's own `PI`,
+//! `TAU`, `E`, so the PLC editor's `1000*sin(2*pi*x/36000)` reads as written.
+
+use anyhow::{Context, anyhow, bail};
+use ecam_core::Kinematics;
+use exmex::prelude::*;
+
+/// A parsed function of the master position `x`.
+pub struct MasterFunction {
+    expr: FlatEx<f64>,
+    /// For each of exmex's variables (alphabetical), where its value comes from.
+    slots: Vec<Slot>,
+    text: String,
+}
+
+#[derive(Clone, Copy)]
+enum Slot {
+    Master,
+    Constant(f64),
+}
+
+impl MasterFunction {
+    /// Parses `text`; the only free variable allowed is `x`.
+    ///
+    /// # Errors
+    /// Syntax errors and unknown names.
+    pub fn parse(text: &str) -> anyhow::Result<Self> {
+        Self::with_variables(text, true)
+    }
+
+    fn with_variables(text: &str, master_allowed: bool) -> anyhow::Result<Self> {
+        let expr = exmex::parse::<f64>(text)
+            .map_err(|e| anyhow!("cannot parse expression {text:?}: {e}"))?;
+        let slots = expr
+            .var_names()
+            .iter()
+            .map(|name| match name.as_str() {
+                "x" if master_allowed => Ok(Slot::Master),
+                "pi" => Ok(Slot::Constant(std::f64::consts::PI)),
+                "tau" => Ok(Slot::Constant(std::f64::consts::TAU)),
+                "e" => Ok(Slot::Constant(std::f64::consts::E)),
+                other if master_allowed => bail!(
+                    "unknown name {other:?} in {text:?}: the master position is `x`; constants are pi, tau, e"
+                ),
+                other => bail!("unknown name {other:?} in {text:?}: constants are pi, tau, e"),
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        Ok(Self {
+            expr,
+            slots,
+            text: text.to_string(),
+        })
+    }
+
+    /// Value and first three derivatives in `x` (velocity ratio,
+    /// acceleration, jerk) by central differences with a step of `h` counts
+    /// on the exact function (not on the rounded table). Symbolic
+    /// differentiation was tried and dropped: repeated derivatives of
+    /// quotients grow deep enough to overflow the stack.
+    ///
+    /// # Errors
+    /// As [`MasterFunction::at`].
+    pub fn kinematics(&self, x: f64, h: f64) -> anyhow::Result<Kinematics> {
+        let s = self.at(x)?;
+        if !self.slots.iter().any(|s| matches!(s, Slot::Master)) {
+            return Ok(Kinematics::at_rest(s));
+        }
+        let h = h.max(1e-3);
+        let f = |k: f64| self.at(x + k * h);
+        let (m2, m1, p1, p2) = (f(-2.0)?, f(-1.0)?, f(1.0)?, f(2.0)?);
+        Ok(Kinematics {
+            s,
+            v: (p1 - m1) / (2.0 * h),
+            a: (p1 - 2.0 * s + m1) / (h * h),
+            j: (p2 - 2.0 * p1 + 2.0 * m1 - m2) / (2.0 * h * h * h),
+        })
+    }
+
+    fn values(&self, x: f64) -> Vec<f64> {
+        self.slots
+            .iter()
+            .map(|s| match s {
+                Slot::Master => x,
+                Slot::Constant(c) => *c,
+            })
+            .collect()
+    }
+
+    /// The value at master position `x`.
+    ///
+    /// # Errors
+    /// Evaluation errors of exmex, or a result that is not finite.
+    pub fn at(&self, x: f64) -> anyhow::Result<f64> {
+        let values = self.values(x);
+        let y = self
+            .expr
+            .eval(&values)
+            .map_err(|e| anyhow!("cannot evaluate {:?} at x = {x}: {e}", self.text))?;
+        if !y.is_finite() {
+            bail!("{:?} is not finite at x = {x}", self.text);
+        }
+        Ok(y)
+    }
+}
+
+/// Evaluates a constant expression such as `5/3`, `50/3`, `3*pi` or `1.6667`.
+///
+/// # Errors
+/// Syntax errors, unknown names, or a non-finite value.
+pub fn number(text: &str) -> anyhow::Result<f64> {
+    let f = MasterFunction::with_variables(text, false)?;
+    f.at(0.0).with_context(|| format!("in {text:?}"))
+}
+
+/// clap value parser for numeric flags that accept arithmetic.
+pub fn parse_number(text: &str) -> Result<f64, String> {
+    number(text).map_err(|e| format!("{e:#}"))
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ratios_and_constants() {
+        assert!((number("5/3").unwrap() - 5.0 / 3.0).abs() < 1e-15);
+        assert!((number("3*pi").unwrap() - 3.0 * std::f64::consts::PI).abs() < 1e-12);
+        assert_eq!(number("1000").unwrap(), 1000.0);
+        assert!(number("x").is_err());
+        assert!(number("5/").is_err());
+    }
+
+    #[test]
+    fn the_manuals_sine_cam() {
+        let f = MasterFunction::parse("1000*sin(2*pi*x/36000)").unwrap();
+        assert!(f.at(0.0).unwrap().abs() < 1e-9);
+        assert!((f.at(9000.0).unwrap() - 1000.0).abs() < 1e-9);
+        assert!(MasterFunction::parse("y*2").is_err());
+    }
+
+    #[test]
+    fn derivatives_of_a_sine() {
+        let f = MasterFunction::parse("1000*sin(2*pi*x/36000)").unwrap();
+        let k = f.kinematics(0.0, 25.0).unwrap();
+        let w = std::f64::consts::TAU / 36000.0;
+        let close = |got: f64, want: f64| (got - want).abs() <= 1e-5 * want.abs().max(1e-30);
+        assert!(close(k.v, 1000.0 * w), "{k:?}");
+        assert!(k.a.abs() < 1e-12, "{k:?}");
+        assert!(close(k.j, -1000.0 * w * w * w), "{k:?}");
+        let k = f.kinematics(9000.0, 25.0).unwrap();
+        assert!(close(k.a, -1000.0 * w * w), "{k:?}");
+    }
+
+    #[test]
+    fn derivatives_of_a_cubic() {
+        let f = MasterFunction::parse("x^3").unwrap();
+        let k = f.kinematics(10.0, 0.5).unwrap();
+        assert!((k.v - 300.0).abs() < 1.0, "{k:?}");
+        assert!((k.a - 60.0).abs() < 1e-6, "{k:?}");
+        assert!((k.j - 6.0).abs() < 1e-6, "{k:?}");
+    }
+
+    #[test]
+    fn division_by_zero_is_an_error() {
+        let f = MasterFunction::parse("1/x").unwrap();
+        assert!(f.at(0.0).is_err());
+    }
+}

@@ -1,0 +1,552 @@
+//! Scenario files for `ecam simulate`: a cam, a master motion, a start and
+//! a stop, written in TOML. Every key is described in `docs/simulate.md`.
+//!
+//! Parsing is strict (unknown keys are errors, so a typo cannot silently fall
+//! back to a default) and turns the file into engine types up front: a bad
+//! scenario fails before the first tick.
+
+use std::num::NonZeroU64;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use ecam_core::CamCurve;
+use ecam_engine::{
+    AxisConfig, Compare, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind, SyncWindow, Zoom,
+};
+use serde::Deserialize;
+
+/// The TOML file as written.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RawScenario {
+    #[serde(default = "default_tick_us")]
+    tick_us: u32,
+    duration_s: Option<f64>,
+    #[serde(default)]
+    trace_every: Option<u64>,
+    table: toml::Table,
+    #[serde(default)]
+    cam: RawCam,
+    #[serde(default)]
+    start: RawStart,
+    #[serde(default)]
+    stop: Option<RawStop>,
+    #[serde(default)]
+    sync: Vec<RawSync>,
+    master: RawMaster,
+}
+
+fn default_tick_us() -> u32 {
+    100
+}
+
+#[derive(Deserialize, Debug, Default, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+enum CamKind {
+    #[default]
+    Periodic,
+    Repeat,
+    OneShot,
+    Normal,
+}
+
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+struct RawCam {
+    #[serde(default)]
+    kind: CamKind,
+    #[serde(default)]
+    repeats: u16,
+    #[serde(default = "one")]
+    min_stroke: u64,
+    single_turn: Option<u64>,
+    master_zoom: Option<[u16; 2]>,
+    slave_zoom: Option<[u16; 2]>,
+    #[serde(default)]
+    max_frequency_hz: i64,
+    ramp_in: Option<u64>,
+}
+
+fn one() -> u64 {
+    1
+}
+
+#[derive(Deserialize, Debug, Default, Clone, Copy)]
+#[serde(rename_all = "kebab-case")]
+enum StartKind {
+    #[default]
+    Immediate,
+    RisingEdge,
+    AfterDelay,
+    AtPosition,
+    Breakpoint,
+}
+
+#[derive(Deserialize, Debug, Clone, Copy)]
+#[serde(rename_all = "kebab-case")]
+enum RawMasterAlign {
+    Absolute,
+    Offset,
+    StartAt,
+    StartAtUnzoomed,
+}
+
+#[derive(Deserialize, Debug, Clone, Copy)]
+#[serde(rename_all = "kebab-case")]
+enum RawSlaveAlign {
+    Absolute,
+    Offset,
+    Relative,
+    Nearest,
+    At,
+}
+
+#[derive(Deserialize, Debug, Clone, Copy)]
+enum RawCompare {
+    #[serde(rename = ">=")]
+    AtLeast,
+    #[serde(rename = "<=")]
+    AtMost,
+}
+
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+struct RawStart {
+    #[serde(default)]
+    mode: StartKind,
+    #[serde(default)]
+    master: i64,
+    #[serde(default)]
+    slave: i64,
+    delay: Option<u64>,
+    position: Option<i64>,
+    #[serde(default)]
+    after_edge: bool,
+    compare: Option<RawCompare>,
+    value: Option<i64>,
+    master_align: Option<RawMasterAlign>,
+    master_value: Option<i64>,
+    slave_align: Option<RawSlaveAlign>,
+    slave_value: Option<i64>,
+    #[serde(default)]
+    input: Vec<[f64; 2]>,
+}
+
+#[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+enum RawStopKind {
+    Immediate,
+    EndOfCycle,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RawStop {
+    at_s: Option<f64>,
+    master_at_least: Option<i64>,
+    master_at_most: Option<i64>,
+    kind: RawStopKind,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RawSync {
+    low: i64,
+    high: i64,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RawMaster {
+    #[serde(default)]
+    moves: Vec<[f64; 2]>,
+}
+
+/// One linear master move: reach `target` after `duration_us`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MasterMove {
+    /// Duration of the move in microseconds (0 = a jump).
+    pub duration_us: u64,
+    /// Master position at its end.
+    pub target: i64,
+}
+
+/// What requests the stop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopTrigger {
+    /// At this time, in microseconds from the start.
+    Time(u64),
+    /// When the (unwrapped) master reaches this position or more: document
+    /// 002's stop breakpoint.
+    MasterAtLeast(i64),
+    /// When the master reaches this position or less.
+    MasterAtMost(i64),
+}
+
+/// A stop requested by time or master position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StopAt {
+    /// When.
+    pub trigger: StopTrigger,
+    /// Abrupt or at the end of the cycle.
+    pub kind: StopKind,
+}
+
+impl StopAt {
+    /// Whether the stop fires on a tick at `t_us` with the master at `master`.
+    pub fn fires(&self, t_us: u64, master: i64) -> bool {
+        match self.trigger {
+            StopTrigger::Time(at) => t_us >= at,
+            StopTrigger::MasterAtLeast(p) => master >= p,
+            StopTrigger::MasterAtMost(p) => master <= p,
+        }
+    }
+}
+
+/// A checked scenario, ready to run.
+pub struct Scenario {
+    /// Control cycle in microseconds.
+    pub tick_us: u32,
+    /// Total simulated time in microseconds.
+    pub duration_us: u64,
+    /// Write every n-th tick to the trace (the first and last are always written).
+    pub trace_every: u64,
+    /// The cam.
+    pub curve: Box<dyn CamCurve>,
+    /// Engine configuration.
+    pub config: AxisConfig,
+    /// Master position at t = 0 (unwrapped counts).
+    pub master_start: i64,
+    /// Slave position at t = 0.
+    pub slave_start: i64,
+    /// Master moves, one after another from `master_start`.
+    pub moves: Vec<MasterMove>,
+    /// Times the start input is high: `[on, off)` in microseconds.
+    pub start_input: Vec<(u64, u64)>,
+    /// Optional stop.
+    pub stop: Option<StopAt>,
+}
+
+/// Seconds → microseconds, refusing negatives, NaN and absurd lengths.
+fn micros(seconds: f64, what: &str) -> anyhow::Result<u64> {
+    // A year of simulated time is far beyond any useful scenario.
+    if !(0.0..=3.2e7).contains(&seconds) {
+        bail!("{what} = {seconds} s: must be between 0 and 3.2e7 seconds");
+    }
+    Ok((seconds * 1e6).round() as u64)
+}
+
+impl Scenario {
+    /// Reads and checks the scenario at `path`; relative table files are
+    /// resolved against the scenario's folder.
+    ///
+    /// # Errors
+    /// Unreadable file, TOML errors, unknown keys, inconsistent settings, or
+    /// a table or configuration the core or engine refuses.
+    pub fn load(path: &Path) -> anyhow::Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read scenario {}", path.display()))?;
+        let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Self::parse(&text, &base).with_context(|| format!("in scenario {}", path.display()))
+    }
+
+    /// Parses scenario text; `base` is the folder relative table files are in.
+    ///
+    /// # Errors
+    /// As [`Scenario::load`].
+    pub fn parse(text: &str, base: &Path) -> anyhow::Result<Self> {
+        let raw: RawScenario = toml::from_str(text)?;
+        if raw.tick_us == 0 {
+            bail!("tick_us must be at least 1");
+        }
+        let curve = crate::table_source::load(&raw.table, base).context("in [table]")?;
+        let moves = raw
+            .master
+            .moves
+            .iter()
+            .enumerate()
+            .map(|(i, &[duration, target])| {
+                let duration_us = micros(duration, &format!("[master] moves[{i}] duration"))?;
+                if target.fract() != 0.0 || target.abs() > 4.5e15 {
+                    bail!("[master] moves[{i}] target {target} must be a whole number of counts");
+                }
+                Ok(MasterMove {
+                    duration_us,
+                    target: target as i64,
+                })
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let moves_us = moves
+            .iter()
+            .try_fold(0u64, |acc, m| acc.checked_add(m.duration_us))
+            .context("[master] moves last too long")?;
+        let duration_us = match raw.duration_s {
+            Some(d) => micros(d, "duration_s")?,
+            None => moves_us,
+        };
+        if duration_us == 0 {
+            bail!("nothing to simulate: give [master] moves or duration_s");
+        }
+        let start_input = raw
+            .start
+            .input
+            .iter()
+            .enumerate()
+            .map(|(i, &[on, off])| {
+                let what = format!("[start] input[{i}]");
+                let (on, off) = (micros(on, &what)?, micros(off, &what)?);
+                if off <= on {
+                    bail!("{what}: the input must go off after it goes on");
+                }
+                Ok((on, off))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let stop = raw
+            .stop
+            .map(|s| -> anyhow::Result<StopAt> {
+                let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
+                    (Some(t), None, None) => StopTrigger::Time(micros(t, "[stop] at_s")?),
+                    (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
+                    (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
+                    _ => bail!("[stop] needs exactly one of at_s, master_at_least, master_at_most"),
+                };
+                Ok(StopAt {
+                    trigger,
+                    kind: match s.kind {
+                        RawStopKind::Immediate => StopKind::Immediate,
+                        RawStopKind::EndOfCycle => StopKind::EndOfCycle,
+                    },
+                })
+            })
+            .transpose()?;
+        if raw.sync.len() > 4 {
+            bail!("at most 4 [[sync]] windows, got {}", raw.sync.len());
+        }
+        let mut sync_windows = [SyncWindow::OFF; 4];
+        for (slot, w) in sync_windows.iter_mut().zip(&raw.sync) {
+            if w.high < w.low {
+                bail!("[[sync]] low {} is above high {}", w.low, w.high);
+            }
+            *slot = SyncWindow::new(w.low, w.high);
+        }
+        let config = AxisConfig {
+            coupling: coupling(&raw.cam),
+            start: start_mode(&raw.start)?,
+            master_align: master_align(&raw.start)?,
+            slave_align: slave_align(&raw.start, &raw.cam)?,
+            master_zoom: zoom(raw.cam.master_zoom, "master_zoom")?,
+            slave_zoom: zoom(raw.cam.slave_zoom, "slave_zoom")?,
+            single_turn: match raw.cam.single_turn {
+                Some(t) => {
+                    Some(NonZeroU64::new(t).context("[cam] single_turn must be at least 1")?)
+                }
+                None => None,
+            },
+            max_frequency_hz: raw.cam.max_frequency_hz,
+            sync_windows,
+            ramp_in: match raw.cam.ramp_in {
+                Some(d) => Some(ecam_engine::RampIn {
+                    distance: NonZeroU64::new(d)
+                        .context("[cam] ramp_in must be at least 1 count")?,
+                }),
+                None => None,
+            },
+        };
+        Ok(Self {
+            tick_us: raw.tick_us,
+            duration_us,
+            trace_every: raw.trace_every.unwrap_or(1).max(1),
+            curve,
+            config,
+            master_start: raw.start.master,
+            slave_start: raw.start.slave,
+            moves,
+            start_input,
+            stop,
+        })
+    }
+
+    /// Master position (unwrapped) at `t_us`: linear within each move.
+    pub fn master_at(&self, t_us: u64) -> i64 {
+        let mut from = self.master_start;
+        let mut begin = 0u64;
+        for m in &self.moves {
+            let end = begin.saturating_add(m.duration_us);
+            if t_us < end {
+                let elapsed = i128::from(t_us - begin);
+                let span = i128::from(m.duration_us.max(1));
+                let delta = i128::from(m.target) - i128::from(from);
+                let step = delta * elapsed / span;
+                return i64::try_from(i128::from(from) + step).unwrap_or(m.target);
+            }
+            from = m.target;
+            begin = end;
+        }
+        from
+    }
+
+    /// Level of the start input at `t_us`.
+    pub fn start_input_at(&self, t_us: u64) -> bool {
+        self.start_input
+            .iter()
+            .any(|&(on, off)| (on..off).contains(&t_us))
+    }
+
+    /// What the engine receives as master: the raw turn position on a
+    /// single-turn master, the unwrapped position otherwise.
+    pub fn master_input(&self, master: i64) -> i64 {
+        match self.config.single_turn {
+            Some(turn) => {
+                let turn = i64::try_from(turn.get()).unwrap_or(i64::MAX);
+                master.rem_euclid(turn)
+            }
+            None => master,
+        }
+    }
+}
+
+fn coupling(cam: &RawCam) -> Coupling {
+    match cam.kind {
+        CamKind::Periodic => Coupling::Periodic,
+        CamKind::Repeat => Coupling::Repeat {
+            min_stroke: cam.min_stroke,
+        },
+        CamKind::OneShot => Coupling::OneShot {
+            repeats: cam.repeats,
+        },
+        CamKind::Normal => Coupling::Normal,
+    }
+}
+
+fn start_mode(start: &RawStart) -> anyhow::Result<StartMode> {
+    Ok(match start.mode {
+        StartKind::Immediate => StartMode::Immediate,
+        StartKind::RisingEdge => StartMode::OnRisingEdge,
+        StartKind::AfterDelay => StartMode::AfterDelay {
+            counts: start
+                .delay
+                .context("[start] mode = \"after-delay\" needs delay = <master counts>")?,
+            after_edge: start.after_edge,
+        },
+        StartKind::AtPosition => StartMode::AtMasterPosition {
+            position: start
+                .position
+                .context("[start] mode = \"at-position\" needs position = <master counts>")?,
+            after_edge: start.after_edge,
+        },
+        StartKind::Breakpoint => StartMode::Breakpoint {
+            compare: match start
+                .compare
+                .context("[start] mode = \"breakpoint\" needs compare = \">=\" or \"<=\"")?
+            {
+                RawCompare::AtLeast => Compare::AtLeast,
+                RawCompare::AtMost => Compare::AtMost,
+            },
+            value: start
+                .value
+                .context("[start] mode = \"breakpoint\" needs value = <master counts>")?,
+        },
+    })
+}
+
+fn master_align(start: &RawStart) -> anyhow::Result<MasterAlign> {
+    let value = || {
+        start
+            .master_value
+            .context("[start] this master_align needs master_value = <counts>")
+    };
+    Ok(match start.master_align {
+        None | Some(RawMasterAlign::Absolute) => MasterAlign::Absolute,
+        Some(RawMasterAlign::Offset) => MasterAlign::Offset(value()?),
+        Some(RawMasterAlign::StartAt) => MasterAlign::StartAt(value()?),
+        Some(RawMasterAlign::StartAtUnzoomed) => MasterAlign::StartAtUnzoomed(value()?),
+    })
+}
+
+/// Document 001: a Repeat cam on a single-turn master starts at the curve
+/// position nearest the current slave, so that is the default there.
+fn slave_align(start: &RawStart, cam: &RawCam) -> anyhow::Result<SlaveAlign> {
+    let value = || {
+        start
+            .slave_value
+            .context("[start] this slave_align needs slave_value = <pulses>")
+    };
+    Ok(match start.slave_align {
+        None if cam.kind == CamKind::Repeat && cam.single_turn.is_some() => {
+            SlaveAlign::NearestEquivalent
+        }
+        None | Some(RawSlaveAlign::Absolute) => SlaveAlign::Absolute,
+        Some(RawSlaveAlign::Offset) => SlaveAlign::Offset(value()?),
+        Some(RawSlaveAlign::Relative) => SlaveAlign::Relative,
+        Some(RawSlaveAlign::Nearest) => SlaveAlign::NearestEquivalent,
+        Some(RawSlaveAlign::At) => SlaveAlign::At(value()?),
+    })
+}
+
+fn zoom(ratio: Option<[u16; 2]>, what: &str) -> anyhow::Result<Zoom> {
+    match ratio {
+        None => Ok(Zoom::ONE),
+        Some([num, den]) => {
+            Zoom::new(num, den).map_err(|e| anyhow::anyhow!("[cam] {what} = [{num}, {den}]: {e}"))
+        }
+    }
+}
+
+/// Resolves a table file path written in a scenario.
+pub fn resolve(base: &Path, file: &str) -> PathBuf {
+    let p = PathBuf::from(file);
+    if p.is_absolute() { p } else { base.join(p) }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    const DOC001: &str = r#"
+tick_us = 100
+[table]
+points = [[0, 500], [10000, 1500], [20000, 1000], [30000, 2000]]
+[cam]
+kind = "repeat"
+[master]
+moves = [[1.0, 60000], [0.5, 60000]]
+"#;
+
+    #[test]
+    fn master_moves_are_linear_and_exact_at_the_end() {
+        let s = Scenario::parse(DOC001, Path::new(".")).unwrap();
+        assert_eq!(s.duration_us, 1_500_000);
+        assert_eq!(s.master_at(0), 0);
+        assert_eq!(s.master_at(500_000), 30000);
+        assert_eq!(s.master_at(1_000_000), 60000);
+        assert_eq!(s.master_at(1_400_000), 60000);
+        assert_eq!(s.config.coupling, Coupling::Repeat { min_stroke: 1 });
+    }
+
+    #[test]
+    fn unknown_keys_are_refused() {
+        let text = DOC001.replace("kind = \"repeat\"", "knd = \"repeat\"");
+        let err = Scenario::parse(&text, Path::new(".")).err().unwrap();
+        assert!(format!("{err:#}").contains("knd"));
+    }
+
+    #[test]
+    fn single_turn_repeat_defaults_to_the_nearest_equivalent() {
+        let text = DOC001.replace(
+            "kind = \"repeat\"",
+            "kind = \"repeat\"\nsingle_turn = 30000",
+        );
+        let s = Scenario::parse(&text, Path::new(".")).unwrap();
+        assert_eq!(s.config.slave_align, SlaveAlign::NearestEquivalent);
+        assert_eq!(s.master_input(35000), 5000);
+        assert_eq!(s.master_input(-1), 29999);
+    }
+
+    #[test]
+    fn incomplete_start_settings_name_the_missing_key() {
+        let text = format!("{DOC001}\n[start]\nmode = \"after-delay\"\n");
+        let err = Scenario::parse(&text, Path::new(".")).err().unwrap();
+        assert!(format!("{err:#}").contains("delay"));
+    }
+}

@@ -1,0 +1,161 @@
+//! The `[table]` of a scenario: where the cam comes from.
+//!
+//! Exactly one source key: `points`, `uniform` (with `counts`), `file`,
+//! `expr` (with `from`, `to`, `points`) or `generator` (with that
+//! generator's parameters, as `ecam table gen` takes them).
+
+use std::path::Path;
+
+use anyhow::{Context, bail};
+use ecam_core::table::UniformTable;
+use ecam_core::{CamCurve, PointTable};
+use serde::Deserialize;
+
+use crate::{generate, scenario, table_file};
+
+const SOURCES: [&str; 5] = ["points", "uniform", "file", "expr", "generator"];
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Points {
+    points: Vec<[i64; 2]>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Uniform {
+    uniform: Vec<i64>,
+    counts: i64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    file: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Expr {
+    expr: String,
+    from: i64,
+    to: i64,
+    points: usize,
+}
+
+/// Builds the cam a `[table]` describes; `base` resolves relative files.
+///
+/// # Errors
+/// No or several source keys, keys that do not belong to the source, or a
+/// table the core refuses.
+pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve>> {
+    let given: Vec<&str> = SOURCES
+        .iter()
+        .copied()
+        .filter(|k| table.contains_key(*k))
+        .collect();
+    // `expr` also has a `points` key (the sample count).
+    let source = match given.as_slice() {
+        [one] => *one,
+        ["points", "expr"] => "expr",
+        [] => bail!("give one of {}", SOURCES.join(", ")),
+        many => bail!("give only one table source, found {}", many.join(" and ")),
+    };
+    let value = toml::Value::Table(table.clone());
+    Ok(match source {
+        "points" => {
+            let p: Points = value.try_into()?;
+            let pairs: Vec<(i64, i64)> = p.points.iter().map(|&[m, s]| (m, s)).collect();
+            Box::new(PointTable::from_pairs(&pairs)?)
+        }
+        "uniform" => {
+            let u: Uniform = value.try_into()?;
+            Box::new(UniformTable::new(u.uniform, u.counts)?)
+        }
+        "file" => {
+            let f: File = value.try_into()?;
+            let path = scenario::resolve(base, &f.file);
+            table_file::read_curve(&path)?
+        }
+        "expr" => {
+            let e: Expr = value.try_into()?;
+            Box::new(generate::function_table(&e.expr, e.from, e.to, e.points)?)
+        }
+        _ => {
+            let mut params = table.clone();
+            let name = params
+                .remove("generator")
+                .and_then(|v| v.as_str().map(str::to_string))
+                .context("generator must be a name, e.g. \"rotary-cut\"")?;
+            Box::new(generate::from_toml(&name, params)?.table)
+        }
+    })
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn table(text: &str) -> toml::Table {
+        toml::from_str(text).unwrap()
+    }
+
+    #[test]
+    fn uniform_tables_follow_document_002() {
+        let t = load(
+            &table("uniform = [0, 100, 200]\ncounts = 100"),
+            Path::new("."),
+        )
+        .unwrap();
+        assert_eq!(t.master_last(), 100);
+        assert_eq!(t.stroke(), 200);
+    }
+
+    #[test]
+    fn one_source_only() {
+        let err = load(
+            &table("uniform = [0, 1]\ncounts = 10\nfile = \"a.csv\""),
+            Path::new("."),
+        )
+        .err()
+        .unwrap();
+        assert!(err.to_string().contains("only one"));
+        assert!(load(&table("counts = 10"), Path::new(".")).is_err());
+    }
+
+    #[test]
+    fn stray_keys_are_refused() {
+        assert!(
+            load(
+                &table("points = [[0, 0], [1, 1]]\ncounts = 3"),
+                Path::new(".")
+            )
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn core_json_files_of_any_kind() {
+        let dir = std::env::temp_dir().join(format!("ecam-table-source-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("u.json"),
+            r#"{"kind": "uniform", "values": [0, 100, 200], "cam_counts": 100}"#,
+        )
+        .unwrap();
+        let t = load(&table("file = \"u.json\""), &dir).unwrap();
+        assert_eq!(t.stroke(), 200);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn expressions_sample_the_master() {
+        let t = load(
+            &table("expr = \"2*x\"\nfrom = 0\nto = 100\npoints = 11"),
+            Path::new("."),
+        )
+        .unwrap();
+        assert_eq!(t.slave_last(), 200);
+    }
+}

@@ -1,0 +1,330 @@
+//! Segment profiles: key points joined by motion laws, as the PC editor's
+//! table dialog and the PLC's key-point generator (ECAMTBX K2) describe a cam.
+
+use alloc::vec::Vec;
+
+use crate::table::resolution;
+use crate::table::uniform::MAX_CAM_COUNTS;
+use crate::{
+    CamCurve, CamPoint, Cursor, Kinematics, MotionLaw, PointTable, TableError, UniformTable,
+};
+
+/// Largest position magnitude a profile accepts (2⁵²): every position and
+/// every difference of two positions is then exact in `f64`.
+pub const MAX_PROFILE_POSITION: i64 = 1 << 52;
+
+/// Largest resolution a single segment may ask for (document 000, K2: 1–512).
+pub const MAX_SEGMENT_RESOLUTION: u16 = 512;
+
+/// One segment: from the previous key point to (`master_end`, `slave_end`)
+/// along `law`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Segment {
+    /// Master position at the end of the segment (counts).
+    pub master_end: i64,
+    /// Slave position at the end of the segment (pulses).
+    pub slave_end: i64,
+    /// The law the slave follows across the segment.
+    pub law: MotionLaw,
+    /// Number of table points this segment gets when sampled (1..=512);
+    /// `None` shares what the total resolution leaves equally.
+    #[serde(default)]
+    pub resolution: Option<u16>,
+}
+
+impl Segment {
+    /// A segment to (`master_end`, `slave_end`) along `law`, resolution unset.
+    pub const fn new(master_end: i64, slave_end: i64, law: MotionLaw) -> Self {
+        Self {
+            master_end,
+            slave_end,
+            law,
+            resolution: None,
+        }
+    }
+
+    /// The same segment with a fixed resolution.
+    pub const fn with_resolution(mut self, resolution: u16) -> Self {
+        self.resolution = Some(resolution);
+        self
+    }
+}
+
+/// A cam made of segments that start at `start` and end at their key points.
+///
+/// It evaluates exactly (the laws' closed forms scaled onto each segment);
+/// [`SegmentProfile::sample`] turns it into the point table a PLC runs.
+///
+/// ```
+/// use ecam_core::{CamCurve, CamPoint, Cursor, MotionLaw, Segment, SegmentProfile};
+///
+/// let profile = SegmentProfile::new(
+///     CamPoint::new(0, 0),
+///     vec![
+///         Segment::new(1000, 500, MotionLaw::Cycloid),
+///         Segment::new(2000, 500, MotionLaw::Cycloid), // dwell
+///     ],
+/// )?;
+/// let mut c = Cursor::new();
+/// assert_eq!(profile.position(500.0, &mut c), 250.0);
+/// let table = profile.sample(100)?;
+/// assert_eq!(table.points().len(), 100);
+/// assert_eq!(table.slave_last(), 500);
+/// # Ok::<(), ecam_core::TableError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "RawProfile")]
+pub struct SegmentProfile {
+    start: CamPoint,
+    segments: Vec<Segment>,
+}
+
+#[derive(serde::Deserialize)]
+struct RawProfile {
+    start: CamPoint,
+    segments: Vec<Segment>,
+}
+
+impl TryFrom<RawProfile> for SegmentProfile {
+    type Error = TableError;
+    fn try_from(raw: RawProfile) -> Result<Self, TableError> {
+        Self::new(raw.start, raw.segments)
+    }
+}
+
+fn in_range(value: i64) -> bool {
+    (-MAX_PROFILE_POSITION..=MAX_PROFILE_POSITION).contains(&value)
+}
+
+impl SegmentProfile {
+    /// Checks and wraps a profile. Section 0 is `start`; segment `i` ends at
+    /// section `i + 1`, which is the number errors name.
+    ///
+    /// # Errors
+    /// [`TableError::SectionCount`] without segments;
+    /// [`TableError::ValueOutOfRange`] for a position beyond ±2⁵²;
+    /// [`TableError::MasterNotIncreasing`] when a segment does not end after
+    /// it starts; [`TableError::Parameter`] for a resolution outside 1..=512.
+    pub fn new(start: CamPoint, segments: Vec<Segment>) -> Result<Self, TableError> {
+        if segments.is_empty() {
+            return Err(TableError::SectionCount {
+                count: 0,
+                min: 1,
+                max: usize::MAX,
+            });
+        }
+        if !in_range(start.master) || !in_range(start.slave) {
+            return Err(TableError::ValueOutOfRange { section: 0 });
+        }
+        let mut previous = start.master;
+        for (i, seg) in segments.iter().enumerate() {
+            let section = i + 1;
+            if !in_range(seg.master_end) || !in_range(seg.slave_end) {
+                return Err(TableError::ValueOutOfRange { section });
+            }
+            if seg.master_end <= previous {
+                return Err(TableError::MasterNotIncreasing { section });
+            }
+            if let Some(r) = seg.resolution {
+                if r == 0 || r > MAX_SEGMENT_RESOLUTION {
+                    return Err(TableError::Parameter {
+                        name: "segment resolution",
+                        reason: "must be between 1 and 512",
+                    });
+                }
+            }
+            previous = seg.master_end;
+        }
+        Ok(Self { start, segments })
+    }
+
+    /// The start point (section 0).
+    pub fn start(&self) -> CamPoint {
+        self.start
+    }
+
+    /// The segments, in master order.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// The key points: the start, then each segment's end.
+    pub fn key_points(&self) -> impl Iterator<Item = CamPoint> + '_ {
+        core::iter::once(self.start).chain(
+            self.segments
+                .iter()
+                .map(|s| CamPoint::new(s.master_end, s.slave_end)),
+        )
+    }
+
+    /// Where segment `i` starts.
+    fn segment_start(&self, i: usize) -> CamPoint {
+        match i.checked_sub(1).and_then(|p| self.segments.get(p)) {
+            Some(prev) => CamPoint::new(prev.master_end, prev.slave_end),
+            None => self.start,
+        }
+    }
+
+    /// How many table points each segment gets from `total_resolution`
+    /// (see [`SegmentProfile::sample`]).
+    ///
+    /// # Errors
+    /// As [`SegmentProfile::sample`].
+    pub fn resolutions(&self, total_resolution: u16) -> Result<Vec<u16>, TableError> {
+        let wanted: Vec<Option<u16>> = self.segments.iter().map(|s| s.resolution).collect();
+        resolution::distribute(total_resolution, &wanted)
+    }
+
+    /// The point table a PLC runs: the start point, then each segment's
+    /// points evenly spaced over its master span, the last exactly on the
+    /// key point.
+    ///
+    /// `total_resolution` (10..=512) is the number of points in the table,
+    /// the start point included (the register block's section count). A
+    /// segment with a resolution gets that many points; the points left over
+    /// are shared equally by the segments without one, the first ones getting
+    /// one more when the share is not whole. Slave values are rounded to
+    /// whole pulses; key points are exact.
+    ///
+    /// # Errors
+    /// [`TableError::Parameter`] (6781) for a total below 10, set resolutions
+    /// that leave nothing for the others or exceed the total, or a segment
+    /// shorter (in master counts) than its number of points;
+    /// [`TableError::SectionCount`] (6783) for a total above 512.
+    pub fn sample(&self, total_resolution: u16) -> Result<PointTable, TableError> {
+        let per_segment = self.resolutions(total_resolution)?;
+        let capacity = per_segment.iter().map(|&r| usize::from(r)).sum::<usize>() + 1;
+        let mut points = Vec::with_capacity(capacity);
+        points.push(self.start);
+        for (i, (seg, &count)) in self.segments.iter().zip(&per_segment).enumerate() {
+            let from = self.segment_start(i);
+            // Positions are within ±2^52, so spans and products fit i128 easily.
+            let span = i128::from(seg.master_end) - i128::from(from.master);
+            let count_wide = i128::from(count);
+            if span < count_wide {
+                return Err(TableError::Parameter {
+                    name: "segment resolution",
+                    reason: "is larger than the segment's length in master counts",
+                });
+            }
+            let rise = (seg.slave_end - from.slave) as f64;
+            for k in 1..=count_wide {
+                if k == count_wide {
+                    points.push(CamPoint::new(seg.master_end, seg.slave_end));
+                    continue;
+                }
+                let offset = span * k / count_wide;
+                // offset < span ≤ 2^53: exact in f64 and i64.
+                let master = from.master + offset as i64;
+                let u = offset as f64 / span as f64;
+                let slave = from.slave as f64 + rise * seg.law.eval(u).s;
+                points.push(CamPoint::new(master, libm::round(slave) as i64));
+            }
+        }
+        PointTable::new(points)
+    }
+
+    /// The evenly spaced table of document 002's motion processor: `values`
+    /// slave values at `k · span / (values − 1)` counts from the start
+    /// (fractional spacing allowed), rounded to whole pulses; `CamCounts` is
+    /// the profile's master span. The uniform table's master starts at 0, so
+    /// it is this profile shifted by `−master_first`.
+    ///
+    /// # Errors
+    /// As [`UniformTable::new`]: fewer than two values, a span outside
+    /// 2..=2²⁹, or a slave value beyond 32 bits.
+    pub fn sample_uniform(&self, values: usize) -> Result<UniformTable, TableError> {
+        if values < 2 {
+            return Err(TableError::SectionCount {
+                count: values,
+                min: 2,
+                max: usize::MAX,
+            });
+        }
+        let span = self.master_span();
+        if !(2..=MAX_CAM_COUNTS).contains(&span) {
+            return Err(TableError::Parameter {
+                name: "CamCounts (the profile's master span)",
+                reason: "must be between 2 and 2^29 (536870912)",
+            });
+        }
+        let first = self.master_first() as f64;
+        let pieces = (values - 1) as f64;
+        let mut cursor = Cursor::new();
+        let slaves = (0..values)
+            .map(|k| {
+                let s = if k + 1 == values {
+                    self.slave_last() as f64
+                } else {
+                    self.position(first + span as f64 * k as f64 / pieces, &mut cursor)
+                };
+                libm::round(s) as i64
+            })
+            .collect();
+        UniformTable::new(slaves, span)
+    }
+
+    /// Index of the segment holding `master`: the cursor's, a neighbour, or
+    /// a binary search.
+    fn locate(&self, master: f64, cursor: &mut Cursor) -> usize {
+        let last = self.segments.len() - 1;
+        let holds = |i: usize| {
+            let lo = self.segment_start(i).master as f64;
+            let hi = self.segments[i].master_end as f64;
+            // Half-open [lo, hi), as point tables: a joint belongs to the
+            // segment starting there.
+            (master >= lo || i == 0) && (master < hi || i == last)
+        };
+        let guess = cursor.segment.min(last);
+        let found = if holds(guess) {
+            guess
+        } else if guess < last && holds(guess + 1) {
+            guess + 1
+        } else if guess > 0 && holds(guess - 1) {
+            guess - 1
+        } else {
+            self.segments
+                .partition_point(|s| (s.master_end as f64) <= master)
+                .min(last)
+        };
+        cursor.segment = found;
+        found
+    }
+}
+
+impl CamCurve for SegmentProfile {
+    fn master_first(&self) -> i64 {
+        self.start.master
+    }
+    fn master_last(&self) -> i64 {
+        self.segments
+            .last()
+            .map_or(self.start.master, |s| s.master_end)
+    }
+    fn slave_first(&self) -> i64 {
+        self.start.slave
+    }
+    fn slave_last(&self) -> i64 {
+        self.segments
+            .last()
+            .map_or(self.start.slave, |s| s.slave_end)
+    }
+    fn segment_count(&self) -> usize {
+        self.segments.len()
+    }
+
+    fn eval(&self, master: f64, cursor: &mut Cursor) -> Kinematics {
+        let master = if master.is_nan() {
+            self.master_first() as f64
+        } else {
+            master
+        };
+        let i = self.locate(master, cursor);
+        let from = self.segment_start(i);
+        let seg = self.segments[i];
+        let span = (seg.master_end - from.master) as f64;
+        let rise = (seg.slave_end - from.slave) as f64;
+        let u = (master - from.master as f64) / span;
+        seg.law.eval(u).scaled(from.slave as f64, rise, span)
+    }
+}

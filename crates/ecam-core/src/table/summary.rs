@@ -1,0 +1,251 @@
+//! What a designer wants to know about a cam at a glance.
+
+use alloc::vec::Vec;
+
+use crate::{CamCurve, Cursor, Kinematics};
+
+/// How smooth a curve is where its segments meet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+pub enum Continuity {
+    /// The position jumps at a joint.
+    Discontinuous,
+    /// Position continuous, velocity jumps at some joint (every point table
+    /// whose points are not collinear).
+    C0,
+    /// Velocity continuous, acceleration jumps at some joint.
+    C1,
+    /// Acceleration continuous at every joint.
+    C2,
+}
+
+impl core::fmt::Display for Continuity {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::Discontinuous => "discontinuous",
+            Self::C0 => "C0",
+            Self::C1 => "C1",
+            Self::C2 => "C2",
+        })
+    }
+}
+
+/// A cam's key figures.
+///
+/// ```
+/// use ecam_core::{CamPoint, MotionLaw, Segment, SegmentProfile};
+/// use ecam_core::table::{Continuity, Summary};
+///
+/// let p = SegmentProfile::new(
+///     CamPoint::new(0, 0),
+///     vec![
+///         Segment::new(100, 0, MotionLaw::Cycloid),
+///         Segment::new(200, 1000, MotionLaw::Cycloid),
+///     ],
+/// )?;
+/// let s = Summary::of(&p);
+/// assert_eq!(s.continuity, Continuity::C2);
+/// assert!((s.peak_velocity - 20.0).abs() < 1e-6); // Cv·h/β = 2·1000/100
+/// # Ok::<(), ecam_core::TableError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Summary {
+    /// Number of sections (segments).
+    pub sections: usize,
+    /// Master length of one cycle (counts).
+    pub master_span: i64,
+    /// Slave change over one cycle (pulses).
+    pub stroke: i64,
+    /// Lowest slave position reached (pulses).
+    pub slave_min: f64,
+    /// Highest slave position reached (pulses).
+    pub slave_max: f64,
+    /// Peak |slave velocity / master velocity|.
+    pub peak_velocity: f64,
+    /// Peak |d²slave/dmaster²| in pulses per count² (impulses at joints are
+    /// not counted: see `continuity`).
+    pub peak_acceleration: f64,
+    /// Weakest continuity found at a joint between sections.
+    pub continuity: Continuity,
+    /// Continuity where one cycle ends and the next begins, for a cam that
+    /// repeats with its stroke added (repeat/incremental coupling: the
+    /// position meets by construction, velocity and acceleration are
+    /// compared). A periodic coupling also jumps by `stroke` unless it is 0.
+    pub seam: Continuity,
+}
+
+/// Relative size of a jump, against the curve's own scale, that counts as a
+/// discontinuity; laws evaluated in `f64` agree at joints to ~1e-12.
+const JUMP_TOLERANCE: f64 = 1e-7;
+
+/// Samples per section in the second pass: divisible by 2, 8, 9 and 16, so
+/// the peaks of every law in [`crate::law`] (at u = 1/2, 1/8, 1/16, 1/9…)
+/// fall on a sample.
+const SAMPLES_PER_SECTION: usize = 288;
+
+impl Summary {
+    /// Measures `curve`: a sweep (at least 4096 samples, 32 per section)
+    /// finds the joints between sections by bisection on the cursor's
+    /// segment index and compares both sides of each; then every section is
+    /// sampled 289 times, ends included, for the peaks.
+    pub fn of(curve: &impl CamCurve) -> Self {
+        let first = curve.master_first() as f64;
+        let last = curve.master_last() as f64;
+        let span = last - first;
+        let sections = curve.segment_count();
+        let samples = sections.saturating_mul(32).clamp(4096, 1 << 20);
+
+        let mut acc = Extremes::new(curve.slave_first() as f64);
+        let mut worst_jump = Jumps::default();
+        // Where each section starts (master, segment index), the first included.
+        let mut starts: Vec<(f64, usize)> = Vec::new();
+        let mut cursor = Cursor::new();
+        let mut prev_master = first;
+        let mut prev_segment = {
+            curve.eval(first, &mut cursor);
+            cursor.segment
+        };
+        starts.push((first, prev_segment));
+        for i in 1..=samples {
+            let master = first + span * (i as f64 / samples as f64);
+            curve.eval(master, &mut cursor);
+            let segment = cursor.segment;
+            let mut lo = prev_master;
+            let mut current = prev_segment;
+            // One bisection per joint crossed since the last sample.
+            while segment > current {
+                let (left, right, at) = bisect(curve, lo, master, current);
+                worst_jump.add(&left, &right);
+                let next = right_segment(curve, at, current);
+                if next <= current {
+                    break;
+                }
+                starts.push((at, next));
+                lo = at;
+                current = next;
+            }
+            prev_master = master;
+            prev_segment = segment;
+        }
+
+        for (k, &(from, segment)) in starts.iter().enumerate() {
+            let to = starts.get(k + 1).map_or(last, |next| next.0);
+            for i in 0..=SAMPLES_PER_SECTION {
+                let u = i as f64 / SAMPLES_PER_SECTION as f64;
+                // Stay inside the section: its end belongs to the next one.
+                let master = if i == SAMPLES_PER_SECTION {
+                    to
+                } else {
+                    from + (to - from) * u
+                };
+                let mut c = Cursor { segment };
+                acc.add(&curve.eval(master, &mut c));
+            }
+        }
+
+        let scale_s = (acc.slave_max - acc.slave_min).abs().max(1.0);
+        let scale_v = acc.peak_v.max(scale_s / span.max(1.0));
+        let scale_a = acc.peak_a.max(scale_v / span.max(1.0));
+        let classify = |jump: &Jumps| {
+            if jump.s > JUMP_TOLERANCE * scale_s {
+                Continuity::Discontinuous
+            } else if jump.v > JUMP_TOLERANCE * scale_v {
+                Continuity::C0
+            } else if jump.a > JUMP_TOLERANCE * scale_a {
+                Continuity::C1
+            } else {
+                Continuity::C2
+            }
+        };
+        let continuity = classify(&worst_jump);
+        let mut seam_jump = Jumps::default();
+        let end = curve.eval(last, &mut Cursor { segment: sections });
+        let mut start = curve.eval(first, &mut Cursor::new());
+        start.s = end.s; // the stroke is carried over
+        seam_jump.add(&end, &start);
+        let seam = classify(&seam_jump);
+        Self {
+            sections,
+            master_span: curve.master_span(),
+            stroke: curve.stroke(),
+            slave_min: acc.slave_min,
+            slave_max: acc.slave_max,
+            peak_velocity: acc.peak_v,
+            peak_acceleration: acc.peak_a,
+            continuity,
+            seam,
+        }
+    }
+}
+
+/// Running extremes of the samples.
+struct Extremes {
+    slave_min: f64,
+    slave_max: f64,
+    peak_v: f64,
+    peak_a: f64,
+}
+
+impl Extremes {
+    fn new(s: f64) -> Self {
+        Self {
+            slave_min: s,
+            slave_max: s,
+            peak_v: 0.0,
+            peak_a: 0.0,
+        }
+    }
+    fn add(&mut self, k: &Kinematics) {
+        // `max`/`min` ignore NaN, so a misbehaving curve cannot poison the summary.
+        self.slave_min = self.slave_min.min(k.s);
+        self.slave_max = self.slave_max.max(k.s);
+        self.peak_v = self.peak_v.max(k.v.abs());
+        self.peak_a = self.peak_a.max(k.a.abs());
+    }
+}
+
+/// Largest jumps seen at joints.
+#[derive(Default)]
+struct Jumps {
+    s: f64,
+    v: f64,
+    a: f64,
+}
+
+impl Jumps {
+    fn add(&mut self, left: &Kinematics, right: &Kinematics) {
+        self.s = self.s.max((right.s - left.s).abs());
+        self.v = self.v.max((right.v - left.v).abs());
+        self.a = self.a.max((right.a - left.a).abs());
+    }
+}
+
+/// The segment the curve reports at `master`, searching from `hint`.
+fn right_segment(curve: &impl CamCurve, master: f64, hint: usize) -> usize {
+    let mut c = Cursor { segment: hint };
+    curve.eval(master, &mut c);
+    c.segment
+}
+
+/// Narrows `(lo, hi]` onto the end of segment `segment`: returns the
+/// kinematics just inside it, just past it, and the master just past it.
+fn bisect(
+    curve: &impl CamCurve,
+    mut lo: f64,
+    mut hi: f64,
+    segment: usize,
+) -> (Kinematics, Kinematics, f64) {
+    for _ in 0..80 {
+        let mid = lo + (hi - lo) / 2.0;
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if right_segment(curve, mid, segment) > segment {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let left = curve.eval(lo, &mut Cursor { segment });
+    let right = curve.eval(hi, &mut Cursor { segment });
+    (left, right, hi)
+}

@@ -1,0 +1,437 @@
+//! One cam axis: the tick that runs every step in order.
+//!
+//! Per tick: master (unwrap) → start (arm, edge, delay, position,
+//! breakpoint) → coupling (exact cycle, zoom, offsets; ramp-in; one-shot end;
+//! end-of-cycle stop) → pulses (frequency limit, backlog) → sync windows →
+//! output. No step allocates or loops over anything but the four sync
+//! windows; the curve lookup is O(1) through the cursor while the master
+//! moves continuously.
+
+use ecam_core::{CamCurve, Cursor};
+
+use crate::config::effective_frequency;
+use crate::coupling::{Engagement, Geometry, Place, Sample};
+use crate::master::TurnUnwrap;
+use crate::pulse::PulseOutput;
+use crate::ramp::Ramp;
+use crate::start::{StartStep, StartWatch};
+use crate::stop::CycleEnd;
+use crate::sync::active_windows;
+use crate::{
+    AxisConfig, AxisState, EngineError, Events, StopKind, SyncWindow, TickInput, TickOutput,
+};
+
+/// A slave axis coupled to a master through a cam curve.
+///
+/// The caller owns the loop: call [`CamAxis::tick`] once per control cycle
+/// with the master reading; it returns everything the cycle produced. Build
+/// it once; nothing allocates afterwards.
+#[derive(Clone, Debug)]
+pub struct CamAxis<C> {
+    curve: C,
+    config: AxisConfig,
+    geometry: Geometry,
+    cursor: Cursor,
+    state: AxisState,
+    start: Option<StartWatch>,
+    engagement: Option<Engagement>,
+    ramp: Option<Ramp>,
+    cycle_end: Option<CycleEnd>,
+    turn: Option<TurnUnwrap>,
+    commanded: i64,
+    pulse: PulseOutput,
+    last_master: Option<i64>,
+    last_start_input: bool,
+    last_place: Option<Place>,
+    stop_pending_event: bool,
+    last: TickOutput,
+}
+
+impl<C: CamCurve> CamAxis<C> {
+    /// An idle axis with the slave at 0.
+    ///
+    /// # Errors
+    /// The curve does not fit the configuration: [`EngineError::EmptyCycle`],
+    /// [`EngineError::BadTurn`], [`EngineError::TableOutsideTurn`].
+    pub fn new(curve: C, config: AxisConfig) -> Result<Self, EngineError> {
+        let geometry = Geometry::new(&curve, &config)?;
+        Ok(Self {
+            curve,
+            config,
+            geometry,
+            cursor: Cursor::new(),
+            state: AxisState::Idle,
+            start: None,
+            engagement: None,
+            ramp: None,
+            cycle_end: None,
+            turn: config.single_turn.map(TurnUnwrap::new),
+            commanded: 0,
+            pulse: PulseOutput::at(0),
+            last_master: None,
+            last_start_input: false,
+            last_place: None,
+            stop_pending_event: false,
+            last: TickOutput {
+                direction_forward: true,
+                ..TickOutput::default()
+            },
+        })
+    }
+
+    /// The configuration in use.
+    pub fn config(&self) -> &AxisConfig {
+        &self.config
+    }
+
+    /// The cam curve in use.
+    pub fn curve(&self) -> &C {
+        &self.curve
+    }
+
+    /// The current state.
+    pub fn state(&self) -> AxisState {
+        self.state
+    }
+
+    /// The commanded slave position now.
+    pub fn commanded(&self) -> i64 {
+        self.commanded
+    }
+
+    /// The output of the last tick.
+    pub fn status(&self) -> &TickOutput {
+        &self.last
+    }
+
+    fn ensure_inactive(&self) -> Result<(), EngineError> {
+        if self.state.is_active() {
+            Err(EngineError::Busy)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Replaces the configuration.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while armed or running (the running cam is
+    /// left untouched); otherwise as [`CamAxis::new`].
+    pub fn set_config(&mut self, config: AxisConfig) -> Result<(), EngineError> {
+        self.ensure_inactive()?;
+        let geometry = Geometry::new(&self.curve, &config)?;
+        if config.single_turn != self.config.single_turn {
+            self.turn = config.single_turn.map(TurnUnwrap::new);
+            self.last_master = None;
+        }
+        self.config = config;
+        self.geometry = geometry;
+        Ok(())
+    }
+
+    /// Replaces the cam curve and gives the old one back.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while armed or running; otherwise as
+    /// [`CamAxis::new`] (the old curve stays in place).
+    pub fn replace_curve(&mut self, curve: C) -> Result<C, EngineError> {
+        self.ensure_inactive()?;
+        self.geometry = Geometry::new(&curve, &self.config)?;
+        self.cursor = Cursor::new();
+        Ok(core::mem::replace(&mut self.curve, curve))
+    }
+
+    /// Changes the sync windows; allowed while running (document 003
+    /// function register 4 may change during execution).
+    pub fn set_sync_windows(&mut self, windows: [SyncWindow; 4]) {
+        self.config.sync_windows = windows;
+    }
+
+    /// Changes the pulse frequency limit; allowed while running.
+    pub fn set_max_frequency(&mut self, hz: i64) {
+        self.config.max_frequency_hz = hz;
+    }
+
+    /// Declares where the slave output stands now (commanded and emitted):
+    /// no pulses are sent for it.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while armed or running.
+    pub fn set_slave_position(&mut self, position: i64) -> Result<(), EngineError> {
+        self.ensure_inactive()?;
+        self.commanded = position;
+        let forward = self.pulse.forward;
+        self.pulse = PulseOutput::at(position);
+        self.pulse.forward = forward;
+        self.last.slave = position;
+        self.last.emitted = position;
+        self.last.backlog = 0;
+        self.last.pulse_delayed = false;
+        Ok(())
+    }
+
+    /// Accepts the emitted position as the commanded one, dropping the
+    /// backlog (e.g. after the output was inhibited). While a cam is
+    /// engaged the next tick commands the cam again.
+    pub fn discard_backlog(&mut self) {
+        self.commanded = self.pulse.emitted;
+    }
+
+    /// Waits for the start condition of [`AxisConfig::start`]. Arming an
+    /// armed axis changes nothing; a finished axis can be armed again.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while the cam is engaged.
+    pub fn arm(&mut self) -> Result<(), EngineError> {
+        match self.state {
+            AxisState::Running | AxisState::Stopping => Err(EngineError::Busy),
+            AxisState::Armed | AxisState::Delaying => Ok(()),
+            AxisState::Idle | AxisState::Finished => {
+                self.start = Some(StartWatch::arm(self.config.start));
+                // Delays and position crossings count from the first tick
+                // after arming, not from master motion before it.
+                self.last_master = None;
+                self.state = AxisState::Armed;
+                Ok(())
+            }
+        }
+    }
+
+    /// Stops the cam. [`StopKind::Immediate`] holds the slave where it is
+    /// and goes idle; [`StopKind::EndOfCycle`] keeps following to the end of
+    /// the current cycle (either direction). Either cancels a pending start.
+    pub fn stop(&mut self, kind: StopKind) {
+        match (self.state, kind) {
+            (AxisState::Running, StopKind::EndOfCycle) => {
+                if let Some(place) = self.last_place {
+                    self.cycle_end = Some(CycleEnd::of(&self.geometry, place));
+                    self.state = AxisState::Stopping;
+                }
+            }
+            (AxisState::Stopping, StopKind::EndOfCycle) => {}
+            (state, _) if state.is_active() => {
+                self.halt();
+                self.stop_pending_event = true;
+            }
+            _ => {}
+        }
+    }
+
+    /// Stops immediately and cancels any pending start.
+    pub fn disengage(&mut self) {
+        self.stop(StopKind::Immediate);
+    }
+
+    fn halt(&mut self) {
+        self.state = AxisState::Idle;
+        self.start = None;
+        self.engagement = None;
+        self.ramp = None;
+        self.cycle_end = None;
+    }
+
+    /// One control cycle. Never allocates, never panics; O(1) while the
+    /// master moves continuously (a jump costs one binary search).
+    pub fn tick(&mut self, input: &TickInput) -> TickOutput {
+        let master = match &mut self.turn {
+            Some(turn) => turn.update(input.master),
+            None => input.master,
+        };
+        let previous = self.last_master.unwrap_or(master);
+        self.last_master = Some(master);
+        let edge = input.start_input && !self.last_start_input;
+        self.last_start_input = input.start_input;
+
+        let mut events = Events {
+            stopped: core::mem::take(&mut self.stop_pending_event),
+            ..Events::default()
+        };
+        let mut fault = None;
+        let mut sample = None;
+
+        if !input.output_enabled && self.state.is_active() {
+            self.halt();
+            events.stopped = true;
+        }
+
+        if matches!(self.state, AxisState::Armed | AxisState::Delaying)
+            && let Some(start) = &mut self.start
+        {
+            match start.step(previous, master, edge, input.watch) {
+                StartStep::Waiting => {}
+                StartStep::Delaying => self.state = AxisState::Delaying,
+                StartStep::Engage(at) => match self.engage(at) {
+                    Ok(()) => events.engaged = true,
+                    Err(e) => {
+                        fault = Some(e);
+                        self.halt();
+                        events.stopped = true;
+                    }
+                },
+            }
+        }
+
+        if self.state.is_engaged() {
+            match self.follow(master, &mut events) {
+                Ok(s) => sample = Some(s),
+                Err(e) => {
+                    fault = Some(e);
+                    self.halt();
+                    events.stopped = true;
+                }
+            }
+        }
+
+        let hz = effective_frequency(self.config.max_frequency_hz);
+        let pulses = self
+            .pulse
+            .step(self.commanded, input.output_enabled, hz, input.dt_us);
+        self.report(master, sample, pulses, events, fault)
+    }
+
+    fn engage(&mut self, at: i64) -> Result<(), EngineError> {
+        let engagement = Engagement::new(
+            &self.geometry,
+            &self.config,
+            &self.curve,
+            &mut self.cursor,
+            at,
+            self.commanded,
+        )?;
+        self.last_place = Some(
+            self.geometry
+                .locate(engagement.table_input(&self.geometry, at)),
+        );
+        self.engagement = Some(engagement);
+        self.ramp = self
+            .config
+            .ramp_in
+            .map(|ramp| Ramp::new(ramp, at, self.commanded));
+        self.cycle_end = None;
+        self.start = None;
+        self.state = AxisState::Running;
+        Ok(())
+    }
+
+    fn follow(&mut self, master: i64, events: &mut Events) -> Result<FollowSample, EngineError> {
+        let Some(engagement) = self.engagement else {
+            return Err(EngineError::Busy);
+        };
+        let geo = self.geometry;
+        let geo = &geo;
+        let t = engagement.table_input(geo, master);
+        let mut finished = false;
+        let t = match engagement.span {
+            Some((_, end)) if t >= end => {
+                finished = true;
+                end
+            }
+            Some((begin, _)) => t.max(begin),
+            None => t,
+        };
+        let mut place = geo.locate(t);
+        let mut stopped = false;
+        if self.state == AxisState::Stopping
+            && let Some(end) = self.cycle_end
+            && let Some((at, forward)) = end.reached(geo, t)
+        {
+            place = at;
+            stopped = true;
+            finished = false;
+            events.cycle_completed |= forward;
+        }
+        let cam = engagement.sample(geo, &self.curve, &mut self.cursor, place)?;
+        let mut slave = cam.slave;
+        let mut velocity_ratio = cam.velocity_ratio;
+        let mut ramping = false;
+        if let Some(ramp) = self.ramp {
+            match ramp.blend(master, slave) {
+                Some(blended) => {
+                    slave = blended;
+                    velocity_ratio *= ramp.weight(master);
+                    ramping = true;
+                }
+                None => self.ramp = None,
+            }
+        }
+        self.commanded = slave;
+        if self.last_place.is_some_and(|p| p.k != place.k) {
+            events.cycle_completed = true;
+        }
+        self.last_place = Some(place);
+        if stopped {
+            events.stopped = true;
+            self.halt();
+            self.state = AxisState::Finished;
+        } else if finished {
+            events.finished = true;
+            events.cycle_completed = true;
+            self.halt();
+            self.state = AxisState::Finished;
+        }
+        Ok(FollowSample {
+            cam,
+            velocity_ratio,
+            following: !ramping,
+            input_offset: engagement.input_offset(geo),
+            cycle: place.k.saturating_sub(engagement.k_engage),
+        })
+    }
+
+    fn report(
+        &mut self,
+        master: i64,
+        sample: Option<FollowSample>,
+        pulses: i64,
+        events: Events,
+        fault: Option<EngineError>,
+    ) -> TickOutput {
+        let mut out = self.last;
+        out.state = self.state;
+        out.master = master;
+        out.velocity_ratio = 0.0;
+        out.following = false;
+        if let Some(s) = sample {
+            let place = s.cam.place;
+            out.master_in_cycle = self.geometry.input_in_cycle(place);
+            out.master_in_cycle_raw = self.geometry.raw_in_cycle(place);
+            out.cycle =
+                i64::try_from(s.cycle).unwrap_or(if s.cycle < 0 { i64::MIN } else { i64::MAX });
+            out.slave_unzoomed = s.cam.unzoomed;
+            out.input_offset = s.input_offset;
+            out.output_offset = self.commanded.saturating_sub(s.cam.in_cycle_zoomed);
+            if self.state.is_engaged() {
+                out.velocity_ratio = s.velocity_ratio;
+                out.following = s.following;
+            }
+        }
+        out.slave = self.commanded;
+        out.pulses = pulses;
+        out.direction_forward = self.pulse.forward;
+        out.emitted = self.pulse.emitted;
+        out.backlog = self.pulse.backlog(self.commanded);
+        out.pulse_delayed = out.backlog != 0;
+        out.sync = if self.state.is_engaged() {
+            active_windows(&self.config.sync_windows, out.master_in_cycle)
+        } else {
+            0
+        };
+        out.in_sync = out.sync != 0;
+        out.initialised = self.state.is_active();
+        out.busy = out.initialised || out.backlog != 0;
+        out.events = events;
+        out.fault = fault;
+        self.last = out;
+        out
+    }
+}
+
+/// What following the cam produced this tick (kept out of the public output).
+#[derive(Clone, Copy, Debug)]
+struct FollowSample {
+    cam: Sample,
+    velocity_ratio: f64,
+    following: bool,
+    input_offset: i64,
+    cycle: i128,
+}

@@ -1,0 +1,458 @@
+//! The coupling law: commanded slave as a pure function of the master.
+//!
+//! Everything that decides *which* cycle the master is in, how many strokes
+//! a repeat cam has accumulated and how a zoom scales them is exact integer
+//! arithmetic in `i128`. Only the table value inside one cycle is a float.
+//! So the commanded slave is `f(master, engagement)`: no state accumulates
+//! from tick to tick, and a cam that runs for a year drifts by nothing.
+//!
+//! Units: a table input `t` is kept as `t_num = t × master_zoom.den`, so the
+//! zoomed master `master × num / den` is the exact integer
+//! `master × num` in those units.
+
+use ecam_core::{CamCurve, Cursor};
+
+use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
+
+/// How far the table extends along the master.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Extent {
+    /// Repeats forever in both directions.
+    Cyclic,
+    /// A one-shot: this many cycles of master travel after engaging.
+    Cycles(u32),
+    /// No repetition: the slave holds the end values outside the table.
+    Single,
+}
+
+/// A place on the master axis: cycle `k` and the offset `r_num` into it
+/// (in table counts × master zoom denominator), `0 <= r_num <= period_num`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Place {
+    pub(crate) k: i128,
+    pub(crate) r_num: i128,
+}
+
+/// The integer geometry of the cycle, fixed while a cam is engaged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Geometry {
+    origin: i64,
+    origin_num: i128,
+    period_num: i128,
+    mnum: i128,
+    mden: i128,
+    snum: i128,
+    sden: i128,
+    /// Slave change added per cycle (0 for a periodic or normal cam).
+    stroke: i128,
+    pub(crate) extent: Extent,
+}
+
+/// Largest single-turn range accepted (keeps every product far from overflow).
+const MAX_TURN: u64 = 1 << 62;
+
+impl Geometry {
+    /// Checks `curve` against `config` and derives the cycle.
+    pub(crate) fn new<C: CamCurve + ?Sized>(
+        curve: &C,
+        config: &AxisConfig,
+    ) -> Result<Self, EngineError> {
+        let first = curve.master_first();
+        let last = curve.master_last();
+        if last <= first {
+            return Err(EngineError::EmptyCycle);
+        }
+        let (origin, span) = match config.single_turn {
+            Some(turn) => {
+                if turn.get() > MAX_TURN {
+                    return Err(EngineError::BadTurn);
+                }
+                let turn = i128::from(turn.get());
+                if first < 0 || i128::from(last) > turn {
+                    return Err(EngineError::TableOutsideTurn);
+                }
+                (0, turn)
+            }
+            None => (first, i128::from(last) - i128::from(first)),
+        };
+        let raw_stroke = i128::from(curve.slave_last()) - i128::from(curve.slave_first());
+        let (stroke, extent) = match config.coupling {
+            Coupling::Periodic => (0, Extent::Cyclic),
+            Coupling::Repeat { min_stroke } => {
+                let joined = raw_stroke != 0 && raw_stroke.unsigned_abs() >= u128::from(min_stroke);
+                (if joined { raw_stroke } else { 0 }, Extent::Cyclic)
+            }
+            Coupling::OneShot { repeats: u16::MAX } => (raw_stroke, Extent::Cyclic),
+            Coupling::OneShot { repeats } => (raw_stroke, Extent::Cycles(u32::from(repeats) + 1)),
+            Coupling::Normal => (0, Extent::Single),
+        };
+        let (origin, span) = match extent {
+            // A normal cam has no cycle: its "cycle" is the table itself.
+            Extent::Single => (first, i128::from(last) - i128::from(first)),
+            _ => (origin, span),
+        };
+        let mden = i128::from(config.master_zoom.den());
+        Ok(Self {
+            origin,
+            origin_num: i128::from(origin) * mden,
+            period_num: span * mden,
+            mnum: i128::from(config.master_zoom.num()),
+            mden,
+            snum: i128::from(config.slave_zoom.num()),
+            sden: i128::from(config.slave_zoom.den()),
+            stroke,
+            extent,
+        })
+    }
+
+    /// The zoomed master in table-input units.
+    pub(crate) fn zoomed_master(&self, master: i64) -> i128 {
+        i128::from(master) * self.mnum
+    }
+
+    /// Where table input `t_num` lies.
+    pub(crate) fn locate(&self, t_num: i128) -> Place {
+        let u = t_num.saturating_sub(self.origin_num);
+        match self.extent {
+            Extent::Single => Place {
+                k: 0,
+                r_num: u.clamp(0, self.period_num),
+            },
+            Extent::Cyclic | Extent::Cycles(_) => {
+                let (k, r_num) = div_floor(u, self.period_num);
+                Place { k, r_num }
+            }
+        }
+    }
+
+    /// Table input of the start (`end = false`) or end of cycle `k`.
+    pub(crate) fn boundary(&self, k: i128, end: bool) -> i128 {
+        let k = if end { k.saturating_add(1) } else { k };
+        self.origin_num
+            .saturating_add(k.saturating_mul(self.period_num))
+    }
+
+    /// The place at the end of cycle `k` (seen from inside it: no seam jump).
+    pub(crate) fn cycle_end(&self, k: i128) -> Place {
+        Place {
+            k,
+            r_num: self.period_num,
+        }
+    }
+
+    /// The place at the start of cycle `k`.
+    pub(crate) fn cycle_start(k: i128) -> Place {
+        Place { k, r_num: 0 }
+    }
+
+    /// Table input (after zoom, floor) of a place.
+    pub(crate) fn input_in_cycle(&self, place: Place) -> i64 {
+        let (whole, _) = div_floor(place.r_num, self.mden);
+        clamp_i64(i128::from(self.origin).saturating_add(whole))
+    }
+
+    /// The same place in master counts before zoom (floor).
+    pub(crate) fn raw_in_cycle(&self, place: Place) -> i64 {
+        clamp_i64(div_floor(place.r_num, self.mnum).0)
+    }
+
+    /// Table input as a float for the curve (the only float in the chain).
+    fn table_x(&self, place: Place) -> f64 {
+        self.origin as f64 + to_f64(place.r_num) / to_f64(self.mden)
+    }
+
+    /// d(slave)/d(master) factor of the two zooms.
+    fn zoom_factor(&self) -> f64 {
+        (to_f64(self.mnum) / to_f64(self.mden)) * (to_f64(self.snum) / to_f64(self.sden))
+    }
+
+    /// Exact zoomed value of `table + strokes × stroke`, rounded once.
+    fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
+        let accumulated = mul_exact(strokes, self.stroke)
+            .and_then(|a| mul_exact(a, self.snum))
+            .ok_or(EngineError::SlaveOverflow)?;
+        let (whole, rem) = div_floor(accumulated, self.sden);
+        let fraction = libm::round((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
+        if !fraction.is_finite() || fraction.abs() > 1e36 {
+            return Err(EngineError::SlaveOverflow);
+        }
+        whole
+            .checked_add(whole_to_i128(fraction))
+            .ok_or(EngineError::SlaveOverflow)
+    }
+}
+
+/// Floor division and its non-negative remainder for `b > 0`. Cycle
+/// arithmetic is `i128` so nothing can overflow, but nearly every real value
+/// fits 64 bits, where one hardware division is several times faster than
+/// the 128-bit library routine.
+#[inline]
+fn div_floor(a: i128, b: i128) -> (i128, i128) {
+    match (i64::try_from(a), i64::try_from(b)) {
+        (Ok(a), Ok(b)) if b > 0 => (i128::from(a.div_euclid(b)), i128::from(a.rem_euclid(b))),
+        _ => (a.div_euclid(b), a.rem_euclid(b)),
+    }
+}
+
+/// `a × b`, `None` on overflow. Factors that fit 64 bits (nearly always)
+/// take one widening multiply instead of the overflow-checked 128-bit routine.
+#[inline]
+fn mul_exact(a: i128, b: i128) -> Option<i128> {
+    match (i64::try_from(a), i64::try_from(b)) {
+        (Ok(a), Ok(b)) => Some(i128::from(a) * i128::from(b)),
+        _ => a.checked_mul(b),
+    }
+}
+
+/// `v` as a float. Values that fit 64 bits (nearly all) take the one
+/// instruction conversion instead of the 128-bit library routine; larger
+/// ones are built from their two halves (within a rounding of the nearest
+/// float, which is all a float inside a cycle needs).
+#[inline]
+fn to_f64(v: i128) -> f64 {
+    match i64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => ((v >> 64) as i64 as f64) * 18_446_744_073_709_551_616.0 + (v as u64) as f64,
+    }
+}
+
+/// A whole float (already rounded, finite) as an integer.
+#[inline]
+fn whole_to_i128(v: f64) -> i128 {
+    if v.abs() < 9.0e18 {
+        i128::from(v as i64)
+    } else {
+        v as i128
+    }
+}
+
+fn clamp_i64(v: i128) -> i64 {
+    i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
+}
+
+/// The integers fixed at the engage instant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Engagement {
+    /// Table input = master × num + `input_offset_num` (× den units).
+    input_offset_num: i128,
+    /// Extra whole strokes chosen by [`SlaveAlign::NearestEquivalent`].
+    shift: i128,
+    /// Added to the zoomed table value.
+    output_offset: i128,
+    /// Cycle at the engage instant (cycles are reported from here).
+    pub(crate) k_engage: i128,
+    /// One-shot: the table-input range the cam covers.
+    pub(crate) span: Option<(i128, i128)>,
+}
+
+/// The commanded slave at one place.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Sample {
+    pub(crate) place: Place,
+    pub(crate) slave: i64,
+    pub(crate) unzoomed: i64,
+    pub(crate) in_cycle_zoomed: i64,
+    pub(crate) velocity_ratio: f64,
+}
+
+fn table_value<C: CamCurve + ?Sized>(
+    curve: &C,
+    cursor: &mut Cursor,
+    x: f64,
+) -> Result<(f64, f64), EngineError> {
+    let k = curve.eval(x, cursor);
+    if k.s.is_finite() && k.v.is_finite() {
+        Ok((k.s, k.v))
+    } else {
+        Err(EngineError::CurveNotFinite)
+    }
+}
+
+impl Engagement {
+    /// Fixes the coupling at master `master_at`, with the slave commanded at
+    /// `slave_now`.
+    pub(crate) fn new<C: CamCurve + ?Sized>(
+        geo: &Geometry,
+        config: &AxisConfig,
+        curve: &C,
+        cursor: &mut Cursor,
+        master_at: i64,
+        slave_now: i64,
+    ) -> Result<Self, EngineError> {
+        let zoomed = geo.zoomed_master(master_at);
+        let t_engage = match config.master_align {
+            MasterAlign::Absolute => zoomed,
+            MasterAlign::Offset(o) => zoomed.saturating_add(i128::from(o) * geo.mden),
+            MasterAlign::StartAt(v) => i128::from(v) * geo.mden,
+            MasterAlign::StartAtUnzoomed(v) => i128::from(v) * geo.mnum,
+        };
+        let place = geo.locate(t_engage);
+        let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
+        let target = i128::from(slave_now);
+        let shift = match config.slave_align {
+            SlaveAlign::NearestEquivalent if geo.stroke != 0 => {
+                nearest_shift(geo, place.k, table, target)?
+            }
+            _ => 0,
+        };
+        let on_table = geo.zoomed(place.k.saturating_add(shift), table)?;
+        let output_offset = match config.slave_align {
+            SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
+            SlaveAlign::Offset(o) => i128::from(o),
+            SlaveAlign::Relative => target
+                .checked_sub(on_table)
+                .ok_or(EngineError::SlaveOverflow)?,
+            SlaveAlign::At(v) => i128::from(v)
+                .checked_sub(on_table)
+                .ok_or(EngineError::SlaveOverflow)?,
+        };
+        let span = match geo.extent {
+            Extent::Cycles(n) => Some((
+                t_engage,
+                t_engage.saturating_add(i128::from(n).saturating_mul(geo.period_num)),
+            )),
+            Extent::Cyclic | Extent::Single => None,
+        };
+        Ok(Self {
+            input_offset_num: t_engage.saturating_sub(zoomed),
+            shift,
+            output_offset,
+            k_engage: place.k,
+            span,
+        })
+    }
+
+    /// Table input (× den units) for a master position.
+    pub(crate) fn table_input(&self, geo: &Geometry, master: i64) -> i128 {
+        geo.zoomed_master(master)
+            .saturating_add(self.input_offset_num)
+    }
+
+    /// Document 002 `CamInputOffset`, in table counts (floor).
+    pub(crate) fn input_offset(&self, geo: &Geometry) -> i64 {
+        clamp_i64(div_floor(self.input_offset_num, geo.mden).0)
+    }
+
+    /// The commanded slave at `place`.
+    pub(crate) fn sample<C: CamCurve + ?Sized>(
+        &self,
+        geo: &Geometry,
+        curve: &C,
+        cursor: &mut Cursor,
+        place: Place,
+    ) -> Result<Sample, EngineError> {
+        let (table, slope) = table_value(curve, cursor, geo.table_x(place))?;
+        let strokes = place.k.saturating_add(self.shift);
+        let zoomed = geo.zoomed(strokes, table)?;
+        let slave = zoomed
+            .checked_add(self.output_offset)
+            .and_then(|s| i64::try_from(s).ok())
+            .ok_or(EngineError::SlaveOverflow)?;
+        let unzoomed = mul_exact(strokes, geo.stroke)
+            .unwrap_or(i128::MAX)
+            .saturating_add(whole_to_i128(libm::round(table)));
+        let in_cycle_zoomed = libm::round(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
+        Ok(Sample {
+            place,
+            slave,
+            unzoomed: clamp_i64(unzoomed),
+            in_cycle_zoomed,
+            velocity_ratio: slope * geo.zoom_factor(),
+        })
+    }
+}
+
+/// Whole strokes to add so the zoomed table value lands nearest `target`
+/// (document 001: start at master 20000 with slave −1500 → −2000).
+fn nearest_shift(geo: &Geometry, k: i128, table: f64, target: i128) -> Result<i128, EngineError> {
+    let base = geo.zoomed(k, table)?;
+    // One stroke moves the output by stroke × snum / sden.
+    let per_stroke = geo.stroke as f64 * geo.snum as f64 / geo.sden as f64;
+    let gap = target.checked_sub(base).ok_or(EngineError::SlaveOverflow)?;
+    let guess = libm::round(gap as f64 / per_stroke);
+    if !guess.is_finite() {
+        return Err(EngineError::SlaveOverflow);
+    }
+    let guess = guess as i128;
+    let mut best: Option<(i128, u128)> = None;
+    for shift in [guess.saturating_sub(1), guess, guess.saturating_add(1)] {
+        let value = geo.zoomed(k.saturating_add(shift), table)?;
+        let distance = value.abs_diff(target);
+        if best.is_none_or(|(_, d)| distance < d) {
+            best = Some((shift, distance));
+        }
+    }
+    Ok(best.map_or(0, |(shift, _)| shift))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{AxisConfig, Coupling, Zoom};
+    use core::num::NonZeroU64;
+    use ecam_core::PointTable;
+
+    fn doc001() -> PointTable {
+        PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)]).unwrap()
+    }
+
+    #[test]
+    fn repeat_is_continuous_at_the_seam() {
+        let config = AxisConfig {
+            coupling: Coupling::Repeat { min_stroke: 1 },
+            ..AxisConfig::default()
+        };
+        let t = doc001();
+        let geo = Geometry::new(&t, &config).unwrap();
+        let mut c = Cursor::new();
+        let e = Engagement::new(&geo, &config, &t, &mut c, 0, 0).unwrap();
+        let at = |m: i64, c: &mut Cursor| {
+            let p = geo.locate(e.table_input(&geo, m));
+            e.sample(&geo, &t, c, p).unwrap().slave
+        };
+        assert_eq!(at(30000, &mut c), 2000);
+        assert_eq!(at(40000, &mut c), 3000);
+        assert_eq!(at(-10000, &mut c), 1000 - 1500);
+        assert_eq!(at(-1, &mut c), 500);
+        assert_eq!(at(90000, &mut c), 500 + 3 * 1500);
+    }
+
+    #[test]
+    fn nearest_equivalent_matches_document_001() {
+        let config = AxisConfig {
+            coupling: Coupling::Repeat { min_stroke: 1 },
+            slave_align: SlaveAlign::NearestEquivalent,
+            single_turn: NonZeroU64::new(30000),
+            ..AxisConfig::default()
+        };
+        let t = doc001();
+        let geo = Geometry::new(&t, &config).unwrap();
+        let mut c = Cursor::new();
+        let e = Engagement::new(&geo, &config, &t, &mut c, 20000, -1500).unwrap();
+        let p = geo.locate(e.table_input(&geo, 20000));
+        assert_eq!(e.sample(&geo, &t, &mut c, p).unwrap().slave, -2000);
+    }
+
+    #[test]
+    fn zoom_is_exact() {
+        let config = AxisConfig {
+            coupling: Coupling::Repeat { min_stroke: 1 },
+            master_zoom: Zoom::new(7, 3).unwrap(),
+            slave_zoom: Zoom::new(5, 3).unwrap(),
+            ..AxisConfig::default()
+        };
+        let t = PointTable::from_pairs(&[(0, 0), (100, 1)]).unwrap();
+        let geo = Geometry::new(&t, &config).unwrap();
+        let mut c = Cursor::new();
+        let e = Engagement::new(&geo, &config, &t, &mut c, 0, 0).unwrap();
+        // master 3×10^12 → table input 7×10^12 = 7×10^10 cycles of stroke 1;
+        // slave = 7×10^10 × 5/3, rounded.
+        let m = 3_000_000_000_000;
+        let p = geo.locate(e.table_input(&geo, m));
+        let expected = (70_000_000_000i128 * 5 + 1) / 3;
+        assert_eq!(
+            i128::from(e.sample(&geo, &t, &mut c, p).unwrap().slave),
+            expected
+        );
+    }
+}

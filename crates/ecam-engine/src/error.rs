@@ -1,0 +1,80 @@
+//! What can go wrong when configuring or running a cam axis.
+
+use core::fmt;
+
+/// An engine error: a refused configuration or a fault that stopped a cam.
+///
+/// [`EngineError::code`] maps each onto the PLC manual's (document 003)
+/// operation error codes, so the PLC face can report them the device's way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EngineError {
+    /// The axis is armed or following a cam; stop it before changing this.
+    Busy,
+    /// A zoom numerator or denominator is zero (allowed: 1 to 65535).
+    BadZoom,
+    /// The cam's master range is empty or reversed (`master_last <= master_first`).
+    EmptyCycle,
+    /// The single-turn range is too large (at most 2^62 counts).
+    BadTurn,
+    /// A single-turn cam table reaches outside the turn `[0, turn]`.
+    TableOutsideTurn,
+    /// The commanded slave position (or a value on the way to it) no longer
+    /// fits 64 bits; the cam was stopped where it was.
+    SlaveOverflow,
+    /// The cam curve returned a value that is not a finite number.
+    CurveNotFinite,
+}
+
+/// PLC code 6781: parameter error.
+const CODE_PARAMETER: u16 = 6781;
+/// PLC code 6782: table out of range.
+const CODE_TABLE: u16 = 6782;
+
+impl EngineError {
+    /// The document 003 operation error code: 6781 for parameters and
+    /// runtime faults, 6782 for a table that does not fit the configuration.
+    pub const fn code(self) -> u16 {
+        match self {
+            Self::EmptyCycle | Self::TableOutsideTurn | Self::CurveNotFinite => CODE_TABLE,
+            Self::Busy | Self::BadZoom | Self::BadTurn | Self::SlaveOverflow => CODE_PARAMETER,
+        }
+    }
+}
+
+impl fmt::Display for EngineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let text = match self {
+            Self::Busy => {
+                "the cam axis is armed or running: stop it before changing its table or configuration"
+            }
+            Self::BadZoom => "zoom numerator and denominator must each be between 1 and 65535",
+            Self::EmptyCycle => {
+                "the cam table's last master position must be greater than its first"
+            }
+            Self::BadTurn => "the single-turn range must be between 1 and 2^62 master counts",
+            Self::TableOutsideTurn => "a single-turn cam table must lie within the turn [0, turn]",
+            Self::SlaveOverflow => {
+                "the commanded slave position overflowed 64 bits; the cam was stopped"
+            }
+            Self::CurveNotFinite => {
+                "the cam curve returned a value that is not a finite number; the cam was stopped"
+            }
+        };
+        write!(f, "{text} (error {})", self.code())
+    }
+}
+
+impl core::error::Error for EngineError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::string::ToString;
+
+    #[test]
+    fn display_names_the_code() {
+        assert!(EngineError::BadZoom.to_string().contains("6781"));
+        assert!(EngineError::TableOutsideTurn.to_string().contains("6782"));
+        assert_eq!(EngineError::CurveNotFinite.code(), 6782);
+    }
+}

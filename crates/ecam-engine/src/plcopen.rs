@@ -1,0 +1,236 @@
+//! A native API shaped like PLCopen Motion Control Part 1 cam blocks:
+//! `MC_CamTableSelect`, `MC_CamIn`, `MC_CamOut`, with their `InSync`,
+//! `EndOfProfile`, `Busy`, `Error` outputs.
+//!
+//! It is a thin layer over [`CamAxis`]: the same exact arithmetic, the same
+//! tick. Choices where PLCopen leaves room:
+//! - a periodic table repeats with the stroke accumulated
+//!   ([`Coupling::Repeat`]), so a table whose ends differ keeps the slave
+//!   continuous; a non-periodic table runs once ([`Coupling::OneShot`]);
+//! - `MC_CamOut` stops the slave where it is (the engine has no velocity
+//!   mode to continue at the last speed);
+//! - `EndOfProfile` pulses for one cycle each time a cycle of the table
+//!   completes, and when a non-periodic table ends.
+//!
+//! ```
+//! use ecam_core::PointTable;
+//! use ecam_engine::plcopen::{CamIn, CamOut, CamTableSelect, McCamAxis};
+//!
+//! let table = PointTable::from_pairs(&[(0, 0), (500, 200), (1000, 0)])?;
+//! let mut axis = McCamAxis::new(table)?;
+//! axis.select(CamTableSelect { periodic: true, ..CamTableSelect::default() })?;
+//! axis.cam_in(&CamIn::default())?;
+//! let status = axis.cycle(250, 1000);
+//! assert!(status.in_sync && status.busy);
+//! assert_eq!(status.output.slave, 100);
+//! axis.cam_out(CamOut);
+//! assert!(!axis.cycle(300, 1000).busy);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use core::num::NonZeroU64;
+
+use ecam_core::CamCurve;
+
+use crate::{
+    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, RampIn, SlaveAlign, StartMode,
+    StopKind, TickInput, TickOutput, Zoom,
+};
+
+/// `MC_CamTableSelect`: how the selected table is interpreted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CamTableSelect {
+    /// The table repeats (otherwise it runs once and ends the coupling).
+    pub periodic: bool,
+    /// The master's absolute position is the table input (otherwise the
+    /// table starts at its beginning when the cam engages).
+    pub master_absolute: bool,
+    /// The table value is the absolute slave position (otherwise the table
+    /// is followed relative to where the slave stands at engage).
+    pub slave_absolute: bool,
+}
+
+impl Default for CamTableSelect {
+    fn default() -> Self {
+        Self {
+            periodic: true,
+            master_absolute: true,
+            slave_absolute: true,
+        }
+    }
+}
+
+/// `MC_CamIn` start modes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CamInStartMode {
+    /// As [`CamTableSelect::slave_absolute`] says (an absolute slave may jump).
+    #[default]
+    Absolute,
+    /// The slave follows the table relative to its position at engage:
+    /// no position step.
+    Relative,
+    /// Blend onto the cam over `distance` master counts without a velocity
+    /// jump (see [`RampIn`]).
+    RampIn {
+        /// Master counts of the blend.
+        distance: NonZeroU64,
+    },
+}
+
+/// `MC_CamIn` inputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CamIn {
+    /// Added to the table input (absolute master) or to the table start
+    /// (relative master).
+    pub master_offset: i64,
+    /// Added to the slave position the table gives.
+    pub slave_offset: i64,
+    /// Master scaling (table input = master × scaling).
+    pub master_scaling: Zoom,
+    /// Slave scaling (slave = table value × scaling).
+    pub slave_scaling: Zoom,
+    /// How the slave engages.
+    pub start_mode: CamInStartMode,
+}
+
+impl Default for CamIn {
+    fn default() -> Self {
+        Self {
+            master_offset: 0,
+            slave_offset: 0,
+            master_scaling: Zoom::ONE,
+            slave_scaling: Zoom::ONE,
+            start_mode: CamInStartMode::Absolute,
+        }
+    }
+}
+
+/// `MC_CamOut`: disengage the slave (it holds its position).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CamOut;
+
+/// The outputs of the cam blocks after one cycle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CamStatus {
+    /// `InSync`: the slave follows the cam (any ramp-in done).
+    pub in_sync: bool,
+    /// `EndOfProfile`: a table cycle (or the non-periodic table) ended this cycle.
+    pub end_of_profile: bool,
+    /// `Busy`: the coupling is pending or active, or pulses are still owed.
+    pub busy: bool,
+    /// `Active`: the cam is engaged.
+    pub active: bool,
+    /// `Error`/`ErrorID`: a fault stopped the cam this cycle.
+    pub error: Option<EngineError>,
+    /// The full engine output.
+    pub output: TickOutput,
+}
+
+/// One slave axis driven PLCopen-style.
+#[derive(Clone, Debug)]
+pub struct McCamAxis<C> {
+    axis: CamAxis<C>,
+    select: CamTableSelect,
+}
+
+impl<C: CamCurve> McCamAxis<C> {
+    /// An axis with `curve` as its selected table (periodic, absolute).
+    ///
+    /// # Errors
+    /// The curve's master range is empty ([`EngineError::EmptyCycle`]).
+    pub fn new(curve: C) -> Result<Self, EngineError> {
+        let select = CamTableSelect::default();
+        Ok(Self {
+            axis: CamAxis::new(curve, AxisConfig::default())?,
+            select,
+        })
+    }
+
+    /// `MC_CamTableSelect`: how the table is read at the next `cam_in`.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while a cam is engaged.
+    pub fn select(&mut self, select: CamTableSelect) -> Result<(), EngineError> {
+        if self.axis.state().is_active() {
+            return Err(EngineError::Busy);
+        }
+        self.select = select;
+        Ok(())
+    }
+
+    /// `MC_CamIn`: engage on the next cycle.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while a cam is engaged.
+    pub fn cam_in(&mut self, params: &CamIn) -> Result<(), EngineError> {
+        let master_align = if self.select.master_absolute {
+            MasterAlign::Offset(params.master_offset)
+        } else {
+            MasterAlign::StartAt(
+                self.axis
+                    .curve()
+                    .master_first()
+                    .saturating_add(params.master_offset),
+            )
+        };
+        let relative =
+            !self.select.slave_absolute || matches!(params.start_mode, CamInStartMode::Relative);
+        let slave_align = if relative {
+            // The table value at engage lands where the slave stands, plus the offset.
+            SlaveAlign::At(self.axis.commanded().saturating_add(params.slave_offset))
+        } else {
+            SlaveAlign::Offset(params.slave_offset)
+        };
+        let ramp_in = match params.start_mode {
+            CamInStartMode::RampIn { distance } => Some(RampIn { distance }),
+            CamInStartMode::Absolute | CamInStartMode::Relative => None,
+        };
+        let config = AxisConfig {
+            coupling: if self.select.periodic {
+                Coupling::Repeat { min_stroke: 1 }
+            } else {
+                Coupling::OneShot { repeats: 0 }
+            },
+            start: StartMode::Immediate,
+            master_align,
+            slave_align,
+            master_zoom: params.master_scaling,
+            slave_zoom: params.slave_scaling,
+            ramp_in,
+            ..*self.axis.config()
+        };
+        self.axis.set_config(config)?;
+        self.axis.arm()
+    }
+
+    /// `MC_CamOut`: disengage now; the slave holds its position.
+    pub fn cam_out(&mut self, _: CamOut) {
+        self.axis.stop(StopKind::Immediate);
+    }
+
+    /// Declares the slave's current position (while not engaged).
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while a cam is engaged.
+    pub fn set_slave_position(&mut self, position: i64) -> Result<(), EngineError> {
+        self.axis.set_slave_position(position)
+    }
+
+    /// One control cycle with the master at `master`, `dt_us` after the last.
+    pub fn cycle(&mut self, master: i64, dt_us: u32) -> CamStatus {
+        let output = self.axis.tick(&TickInput::at(master, dt_us));
+        CamStatus {
+            in_sync: output.following,
+            end_of_profile: output.events.cycle_completed || output.events.finished,
+            busy: output.busy,
+            active: output.state.is_engaged(),
+            error: output.fault,
+            output,
+        }
+    }
+
+    /// The underlying engine axis.
+    pub fn axis(&self) -> &CamAxis<C> {
+        &self.axis
+    }
+}

@@ -1,0 +1,585 @@
+//! `DECAM S1 S2 S3 D1 D2`: the E-cam instruction of document 003 on top of
+//! the engine.
+//!
+//! The instruction has two halves, as on the device:
+//! - [`Decam::execute`] runs at the instruction's place in every scan. It
+//!   records the power flow, writes the version (offset 0) and table offset
+//!   (offset 39) and checks the whole register block. A bad block is
+//!   reported as operation error 6781/6782/6783 (the scan puts it in D8067 and
+//!   sets M8067), in the error register (offset 2) and flag bits 3–5; the
+//!   cam that is running keeps running unchanged, a cam that is not running
+//!   does not start, and all of it clears once the block is corrected.
+//! - [`Decam::hardware_tick`] runs every hardware tick (100 µs by default):
+//!   it reads the master and the start register, starts and stops the cam,
+//!   ticks the engine, emits the pulses through
+//!   [`crate::hardware::record_pulses`] (so D8140… always equal the slave
+//!   position), drives the direction and sync outputs and updates the
+//!   status registers.
+//!
+//! The register map, every ambiguity of the manual and the choice made are
+//! listed in `docs/plc.md`.
+//!
+//! ```
+//! use ecam_plc::decam::{Decam, DecamOperands, MasterOperand};
+//! use ecam_plc::devices::{Device, Devices};
+//! use ecam_plc::hardware::Hardware;
+//!
+//! let mut dev = Devices::new();
+//! let mut hw = Hardware::new();
+//! // Table at D2038…: master 0..1000, slave 0..100 (D2038 = 2 points).
+//! dev.set_word(2038, 2)?;
+//! dev.set_dword(2044, 1000)?;
+//! dev.set_dword(2046, 100)?;
+//! dev.set_dword(10, 0)?; // the master: D10/D11
+//! let ops = DecamOperands::new(MasterOperand::Register(10), 2000, Device::X(0), 0, Device::Y(4))?;
+//! let mut cam = Decam::new(ops);
+//! dev.set_word(2005, 1)?; // cyclic
+//! cam.execute(true, &mut dev, 0)?;
+//! for t in 0..10u64 {
+//!     dev.set_dword(10, (t * 50) as i32)?; // the master moves 50 counts a tick
+//!     cam.hardware_tick(&mut dev, &mut hw, t * 100, 100);
+//! }
+//! assert_eq!(dev.dword(8140)?, 45); // Y0's pulse counter = slave at master 450
+//! assert_eq!(dev.word(2000)?, 5200);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod block;
+mod block_error;
+pub mod flags;
+mod master;
+pub mod offsets;
+mod operands;
+mod start_gate;
+mod sync_output;
+
+pub use block::{LiveSettings, MAX_FREQUENCY_HZ, StartSetup, ZoomRatio, clamp_frequency};
+pub use block_error::BlockError;
+pub use master::MasterReader;
+pub use operands::{DecamOperands, MasterOperand};
+pub use start_gate::{CamMode, GateAction, RESTART_OFF_US, StartGate};
+pub use sync_output::SyncOutput;
+
+use ecam_core::{CamCurve, PointTable};
+use ecam_engine::{
+    AxisConfig, AxisState, CamAxis, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind,
+    TickInput, Zoom,
+};
+
+use self::block::Block;
+use crate::devices::Devices;
+use crate::hardware::{Hardware, record_pulses};
+use crate::operation_error::OperationError;
+
+/// Document 003 section 4.2.1: a noncyclic cam re-armed for the next start
+/// signal accepts it no sooner than 5 ms after the previous run ended.
+pub const NONCYCLIC_REARM_US: u64 = 5_000;
+
+/// First word of each output's pulse counter D8140, D8142, D8150, D8152.
+const PULSE_COUNTERS: [u16; 4] = [8140, 8142, 8150, 8152];
+
+/// Where the instruction is between starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// No mode accepted.
+    Idle,
+    /// A mode with external start (function bit 5) waits for a rising edge
+    /// of S3, accepted from `ready_at` on; `announced` once flag bit 0 was
+    /// set for this readiness.
+    Ready { ready_at: u64, announced: bool },
+    /// The engine is armed (delay, start position) or following.
+    Running,
+    /// Stopped at a cycle end or by M8145…: the start register must go
+    /// through 0 to start again.
+    Done,
+}
+
+/// One DECAM instruction of a program.
+pub struct Decam {
+    operands: DecamOperands,
+    master: MasterReader,
+    enabled: bool,
+    gate: StartGate,
+    /// The last register block that passed the checks.
+    setup: Option<StartSetup>,
+    /// The last valid run-time settings (offsets 4, 8–12).
+    live: Option<LiveSettings>,
+    error: Option<BlockError>,
+    phase: Phase,
+    /// What the running cam was started with.
+    running: Option<Running>,
+    axis: Option<CamAxis<PointTable>>,
+    start_level: bool,
+    sync: SyncOutput,
+    /// Flag bit 9.
+    cycle_done: bool,
+    in_sync: bool,
+    pulse_delayed: bool,
+    set_latched: u16,
+    clear_latched: u16,
+}
+
+/// What a start fixed until the next stop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Running {
+    mode: CamMode,
+    external_start: bool,
+    stop_requested: bool,
+    /// Counts to wait (delay) and the travel so far, for offset 13.
+    delay: Option<u64>,
+    travel: u64,
+    last_master: i64,
+    start_position: Option<i64>,
+}
+
+impl Decam {
+    /// A DECAM instruction with checked operands, not yet executed.
+    pub fn new(operands: DecamOperands) -> Self {
+        Self {
+            operands,
+            master: MasterReader::new(operands.master),
+            enabled: false,
+            gate: StartGate::new(),
+            setup: None,
+            live: None,
+            error: None,
+            phase: Phase::Idle,
+            running: None,
+            axis: None,
+            start_level: false,
+            sync: SyncOutput::new(),
+            cycle_done: false,
+            in_sync: false,
+            pulse_delayed: false,
+            set_latched: 0,
+            clear_latched: 0,
+        }
+    }
+
+    /// The operands.
+    pub fn operands(&self) -> &DecamOperands {
+        &self.operands
+    }
+
+    /// The block error found by the last [`Decam::execute`], if any.
+    pub fn error(&self) -> Option<&BlockError> {
+        self.error.as_ref()
+    }
+
+    /// The mode the start register has engaged, if any.
+    pub fn mode(&self) -> Option<CamMode> {
+        self.gate.active()
+    }
+
+    /// True while the engine is armed or following a cam.
+    pub fn is_running(&self) -> bool {
+        self.axis.is_some()
+    }
+
+    /// The instruction at its place in the scan; `enabled` is its power flow.
+    ///
+    /// # Errors
+    /// The block's [`BlockError`] as operation error 6781, 6782 or 6783.
+    pub fn execute(
+        &mut self,
+        enabled: bool,
+        devices: &mut Devices,
+        _now_us: u64,
+    ) -> Result<(), OperationError> {
+        self.enabled = enabled;
+        if !enabled {
+            return Ok(());
+        }
+        let base = self.operands.block;
+        let _ = devices.set_word(self.operands.reg(offsets::VERSION), offsets::VERSION_NUMBER);
+        let _ = devices.set_word(
+            self.operands.reg(offsets::TABLE_OFFSET),
+            offsets::TABLE as i16,
+        );
+        let block = Block::new(devices, base);
+        let checked = block
+            .start_setup()
+            .and_then(|setup| Ok((setup, block.live()?)));
+        let result = match checked {
+            Ok((setup, live)) => {
+                self.setup = Some(setup);
+                self.live = Some(live);
+                self.error = None;
+                Ok(())
+            }
+            Err(e) => {
+                let err = e.to_operation_error(base);
+                self.error = Some(e);
+                Err(err)
+            }
+        };
+        let shown = self.error.as_ref().map_or(0, BlockError::register_value);
+        let _ = devices.set_word(self.operands.reg(offsets::ERROR), shown as i16);
+        self.write_flags(devices);
+        result
+    }
+
+    /// One hardware tick of `dt_us` ending at `now_us`.
+    pub fn hardware_tick(
+        &mut self,
+        devices: &mut Devices,
+        hardware: &mut Hardware,
+        now_us: u64,
+        dt_us: u32,
+    ) {
+        if !self.enabled {
+            let was_active = self.phase != Phase::Idle || self.gate.active().is_some();
+            self.gate.power_off(now_us);
+            if was_active {
+                self.stop_now(devices, hardware);
+                self.clear_latched |= flags::INIT_DONE;
+                self.write_flags(devices);
+            }
+            self.master.reset();
+            return;
+        }
+        let master = self.master.read(devices, dt_us);
+        if let Ok(live) = Block::new(devices, self.operands.block).live() {
+            self.live = Some(live);
+        }
+        let level = devices.bit(self.operands.start).unwrap_or(false);
+        let edge = level && !self.start_level;
+        self.start_level = level;
+
+        let start_register = Block::new(devices, self.operands.block).word(offsets::START);
+        match self.gate.observe(start_register, now_us) {
+            GateAction::Hold => {}
+            GateAction::Stop => {
+                self.stop_now(devices, hardware);
+                self.clear_latched |= flags::INIT_DONE;
+            }
+            GateAction::Start(mode) => self.start(mode, devices, hardware, master),
+        }
+        if let Phase::Ready {
+            ready_at,
+            announced,
+        } = self.phase
+            && now_us >= ready_at
+        {
+            if !announced {
+                self.set_latched |= flags::INIT_DONE;
+                self.phase = Phase::Ready {
+                    ready_at,
+                    announced: true,
+                };
+            }
+            if edge {
+                self.trigger(devices, hardware, master);
+            }
+        }
+        if self.phase == Phase::Running {
+            self.run(devices, hardware, master, now_us, dt_us);
+        } else {
+            self.in_sync = false;
+            self.pulse_delayed = false;
+            self.sync.release(devices);
+            let _ = devices.set_word(self.operands.reg(offsets::MASTER_REMAINING), 0);
+        }
+        self.write_flags(devices);
+    }
+
+    /// Accepts a mode from the start register when the block is valid and
+    /// the output is not held by its stop flag; otherwise the start waits.
+    fn start(
+        &mut self,
+        mode: CamMode,
+        devices: &mut Devices,
+        hardware: &mut Hardware,
+        master: i64,
+    ) {
+        if self.error.is_some() || Hardware::output_stopped(devices, self.operands.pulse_output) {
+            return;
+        }
+        let Some(setup) = self.setup.as_ref() else {
+            return;
+        };
+        let external_start = setup.external_start;
+        self.gate.started(mode);
+        self.cycle_done = false;
+        self.set_latched |= flags::INIT_DONE;
+        self.clear_latched &= !flags::INIT_DONE;
+        self.running = Some(Running {
+            mode,
+            external_start,
+            stop_requested: false,
+            delay: None,
+            travel: 0,
+            last_master: master,
+            start_position: None,
+        });
+        if external_start {
+            self.phase = Phase::Ready {
+                ready_at: 0,
+                announced: true,
+            };
+        } else {
+            self.trigger(devices, hardware, master);
+        }
+    }
+
+    /// The start condition came: builds the engine axis and arms it. A start
+    /// signal while the block is bad is ignored (the cam does not start from
+    /// a block that fails its checks).
+    fn trigger(&mut self, devices: &mut Devices, hardware: &mut Hardware, master: i64) {
+        if self.error.is_some() {
+            return;
+        }
+        let (Some(setup), Some(running)) = (self.setup.as_ref(), self.running.as_mut()) else {
+            return;
+        };
+        let block = Block::new(devices, self.operands.block);
+        let noncyclic = running.mode == CamMode::Noncyclic;
+        // Document 003 restricts delay and start position to the noncyclic cam.
+        let delay = setup.delay.filter(|_| noncyclic).map(u64::from);
+        let start_position = setup.start_position.filter(|_| noncyclic);
+        let start = match (delay, start_position) {
+            (Some(counts), _) => StartMode::AfterDelay {
+                counts,
+                after_edge: false,
+            },
+            (None, Some(position)) => StartMode::AtMasterPosition {
+                position,
+                after_edge: false,
+            },
+            (None, None) => StartMode::Immediate,
+        };
+        let table = setup.table.clone();
+        let master_align = if setup.from_current {
+            MasterAlign::StartAtUnzoomed(i64::from(block.dword(offsets::MASTER_RAW)))
+        } else if noncyclic {
+            MasterAlign::StartAt(table.master_first())
+        } else {
+            MasterAlign::Absolute
+        };
+        let output_counter = PULSE_COUNTERS
+            .get(usize::from(self.operands.pulse_output))
+            .and_then(|&d| devices.dword(d).ok())
+            .unwrap_or(0);
+        let (slave_align, slave_now) = if setup.from_current {
+            let slave = i64::from(block.dword(offsets::SLAVE_ZOOMED));
+            (SlaveAlign::At(slave), slave)
+        } else if noncyclic {
+            (SlaveAlign::Relative, i64::from(output_counter))
+        } else {
+            (SlaveAlign::Absolute, i64::from(output_counter))
+        };
+        let config = AxisConfig {
+            coupling: if noncyclic {
+                Coupling::OneShot {
+                    repeats: setup.repeats,
+                }
+            } else {
+                Coupling::Periodic
+            },
+            start,
+            master_align,
+            slave_align,
+            master_zoom: zoom(setup.master_zoom),
+            slave_zoom: zoom(setup.slave_zoom),
+            max_frequency_hz: i64::from(setup.max_frequency_hz),
+            ..AxisConfig::default()
+        };
+        let armed = CamAxis::new(table, config).and_then(|mut axis| {
+            axis.set_slave_position(slave_now)?;
+            axis.arm()?;
+            Ok(axis)
+        });
+        match armed {
+            Ok(axis) => {
+                self.axis = Some(axis);
+                running.delay = delay;
+                running.start_position = start_position;
+                running.travel = 0;
+                running.last_master = master;
+                self.phase = Phase::Running;
+                self.cycle_done = false;
+                hardware.claim_output(self.operands.pulse_output, true);
+            }
+            Err(e) => {
+                // The block checks rule out every refusal the engine knows;
+                // should one slip through, report it like a parameter error.
+                self.error = Some(BlockError::Parameter {
+                    offset: offsets::FUNCTION,
+                    reason: engine_refusal(e),
+                });
+                self.phase = Phase::Done;
+            }
+        }
+    }
+
+    /// One engine tick while armed or following.
+    fn run(
+        &mut self,
+        devices: &mut Devices,
+        hardware: &mut Hardware,
+        master: i64,
+        now_us: u64,
+        dt_us: u32,
+    ) {
+        let output = self.operands.pulse_output;
+        let (Some(axis), Some(running)) = (self.axis.as_mut(), self.running.as_mut()) else {
+            self.phase = Phase::Done;
+            return;
+        };
+        if Hardware::output_stopped(devices, output) {
+            // M8145…: stop at once; the start register must go through 0.
+            self.stop_now(devices, hardware);
+            self.phase = Phase::Done;
+            return;
+        }
+        let live = self.live;
+        if live.is_some_and(|l| l.stop_after_cycle)
+            && !running.stop_requested
+            && axis.status().state == AxisState::Running
+        {
+            axis.stop(StopKind::EndOfCycle);
+            running.stop_requested = true;
+        }
+        let out = axis.tick(&TickInput {
+            master,
+            start_input: false,
+            watch: 0,
+            dt_us,
+            output_enabled: true,
+        });
+        let step = master.abs_diff(running.last_master);
+        running.last_master = master;
+        let pulses =
+            i32::try_from(out.pulses).unwrap_or(if out.pulses < 0 { i32::MIN } else { i32::MAX });
+        if pulses != 0 {
+            record_pulses(devices, hardware, output, pulses);
+            let _ = devices.set_bit(self.operands.direction, pulses > 0);
+        }
+        if out.events.cycle_completed {
+            self.set_latched |= flags::CYCLE_COMPLETE;
+        }
+        self.pulse_delayed = out.pulse_delayed;
+        let remaining = match out.state {
+            AxisState::Armed | AxisState::Delaying => {
+                running.travel = running.travel.saturating_add(step);
+                if let Some(delay) = running.delay {
+                    delay.saturating_sub(running.travel)
+                } else {
+                    running.start_position.map_or(0, |p| p.abs_diff(master))
+                }
+            }
+            _ => 0,
+        };
+        let reg = |offset| self.operands.reg(offset);
+        let _ = devices.set_word(reg(offsets::MASTER_REMAINING), remaining.min(32767) as i16);
+        let engaged = out.state.is_engaged() || out.events.finished || out.events.stopped;
+        if engaged {
+            let _ = devices.set_dword(reg(offsets::SLAVE_ZOOMED), out.slave as i32);
+            let _ = devices.set_dword(reg(offsets::SLAVE_RAW), out.slave_unzoomed as i32);
+            let _ = devices.set_dword(reg(offsets::MASTER_ZOOMED), out.master_in_cycle as i32);
+            let _ = devices.set_dword(reg(offsets::MASTER_RAW), out.master_in_cycle_raw as i32);
+        }
+        self.in_sync =
+            out.state.is_engaged() && live.is_some_and(|l| l.in_window(out.master_in_cycle));
+        match live {
+            Some(l) if l.sync_enabled => {
+                self.sync.drive(devices, Some(l.sync_output), self.in_sync)
+            }
+            _ => self.sync.release(devices),
+        }
+        if matches!(out.state, AxisState::Finished | AxisState::Idle) {
+            let rearm = running.mode == CamMode::Noncyclic
+                && running.external_start
+                && !running.stop_requested;
+            let noncyclic = running.mode == CamMode::Noncyclic;
+            self.axis = None;
+            hardware.claim_output(output, false);
+            self.cycle_done = true;
+            self.in_sync = false;
+            self.sync.release(devices);
+            if noncyclic {
+                // Section 4.2.1 step 4: the controller clears bit 0 when the run ends.
+                self.clear_latched |= flags::INIT_DONE;
+                self.set_latched &= !flags::INIT_DONE;
+            }
+            self.phase = if rearm {
+                Phase::Ready {
+                    ready_at: now_us.saturating_add(NONCYCLIC_REARM_US),
+                    announced: false,
+                }
+            } else {
+                Phase::Done
+            };
+        }
+    }
+
+    /// Immediate stop: the slave holds where it is, outputs are released.
+    fn stop_now(&mut self, devices: &mut Devices, hardware: &mut Hardware) {
+        if let Some(mut axis) = self.axis.take() {
+            axis.disengage();
+        }
+        hardware.claim_output(self.operands.pulse_output, false);
+        self.sync.release(devices);
+        self.in_sync = false;
+        self.pulse_delayed = false;
+        self.phase = Phase::Idle;
+        self.running = None;
+    }
+
+    /// Rewrites the flag register: bits 0 and 1 keep what the program left
+    /// (plus this tick's set/clear), the others show the current state.
+    fn write_flags(&mut self, devices: &mut Devices) {
+        let reg = self.operands.reg(offsets::FLAGS);
+        let old = devices.word(reg).map_or(0, |w| w as u16);
+        let mut value = old & flags::LATCHED;
+        value |= self.set_latched;
+        value &= !self.clear_latched;
+        self.set_latched = 0;
+        self.clear_latched = 0;
+        if let Some(e) = &self.error {
+            value |= e.flag_bits();
+        }
+        if self.pulse_delayed {
+            value |= flags::PULSE_DELAYED;
+        }
+        match self.gate.active() {
+            Some(CamMode::Cyclic) => value |= flags::CYCLIC,
+            Some(CamMode::Noncyclic) => value |= flags::NONCYCLIC,
+            None => {}
+        }
+        if self.cycle_done {
+            value |= flags::CURRENT_CYCLE_COMPLETE;
+        }
+        if self.in_sync {
+            value |= flags::IN_SYNC_AREA;
+        }
+        if self.master.is_time_base() {
+            value |= flags::TIME_BASE;
+        }
+        let _ = devices.set_word(reg, value as i16);
+    }
+}
+
+fn zoom(ratio: ZoomRatio) -> Zoom {
+    Zoom::new(ratio.num.get(), ratio.den.get()).unwrap_or(Zoom::ONE)
+}
+
+fn engine_refusal(e: ecam_engine::EngineError) -> &'static str {
+    match e {
+        ecam_engine::EngineError::BadZoom => "zoom terms must be 1-65535",
+        ecam_engine::EngineError::EmptyCycle => "the table's last master must exceed its first",
+        _ => "the cam engine refused this configuration",
+    }
+}
+
+impl core::fmt::Debug for Decam {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Decam")
+            .field("operands", &self.operands)
+            .field("enabled", &self.enabled)
+            .field("mode", &self.gate.active())
+            .field("phase", &self.phase)
+            .field("error", &self.error)
+            .finish_non_exhaustive()
+    }
+}

@@ -1,0 +1,463 @@
+//! `ECAMTBX S0 S1 D1 D2`: builds a cam table in the PLC's registers from a
+//! parameter block (document 003 section 6.3 and appendix; the key-point
+//! kind K2 from document 000).
+//!
+//! - `S0` (`params`): first word of the parameter block, laid out as the
+//!   appendix tables say (offsets `NO.0`, `NO.1`…; 32-bit integers and
+//!   IEEE-754 floats take two words, low word first).
+//! - `S1` (`kind`): K0 or K1 S-curve, K2 key points, K100 rotary cut,
+//!   K101 flying saw.
+//! - `D1` (`table`): a DECAM register block; the table goes to `D1 + 38`
+//!   (point count), `D1 + 39` (= 40) and `D1 + 40…` (master, slave pairs).
+//!   Words `D1 … D1 + 37` are left alone.
+//! - `D2` (`result`): the number of table points on success; on failure the
+//!   negated error code (−6781, −6782, −6783), and nothing else is written
+//!   (the previous table stays).
+//!
+//! The generators themselves live in [`ecam_core::generator`]; this module
+//! only moves words in and out.
+//!
+//! ```
+//! use ecam_plc::devices::Devices;
+//! use ecam_plc::ecamtbx;
+//!
+//! // Document 000's key-point case: 5 key points, total resolution 100.
+//! let mut dev = Devices::new();
+//! dev.set_word(102, 100)?;
+//! dev.set_word(103, 5)?;
+//! for (i, (m, s)) in [(600, 0), (1500, 2000), (1700, 2000), (1900, 600), (2000, 0)].into_iter().enumerate() {
+//!     let at = 108 + 6 * i as u16;
+//!     dev.set_dword(at, m)?;
+//!     dev.set_dword(at + 2, s)?;
+//! }
+//! ecamtbx::execute(&mut dev, 100, 2, 2000, 500)?;
+//! assert_eq!(dev.word(500)?, 100);     // D2: points written
+//! assert_eq!(dev.word(2038)?, 100);    // the table's point count
+//! assert_eq!(dev.dword(2040 + 4 * 99)?, 2000); // last master
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use ecam_core::generator::accel_curve::AccelCurve;
+use ecam_core::generator::key_points::{self, CurveType, KeyPoint, MAX_KEY_POINTS};
+use ecam_core::generator::placement::CamPlacement;
+use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
+use ecam_core::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamPoint, TableError};
+
+use crate::devices::{D_COUNT, Devices};
+use crate::operation_error::OperationError;
+
+/// Offset of the point count in the target block (`D1 + 38`).
+pub const TABLE_SECTIONS: u16 = 38;
+/// Offset of the first point (`D1 + 40`).
+pub const TABLE_START: u16 = 40;
+/// Most points a DECAM table holds.
+pub const MAX_POINTS: usize = 512;
+
+/// The table kinds S1 selects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableKind {
+    /// K0 / K1: S-type acceleration and deceleration.
+    SCurve,
+    /// K2: key points.
+    KeyPoints,
+    /// K100: rotary cut.
+    RotaryCut,
+    /// K101: flying saw.
+    FlyingSaw,
+}
+
+impl TableKind {
+    /// Decodes S1.
+    pub fn from_code(kind: i32) -> Option<Self> {
+        match kind {
+            0 | 1 => Some(Self::SCurve),
+            2 => Some(Self::KeyPoints),
+            100 => Some(Self::RotaryCut),
+            101 => Some(Self::FlyingSaw),
+            _ => None,
+        }
+    }
+}
+
+/// Why ECAMTBX failed: the code and where in the parameter block.
+#[derive(Clone, Debug, PartialEq)]
+struct Failure {
+    code: u16,
+    message: String,
+    /// K2 "error parameter position" (`S0 + 1`): the key point number, or
+    /// the offset of the header word at fault; 0 when not tied to one.
+    position: u16,
+}
+
+impl Failure {
+    fn parameter(position: u16, message: impl Into<String>) -> Self {
+        Self {
+            code: CODE_PARAMETER,
+            message: message.into(),
+            position,
+        }
+    }
+
+    fn from_table(e: &TableError) -> Self {
+        let position = match e {
+            TableError::MasterNotIncreasing { section }
+            | TableError::ValueOutOfRange { section } => {
+                u16::try_from(*section).unwrap_or(u16::MAX)
+            }
+            TableError::Parameter { name, .. } => match *name {
+                "total resolution" => 2,
+                "key points number" => 3,
+                _ => 0,
+            },
+            TableError::SectionCount { .. } => 2,
+            TableError::Infeasible { .. } => 0,
+        };
+        Self {
+            code: e.code(),
+            message: e.to_string(),
+            position,
+        }
+    }
+}
+
+/// `ECAMTBX S0 S1 D1 D2`.
+///
+/// # Errors
+/// Operation error 6781 (bad parameter or unknown S1), 6782 (a table value
+/// out of range, e.g. key points not increasing) or 6783 (more than 512
+/// points, or the table does not fit below D8512); `D2` then holds the
+/// negated code and the table is not touched.
+pub fn execute(
+    devices: &mut Devices,
+    params: u16,
+    kind: i32,
+    table: u16,
+    result: u16,
+) -> Result<(), OperationError> {
+    let outcome = match TableKind::from_code(kind) {
+        None => Err(Failure::parameter(
+            0,
+            format!("unknown table kind K{kind}: use K0, K1, K2, K100 or K101"),
+        )),
+        Some(kind) => generated_table(devices, params, kind),
+    }
+    .and_then(|points| write_table(devices, table, &points).map(|()| points.len()));
+    let (value, error) = match outcome {
+        Ok(count) => (i16::try_from(count).unwrap_or(i16::MAX), None),
+        Err(f) => (-(f.code as i16), Some(f)),
+    };
+    let _ = devices.set_word(result, value);
+    if TableKind::from_code(kind) == Some(TableKind::SCurve) {
+        // P13 (NO.19): "results of chart generation".
+        let _ = devices.set_word(params.saturating_add(19), value);
+    }
+    if TableKind::from_code(kind) == Some(TableKind::KeyPoints) {
+        // K2 also reports in its own block: S0 result, S0 + 1 error position.
+        let _ = devices.set_word(params, value);
+        let _ = devices.set_word(
+            params.saturating_add(1),
+            error.as_ref().map_or(0, |f| f.position) as i16,
+        );
+    }
+    match error {
+        None => Ok(()),
+        Some(f) => Err(OperationError::new(
+            f.code,
+            format!("ECAMTBX K{kind} at D{params}: {}", f.message),
+        )),
+    }
+}
+
+/// Reads word `base + offset`; the whole block's range is checked first.
+fn word(devices: &Devices, base: u16, offset: u16) -> i16 {
+    base.checked_add(offset)
+        .and_then(|n| devices.word(n).ok())
+        .unwrap_or(0)
+}
+
+fn dword(devices: &Devices, base: u16, offset: u16) -> i32 {
+    base.checked_add(offset)
+        .and_then(|n| devices.dword(n).ok())
+        .unwrap_or(0)
+}
+
+fn check_block(base: u16, words: u16) -> Result<(), Failure> {
+    if u32::from(base) + u32::from(words) > u32::from(D_COUNT) {
+        return Err(Failure::parameter(
+            0,
+            format!("parameter block D{base} needs {words} words below D8512"),
+        ));
+    }
+    Ok(())
+}
+
+/// K2: `S0+2` total resolution, `S0+3` key point count, `S0+4/5` initial
+/// slave, key point i (1-based) at `S0 + 8 + 6 (i − 1)`: master (32-bit),
+/// slave (32-bit), curve type, resolution.
+fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failure> {
+    check_block(base, 8)?;
+    let count = word(devices, base, 3);
+    let count = usize::try_from(count)
+        .ok()
+        .filter(|c| (1..=MAX_KEY_POINTS).contains(c))
+        .ok_or_else(|| {
+            Failure::parameter(
+                3,
+                format!("key points number (S0+3) is {count}; allowed 1-10"),
+            )
+        })?;
+    check_block(base, 8 + 6 * count as u16)?;
+    let mut key_points = Vec::with_capacity(count);
+    for i in 0..count as u16 {
+        let at = 8 + 6 * i;
+        let number = i + 1;
+        let code = word(devices, base, at + 4);
+        let curve = CurveType::from_code(i32::from(code)).ok_or_else(|| {
+            Failure::parameter(
+                number,
+                format!("key point {number}: curve type {code}; allowed 0-3"),
+            )
+        })?;
+        let resolution = u16::try_from(word(devices, base, at + 5)).map_err(|_| {
+            Failure::parameter(number, format!("key point {number}: negative resolution"))
+        })?;
+        key_points.push(KeyPoint {
+            master: i64::from(dword(devices, base, at)),
+            slave: i64::from(dword(devices, base, at + 2)),
+            curve,
+            resolution,
+        });
+    }
+    let total = word(devices, base, 2);
+    let params = key_points::Params {
+        total_resolution: u16::try_from(total).map_err(|_| {
+            Failure::parameter(
+                2,
+                format!("total resolution (S0+2) is {total}; allowed 10-512"),
+            )
+        })?,
+        key_points,
+        initial_slave: i64::from(dword(devices, base, 4)),
+    };
+    let generated = key_points::generate(&params).map_err(|e| Failure::from_table(&e))?;
+    Ok(generated.table.into_points())
+}
+
+/// K0/K1 S-curve block: `NO.0` P1 pulses (32-bit), `NO.2` P2 top speed
+/// (32-bit Hz), `NO.6` P4 and `NO.7` P5 ramp times (ms), `NO.8` P6
+/// resolution; written back: `NO.10` P8, `NO.12` P9, `NO.14` P10, `NO.16` P11
+/// (32-bit each) and `NO.19` P13 the result.
+fn s_curve_table(devices: &mut Devices, base: u16) -> Result<Vec<CamPoint>, Failure> {
+    check_block(base, 20)?;
+    let unsigned = |offset: u16, name: &str| {
+        u16::try_from(word(devices, base, offset)).map_err(|_| {
+            Failure::parameter(offset, format!("{name} (NO.{offset}) must not be negative"))
+        })
+    };
+    let params = s_curve::Params {
+        total_pulses: i64::from(dword(devices, base, 0)),
+        max_speed_hz: u32::try_from(dword(devices, base, 2))
+            .map_err(|_| Failure::parameter(2, "max speed (P2, NO.2) must not be negative"))?,
+        accel_ms: unsigned(6, "acceleration time P4")?,
+        decel_ms: unsigned(7, "deceleration time P5")?,
+        resolution: unsigned(8, "resolution P6")?,
+        curve: AccelCurve::UniformAcceleration,
+    };
+    let generated = s_curve::generate(&params).map_err(|e| Failure::from_table(&e))?;
+    let clamp = |v: i64| i32::try_from(v).unwrap_or(if v < 0 { i32::MIN } else { i32::MAX });
+    for (offset, value) in [
+        (10, generated.last_section_master),
+        (12, generated.last_section_slave),
+        (14, generated.uniform_time),
+        (16, generated.max_speed_hz),
+    ] {
+        let _ = devices.set_dword(base + offset, clamp(value));
+    }
+    Ok(generated.table.into_points())
+}
+
+/// The K100/K101 block: `NO.0` P1 master length, `NO.2` P2 slave length,
+/// `NO.4` P3 sync length (32-bit each), `NO.6` P4 sync ratio and `NO.8` P5 max
+/// ratio (floats), `NO.10` P6 low word acceleration curve, `NO.11` P6 high
+/// word cam curve, `NO.12` P7 resolution (0: the generator's 100).
+struct CutBlock {
+    master_length: i64,
+    slave_length: i64,
+    sync_length: i64,
+    sync_ratio: f64,
+    max_ratio: f64,
+    accel_curve: AccelCurve,
+    cam_word: u16,
+    resolution: u16,
+}
+
+/// Resolution used when P7 is 0 (the manual's demos leave it unset).
+pub const DEFAULT_CUT_RESOLUTION: u16 = 100;
+
+fn cut_block(devices: &Devices, base: u16) -> Result<CutBlock, Failure> {
+    check_block(base, 20)?;
+    let float = |offset: u16, name: &str| {
+        let v = base
+            .checked_add(offset)
+            .and_then(|n| devices.float(n).ok())
+            .unwrap_or(f32::NAN);
+        if v.is_finite() {
+            Ok(f64::from(v))
+        } else {
+            Err(Failure::parameter(
+                offset,
+                format!("{name} (NO.{offset}) is not a finite float"),
+            ))
+        }
+    };
+    let resolution = match word(devices, base, 12) {
+        0 => DEFAULT_CUT_RESOLUTION,
+        r => u16::try_from(r)
+            .map_err(|_| Failure::parameter(12, "resolution (P7, NO.12) must not be negative"))?,
+    };
+    Ok(CutBlock {
+        master_length: i64::from(dword(devices, base, 0)),
+        slave_length: i64::from(dword(devices, base, 2)),
+        sync_length: i64::from(dword(devices, base, 4)),
+        sync_ratio: float(6, "sync ratio P4")?,
+        max_ratio: float(8, "max ratio P5")?,
+        accel_curve: AccelCurve::from_code(word(devices, base, 10) as u16)
+            .map_err(|e| Failure::from_table(&e))?,
+        cam_word: word(devices, base, 11) as u16,
+        resolution,
+    })
+}
+
+fn generated_table(
+    devices: &mut Devices,
+    base: u16,
+    kind: TableKind,
+) -> Result<Vec<CamPoint>, Failure> {
+    let table = |e: TableError| Failure::from_table(&e);
+    match kind {
+        TableKind::SCurve => s_curve_table(devices, base),
+        TableKind::KeyPoints => key_point_table(devices, base),
+        TableKind::RotaryCut => {
+            let b = cut_block(devices, base)?;
+            let params = rotary_cut::Params {
+                master_length: b.master_length,
+                slave_length: b.slave_length,
+                sync_length: b.sync_length,
+                sync_ratio: b.sync_ratio,
+                max_ratio: b.max_ratio,
+                accel_curve: b.accel_curve,
+                placement: CamPlacement::from_code(b.cam_word).map_err(table)?,
+                resolution: b.resolution,
+            };
+            Ok(rotary_cut::generate(&params)
+                .map_err(table)?
+                .table
+                .into_points())
+        }
+        TableKind::FlyingSaw => {
+            let b = cut_block(devices, base)?;
+            // H1000 in the high word marks the return table; the sign of P2 decides.
+            let (placement, _) = flying_saw::decode_cam_word(b.cam_word).map_err(table)?;
+            let params = flying_saw::Params {
+                master_length: b.master_length,
+                slave_length: b.slave_length,
+                sync_length: b.sync_length,
+                sync_ratio: b.sync_ratio,
+                max_ratio: b.max_ratio,
+                accel_curve: b.accel_curve,
+                placement,
+                resolution: b.resolution,
+            };
+            Ok(flying_saw::generate(&params)
+                .map_err(table)?
+                .table
+                .into_points())
+        }
+    }
+}
+
+/// Writes the points at `D1 + 38…` after checking they all fit.
+fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<(), Failure> {
+    if points.len() > MAX_POINTS || points.len() < 2 {
+        return Err(Failure {
+            code: CODE_SECTION_COUNT,
+            message: format!("{} table points; a DECAM table holds 2-512", points.len()),
+            position: 0,
+        });
+    }
+    let end = u32::from(base) + u32::from(TABLE_START) + 4 * points.len() as u32;
+    if end > u32::from(D_COUNT) {
+        return Err(Failure {
+            code: CODE_SECTION_COUNT,
+            message: format!(
+                "a table of {} points at D{base} does not fit below D8512",
+                points.len()
+            ),
+            position: 0,
+        });
+    }
+    let mut words = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        let (Ok(m), Ok(s)) = (i32::try_from(p.master), i32::try_from(p.slave)) else {
+            return Err(Failure {
+                code: CODE_TABLE,
+                message: format!("table point {i} does not fit 32-bit registers"),
+                position: u16::try_from(i).unwrap_or(u16::MAX),
+            });
+        };
+        words.push((m, s));
+    }
+    let _ = devices.set_word(base + TABLE_SECTIONS, words.len() as i16);
+    let _ = devices.set_word(base + TABLE_SECTIONS + 1, TABLE_START as i16);
+    for (i, (m, s)) in words.into_iter().enumerate() {
+        let at = base + TABLE_START + 4 * i as u16;
+        let _ = devices.set_dword(at, m);
+        let _ = devices.set_dword(at + 2, s);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_decode_as_the_manual_lists_them() {
+        assert_eq!(TableKind::from_code(0), Some(TableKind::SCurve));
+        assert_eq!(TableKind::from_code(1), Some(TableKind::SCurve));
+        assert_eq!(TableKind::from_code(2), Some(TableKind::KeyPoints));
+        assert_eq!(TableKind::from_code(100), Some(TableKind::RotaryCut));
+        assert_eq!(TableKind::from_code(101), Some(TableKind::FlyingSaw));
+        assert_eq!(TableKind::from_code(3), None);
+    }
+
+    #[test]
+    fn a_table_past_d8511_is_6783_and_nothing_is_written() {
+        let mut dev = Devices::new();
+        let points = [
+            CamPoint::new(0, 0),
+            CamPoint::new(10, 5),
+            CamPoint::new(20, 0),
+        ];
+        let err = write_table(&mut dev, 8470, &points).unwrap_err();
+        assert_eq!(err.code, CODE_SECTION_COUNT);
+        assert_eq!(dev.word(8508).unwrap(), 0);
+        write_table(&mut dev, 8400, &points).unwrap();
+        assert_eq!(dev.word(8438).unwrap(), 3);
+        assert_eq!(dev.dword(8448).unwrap(), 20);
+    }
+
+    #[test]
+    fn values_beyond_32_bits_are_6782() {
+        let mut dev = Devices::new();
+        let points = [
+            CamPoint::new(0, 0),
+            CamPoint::new(10, i64::from(i32::MAX) + 1),
+        ];
+        assert_eq!(
+            write_table(&mut dev, 0, &points).unwrap_err().code,
+            CODE_TABLE
+        );
+    }
+}

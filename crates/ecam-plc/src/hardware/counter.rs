@@ -1,0 +1,197 @@
+//! Counters: the FX counter coil (`OUT Cn K<set value>`), its contact, and the
+//! high-speed counters that count pulses on an X input.
+//!
+//! Counter kinds (FX family, with the LX3V's C231 on X0 that document 003's
+//! example uses: "Enable high-speed counter C231 to receive high-speed pulse
+//! from X0"):
+//! - C0–C199: 16-bit up counters; one count per rising edge of the coil's
+//!   power flow, stopping at the set value.
+//! - C200–C255 except the high-speed ones: 32-bit counters, one count per
+//!   rising edge of the coil's power flow, down while M8000+n (M8200..) is on.
+//! - [`HIGH_SPEED_COUNTERS`]: one-phase high-speed counters; they count every
+//!   pulse on their input while their coil is driven, down while M8000+n is on.
+//!
+//! A contact `LD Cn` is on while the value ≥ the set value of the last coil
+//! execution (off while the coil has never run).
+
+use crate::devices::{C_32BIT_FIRST, C_COUNT, Device, Devices};
+use crate::special::M_COUNTER_DIRECTION_BASE;
+
+/// The supported high-speed counters and their inputs: (counter, X index).
+pub const HIGH_SPEED_COUNTERS: [(u16, u16); 7] = [
+    (231, 0),
+    (235, 0),
+    (236, 1),
+    (237, 2),
+    (238, 3),
+    (239, 4),
+    (240, 5),
+];
+
+/// Highest X index any high-speed counter reads, plus one.
+const HIGH_SPEED_INPUTS: usize = 6;
+
+/// High-speed counters reading X`input`.
+pub(crate) fn counters_on_input(input: u16) -> impl Iterator<Item = u16> {
+    HIGH_SPEED_COUNTERS
+        .iter()
+        .filter(move |(_, x)| *x == input)
+        .map(|(c, _)| *c)
+}
+
+/// True for a supported high-speed counter.
+fn is_high_speed(counter: u16) -> bool {
+    HIGH_SPEED_COUNTERS.iter().any(|(c, _)| *c == counter)
+}
+
+/// Coil state and set values of C0..C255.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Counters {
+    set_values: Vec<Option<i32>>,
+    coils: Vec<bool>,
+    last_input: [bool; HIGH_SPEED_INPUTS],
+}
+
+impl Default for Counters {
+    fn default() -> Self {
+        Self {
+            set_values: vec![None; usize::from(C_COUNT)],
+            coils: vec![false; usize::from(C_COUNT)],
+            last_input: [false; HIGH_SPEED_INPUTS],
+        }
+    }
+}
+
+impl Counters {
+    /// Executes the coil `OUT Cn set_value` with power flow `power`.
+    pub fn drive_coil(&mut self, devices: &mut Devices, counter: u16, power: bool, set_value: i32) {
+        let index = usize::from(counter);
+        let (Some(sv), Some(coil)) = (self.set_values.get_mut(index), self.coils.get_mut(index))
+        else {
+            return;
+        };
+        *sv = Some(set_value);
+        let rising = power && !*coil;
+        *coil = power;
+        if !rising || is_high_speed(counter) {
+            return;
+        }
+        let value = devices.counter(counter).unwrap_or(0);
+        if counter < C_32BIT_FIRST {
+            if value < set_value {
+                let _ = devices.set_counter(counter, value.saturating_add(1));
+            }
+        } else {
+            count(devices, counter, 1);
+        }
+    }
+
+    /// The counter's contact: value ≥ set value (off before the coil ran).
+    pub fn contact(&self, devices: &Devices, counter: u16) -> bool {
+        match (
+            self.set_values.get(usize::from(counter)),
+            devices.counter(counter),
+        ) {
+            (Some(Some(sv)), Ok(value)) => value >= *sv,
+            _ => false,
+        }
+    }
+
+    /// True while a high-speed counter's coil is driven (it counts its input).
+    pub fn is_counting(&self, counter: u16) -> bool {
+        is_high_speed(counter)
+            && self
+                .coils
+                .get(usize::from(counter))
+                .copied()
+                .unwrap_or(false)
+    }
+
+    /// `pulses` arrive on X`input`: every enabled high-speed counter on it counts them.
+    pub fn feed(&mut self, devices: &mut Devices, input: u16, pulses: u32) {
+        for counter in counters_on_input(input) {
+            if self.is_counting(counter) {
+                count(devices, counter, pulses);
+            }
+        }
+    }
+
+    /// Counts rising edges of X0..X5 set from outside.
+    pub fn sample_inputs(&mut self, devices: &mut Devices) {
+        for input in 0..HIGH_SPEED_INPUTS {
+            let x = input as u16;
+            let level = devices.bit(Device::X(x)).unwrap_or(false);
+            let Some(last) = self.last_input.get_mut(input) else {
+                continue;
+            };
+            let rising = level && !*last;
+            *last = level;
+            if rising {
+                self.feed(devices, x, 1);
+            }
+        }
+    }
+}
+
+/// Counts `pulses` on a 32-bit counter, up or down by its M8200+n flag.
+fn count(devices: &mut Devices, counter: u16, pulses: u32) {
+    let down = M_COUNTER_DIRECTION_BASE
+        .checked_add(counter)
+        .and_then(|m| devices.m(m).ok())
+        .unwrap_or(false);
+    let value = devices.counter(counter).unwrap_or(0);
+    let step = pulses as i32;
+    let next = if down {
+        value.wrapping_sub(step)
+    } else {
+        value.wrapping_add(step)
+    };
+    let _ = devices.set_counter(counter, next);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn high_speed_counter_counts_only_while_driven() {
+        let mut devices = Devices::new();
+        let mut counters = Counters::default();
+        counters.feed(&mut devices, 0, 5);
+        assert_eq!(devices.counter(231), Ok(0));
+        counters.drive_coil(&mut devices, 231, true, 10);
+        counters.feed(&mut devices, 0, 5);
+        assert_eq!(devices.counter(231), Ok(5));
+        assert!(!counters.contact(&devices, 231));
+        counters.feed(&mut devices, 0, 5);
+        assert!(counters.contact(&devices, 231));
+        devices.set_m(8231, true).unwrap();
+        counters.feed(&mut devices, 0, 7);
+        assert_eq!(devices.counter(231), Ok(3));
+        counters.drive_coil(&mut devices, 231, false, 10);
+        counters.feed(&mut devices, 0, 5);
+        assert_eq!(devices.counter(231), Ok(3));
+    }
+
+    #[test]
+    fn sixteen_bit_counter_counts_edges_up_to_set_value() {
+        let mut devices = Devices::new();
+        let mut counters = Counters::default();
+        for power in [true, true, false, true, false, true, false, true] {
+            counters.drive_coil(&mut devices, 3, power, 3);
+        }
+        assert_eq!(devices.counter(3), Ok(3));
+        assert!(counters.contact(&devices, 3));
+    }
+
+    #[test]
+    fn input_edges_count_once() {
+        let mut devices = Devices::new();
+        let mut counters = Counters::default();
+        counters.drive_coil(&mut devices, 236, true, 0);
+        devices.set_bit(Device::X(1), true).unwrap();
+        counters.sample_inputs(&mut devices);
+        counters.sample_inputs(&mut devices);
+        assert_eq!(devices.counter(236), Ok(1));
+    }
+}

@@ -1,0 +1,237 @@
+//! The checked instructions a [`super::Program`] is made of.
+
+use crate::devices::Device;
+
+/// A statement: an instruction and the source line it came from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Statement {
+    /// 1-based source line.
+    pub line: usize,
+    /// The instruction.
+    pub instruction: Instruction,
+}
+
+/// How a contact reads its device.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Contact {
+    /// Normally open (LD, AND, OR): the device's state.
+    Open,
+    /// Normally closed (LDI, ANI, ORI): the inverse.
+    Closed,
+    /// Rising edge (LDP, ANDP, ORP): on for one execution after off → on.
+    Rising,
+    /// Falling edge (LDF, ANDF, ORF): on for one execution after on → off.
+    Falling,
+}
+
+/// Operand width of an applied instruction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Width {
+    /// 16-bit (MOV, ADD, ...).
+    Word,
+    /// 32-bit, the `D` prefix (DMOV, DADD, ...): Dn low word, Dn+1 high word.
+    Double,
+}
+
+/// When an applied instruction runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exec {
+    /// Every scan while its power flow is on (the FX default).
+    Continuous,
+    /// Once, in the scan its power flow turns on (the `P` suffix: MOVP).
+    Pulse,
+}
+
+/// A numeric source operand.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Source {
+    /// A K (decimal) or H (hex) constant, already range-checked for the width.
+    Constant(i32),
+    /// Data register Dn (Dn, Dn+1 for 32-bit).
+    Register(u16),
+    /// Current value of counter Cn.
+    Counter(u16),
+}
+
+/// A bit device that instructions may drive: Y or M.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BitDest(pub Device);
+
+/// A device range of ZRST.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ZoneDevice {
+    /// Mn..=Mm.
+    M,
+    /// Yn..=Ym (indices decoded from octal).
+    Y,
+    /// Dn..=Dm.
+    D,
+    /// Cn..=Cm (value and contact).
+    C,
+}
+
+/// ADD or SUB.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ArithOp {
+    /// S1 + S2.
+    Add,
+    /// S1 − S2.
+    Sub,
+}
+
+/// Master operand of DECAM as written in the program (S1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MasterSpec {
+    /// Cn: a counter (high-speed counters count pulses on their input).
+    Counter(u16),
+    /// Dn: a 32-bit register.
+    Register(u16),
+    /// Kn: the internal time base, n × 100 µs per master count.
+    TimeBase(u32),
+}
+
+/// One instruction with checked operands.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Instruction {
+    /// LD/LDI/LDP/LDF: starts a logic block.
+    Load(Contact, Device),
+    /// AND/ANI/ANDP/ANDF: series contact.
+    And(Contact, Device),
+    /// OR/ORI/ORP/ORF: parallel contact.
+    Or(Contact, Device),
+    /// ANB: the last two blocks in series.
+    AndBlock,
+    /// ORB: the last two blocks in parallel.
+    OrBlock,
+    /// MPS: push the power flow.
+    Push,
+    /// MRD: read the pushed power flow.
+    Read,
+    /// MPP: pop the pushed power flow.
+    Pop,
+    /// OUT Y/M: the coil follows the power flow.
+    Out(BitDest),
+    /// OUT Cn K/D: counter coil with its set value.
+    OutCounter {
+        /// Counter number.
+        counter: u16,
+        /// Set value (K constant, or Dn: 16-bit for C0–C199, 32-bit for C200+).
+        set_value: Source,
+    },
+    /// SET Y/M.
+    Set(BitDest),
+    /// RST Y/M/D/C.
+    Reset(Device),
+    /// PLS (rising) / PLF (falling): the coil is on for one scan on the edge.
+    Pulse {
+        /// True for PLS, false for PLF.
+        rising: bool,
+        /// The coil.
+        dest: BitDest,
+    },
+    /// MOV/DMOV[P] S D.
+    Move {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Source.
+        src: Source,
+        /// Destination D or C.
+        dst: Device,
+    },
+    /// DEMOV[P] S D: 32-bit float move (E constant or Dn).
+    FloatMove {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Constant value, or the register pair holding a float.
+        src: FloatSource,
+        /// Destination register pair.
+        dst: u16,
+    },
+    /// ZRST[P] D1 D2.
+    ZoneReset {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Device kind.
+        kind: ZoneDevice,
+        /// First index.
+        first: u16,
+        /// Last index (inclusive).
+        last: u16,
+    },
+    /// ADD/SUB/DADD/DSUB[P] S1 S2 D.
+    Arith {
+        /// ADD or SUB.
+        op: ArithOp,
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First operand.
+        s1: Source,
+        /// Second operand.
+        s2: Source,
+        /// Destination D or C.
+        dst: Device,
+    },
+    /// CMP/DCMP[P] S1 S2 D: D = S1>S2, D+1 = S1=S2, D+2 = S1<S2.
+    Compare {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First operand.
+        s1: Source,
+        /// Second operand.
+        s2: Source,
+        /// First of three bits (M or Y).
+        dst: Device,
+    },
+    /// PLSY/DPLSY S1 S2 D: pulses at S1 Hz, S2 pulses (0 = endless), on Y0..Y3.
+    PulseOutput {
+        /// 16 or 32 bit operands.
+        width: Width,
+        /// Frequency in Hz.
+        frequency: Source,
+        /// Pulse count, 0 = endless.
+        count: Source,
+        /// Output 0..=3.
+        output: u8,
+    },
+    /// DECAM S1 S2 S3 D1 D2.
+    Decam {
+        /// S1: master.
+        master: MasterSpec,
+        /// S2: first register of the E-cam block.
+        block: u16,
+        /// S3: external start signal (X or M).
+        start: Device,
+        /// D1: pulse output 0..=3.
+        pulse_output: u8,
+        /// D2: direction output (Y).
+        direction: Device,
+    },
+    /// ECAMTBX S0 S1 D1 D2.
+    Ecamtbx {
+        /// S0: parameter block.
+        params: u16,
+        /// S1: table kind (K0/K1/K2/K100/K101 or a register holding it).
+        kind: Source,
+        /// D1: table block (sections at D1+38, data from D1+40).
+        table: u16,
+        /// D2: result register.
+        result: u16,
+    },
+    /// NOP.
+    Nop,
+}
+
+/// Source of DEMOV.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FloatSource {
+    /// E constant.
+    Constant(f32),
+    /// Dn, Dn+1 holding an IEEE-754 float.
+    Register(u16),
+}

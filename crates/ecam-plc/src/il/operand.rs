@@ -1,0 +1,81 @@
+//! Operand tokens: devices (`D100`, `X17`, `C231`), constants (`K-5`, `H1F`)
+//! and float constants (`E1.6667`).
+
+use crate::devices::{Device, DeviceError};
+
+/// A lexed operand before the instruction checks its kind.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Operand {
+    /// A device.
+    Device(Device),
+    /// K constant (decimal).
+    Decimal(i64),
+    /// H constant (hexadecimal bit pattern).
+    Hex(u64),
+    /// E constant.
+    Float(f32),
+}
+
+impl Operand {
+    /// Parses one token; the message says what was expected.
+    pub(crate) fn parse(token: &str) -> Result<Self, String> {
+        let upper = token.to_ascii_uppercase();
+        let mut chars = upper.chars();
+        let prefix = chars.next().unwrap_or(' ');
+        let rest = chars.as_str();
+        match prefix {
+            'K' => rest
+                .parse::<i64>()
+                .map(Self::Decimal)
+                .map_err(|_| format!("`{token}` is not a K constant (expected K and a decimal integer, e.g. K100)")),
+            'H' => u64::from_str_radix(rest, 16)
+                .ok()
+                .filter(|_| !rest.starts_with('+'))
+                .map(Self::Hex)
+                .ok_or_else(|| format!("`{token}` is not an H constant (expected H and hex digits, e.g. H1F)")),
+            'E' => rest
+                .parse::<f32>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .map(Self::Float)
+                .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)")),
+            _ => Device::parse(&upper).map(Self::Device).map_err(|err| match err {
+                DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"),
+                _ => format!("unknown device `{token}` (expected D, M, X, Y, C and a number, X/Y in octal, or a K/H/E constant)"),
+            }),
+        }
+    }
+
+    /// How the operand reads in messages.
+    pub(crate) fn describe(&self) -> String {
+        match self {
+            Self::Device(d) => d.to_string(),
+            Self::Decimal(v) => format!("K{v}"),
+            Self::Hex(v) => format!("H{v:X}"),
+            Self::Float(v) => format!("E{v}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_constants_and_devices() {
+        assert_eq!(Operand::parse("K-5"), Ok(Operand::Decimal(-5)));
+        assert_eq!(Operand::parse("hff"), Ok(Operand::Hex(255)));
+        assert_eq!(Operand::parse("E1.6667"), Ok(Operand::Float(1.6667)));
+        assert_eq!(Operand::parse("x17"), Ok(Operand::Device(Device::X(15))));
+        assert!(Operand::parse("Q1").unwrap_err().contains("unknown device"));
+        assert!(
+            Operand::parse("D9000")
+                .unwrap_err()
+                .contains("out of range")
+        );
+        assert!(Operand::parse("K1.5").is_err());
+        assert!(Operand::parse("H+1").is_err());
+        assert!(Operand::parse("Einf").is_err());
+        assert!(Operand::parse("X8").unwrap_err().contains("unknown device"));
+    }
+}

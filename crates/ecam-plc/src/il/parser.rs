@@ -1,0 +1,511 @@
+//! Mnemonics and operand checks: source text → [`Program`].
+
+use super::Program;
+use super::error::ParseError;
+use super::instruction::{
+    ArithOp, BitDest, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Statement,
+    Width, ZoneDevice,
+};
+use super::lexer::lines;
+use super::operand::Operand;
+use super::validate;
+use crate::devices::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
+
+/// Parses and checks a program. `file` names the source in error messages
+/// (`file:line: message`). Lines after `END` are ignored, as on the PLC.
+///
+/// # Errors
+/// The first problem found: unknown mnemonic, wrong operand count or kind,
+/// unknown or out-of-range device, constant out of range, unbalanced
+/// ANB/ORB/MPS/MRD/MPP.
+///
+/// ```
+/// let program = ecam_plc::il::parse("LD X0\nOUT Y0\nEND\n", "demo.il").unwrap();
+/// assert_eq!(program.statements.len(), 2);
+/// let err = ecam_plc::il::parse("LD X0\nOUT Q9\n", "demo.il").unwrap_err();
+/// assert!(err.to_string().starts_with("demo.il:2: "));
+/// ```
+pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
+    let error = |line: usize, message: String| ParseError {
+        file: file.to_string(),
+        line,
+        message,
+    };
+    let mut statements = Vec::new();
+    for line in lines(source) {
+        let (mnemonic, operand_tokens) = match line.tokens.split_first() {
+            Some(split) => split,
+            None => continue,
+        };
+        let mnemonic = mnemonic.to_ascii_uppercase();
+        if mnemonic == "END" {
+            if !operand_tokens.is_empty() {
+                return Err(error(line.number, "END takes no operands".into()));
+            }
+            break;
+        }
+        let mut operands = Vec::with_capacity(operand_tokens.len());
+        for (i, token) in operand_tokens.iter().enumerate() {
+            let operand = Operand::parse(token)
+                .map_err(|m| error(line.number, format!("{mnemonic} operand {}: {m}", i + 1)))?;
+            operands.push(operand);
+        }
+        let instruction = instruction(&mnemonic, &operands).map_err(|m| error(line.number, m))?;
+        statements.push(Statement {
+            line: line.number,
+            instruction,
+        });
+    }
+    validate::check(&statements).map_err(|(line, message)| error(line, message))?;
+    Ok(Program {
+        file: file.to_string(),
+        statements,
+    })
+}
+
+/// Checks the operand count; the message names the expected operands.
+fn arity(mnemonic: &str, operands: &[Operand], names: &[&str]) -> Result<(), String> {
+    if operands.len() == names.len() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{mnemonic} expects {} operand{} ({}), found {}",
+            names.len(),
+            if names.len() == 1 { "" } else { "s" },
+            names.join(" "),
+            operands.len()
+        ))
+    }
+}
+
+fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> String {
+    format!(
+        "{mnemonic} operand {}: expected {expected}, found {}",
+        index + 1,
+        operand.describe()
+    )
+}
+
+/// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
+/// that have 32-bit and pulse forms.
+fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
+    const BASES: [&str; 9] = [
+        "MOV", "EMOV", "ADD", "SUB", "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+    ];
+    let (width, rest) = match mnemonic.strip_prefix('D') {
+        Some(rest)
+            if BASES.contains(&rest)
+                || rest.strip_suffix('P').is_some_and(|r| BASES.contains(&r)) =>
+        {
+            (Width::Double, rest)
+        }
+        _ => (Width::Word, mnemonic),
+    };
+    let (base, exec) = match rest.strip_suffix('P') {
+        Some(base) if BASES.contains(&base) => (base, Exec::Pulse),
+        _ => (rest, Exec::Continuous),
+    };
+    BASES.contains(&base).then_some((width, base, exec))
+}
+
+fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
+    let contact = || -> Result<Device, String> {
+        arity(mnemonic, ops, &["device"])?;
+        bit_source(mnemonic, 0, &ops[0])
+    };
+    Ok(match mnemonic {
+        "LD" => Instruction::Load(Contact::Open, contact()?),
+        "LDI" => Instruction::Load(Contact::Closed, contact()?),
+        "LDP" => Instruction::Load(Contact::Rising, contact()?),
+        "LDF" => Instruction::Load(Contact::Falling, contact()?),
+        "AND" => Instruction::And(Contact::Open, contact()?),
+        "ANI" => Instruction::And(Contact::Closed, contact()?),
+        "ANDP" => Instruction::And(Contact::Rising, contact()?),
+        "ANDF" => Instruction::And(Contact::Falling, contact()?),
+        "OR" => Instruction::Or(Contact::Open, contact()?),
+        "ORI" => Instruction::Or(Contact::Closed, contact()?),
+        "ORP" => Instruction::Or(Contact::Rising, contact()?),
+        "ORF" => Instruction::Or(Contact::Falling, contact()?),
+        "ANB" | "ORB" | "MPS" | "MRD" | "MPP" | "NOP" => {
+            arity(mnemonic, ops, &[])?;
+            match mnemonic {
+                "ANB" => Instruction::AndBlock,
+                "ORB" => Instruction::OrBlock,
+                "MPS" => Instruction::Push,
+                "MRD" => Instruction::Read,
+                "MPP" => Instruction::Pop,
+                _ => Instruction::Nop,
+            }
+        }
+        "OUT" => out(ops)?,
+        "SET" => {
+            arity(mnemonic, ops, &["Y/M"])?;
+            Instruction::Set(bit_dest(mnemonic, 0, &ops[0])?)
+        }
+        "RST" => {
+            arity(mnemonic, ops, &["Y/M/D/C"])?;
+            match ops[0] {
+                Operand::Device(
+                    d @ (Device::Y(_) | Device::M(_) | Device::D(_) | Device::C(_)),
+                ) => Instruction::Reset(d),
+                ref other => return Err(wrong(mnemonic, 0, other, "a Y, M, D or C device")),
+            }
+        }
+        "PLS" | "PLF" => {
+            arity(mnemonic, ops, &["Y/M"])?;
+            Instruction::Pulse {
+                rising: mnemonic == "PLS",
+                dest: bit_dest(mnemonic, 0, &ops[0])?,
+            }
+        }
+        _ => match applied(mnemonic) {
+            Some((width, base, exec)) => applied_instruction(mnemonic, width, base, exec, ops)?,
+            None => {
+                return Err(format!(
+                    "unknown instruction `{mnemonic}` (see docs/plc-instructions.md for the supported list)"
+                ));
+            }
+        },
+    })
+}
+
+fn out(ops: &[Operand]) -> Result<Instruction, String> {
+    match ops {
+        [Operand::Device(Device::C(counter))] => Err(format!(
+            "OUT C{counter} needs a set value: expected OUT C{counter} K<value> or OUT C{counter} D<n>"
+        )),
+        [op] => Ok(Instruction::Out(bit_dest("OUT", 0, op)?)),
+        [Operand::Device(Device::C(counter)), set] => {
+            let width = if *counter >= C_32BIT_FIRST {
+                Width::Double
+            } else {
+                Width::Word
+            };
+            let set_value = source("OUT", 1, set, width)?;
+            if matches!(set_value, Source::Counter(_)) {
+                return Err(wrong("OUT", 1, set, "a K/H constant or a D register"));
+            }
+            Ok(Instruction::OutCounter {
+                counter: *counter,
+                set_value,
+            })
+        }
+        [first, _] => Err(wrong(
+            "OUT",
+            0,
+            first,
+            "a counter C (two operands are only for OUT Cn K<set value>)",
+        )),
+        _ => Err(format!(
+            "OUT expects 1 operand (Y/M) or 2 (Cn K<set value>), found {}",
+            ops.len()
+        )),
+    }
+}
+
+fn applied_instruction(
+    mnemonic: &str,
+    width: Width,
+    base: &str,
+    exec: Exec,
+    ops: &[Operand],
+) -> Result<Instruction, String> {
+    let no_double = || {
+        if width == Width::Double {
+            Err(format!(
+                "unknown instruction `{mnemonic}` ({base} has no 32-bit D form)"
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    let no_pulse = || {
+        if exec == Exec::Pulse {
+            Err(format!(
+                "unknown instruction `{mnemonic}` ({base} has no P form)"
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    Ok(match base {
+        "MOV" => {
+            arity(mnemonic, ops, &["S", "D"])?;
+            Instruction::Move {
+                width,
+                exec,
+                src: source(mnemonic, 0, &ops[0], width)?,
+                dst: word_dest(mnemonic, 1, &ops[1], width)?,
+            }
+        }
+        "EMOV" => {
+            if width != Width::Double {
+                return Err(format!(
+                    "unknown instruction `{mnemonic}` (the float move is DEMOV)"
+                ));
+            }
+            arity(mnemonic, ops, &["S", "D"])?;
+            let src = match ops[0] {
+                Operand::Float(v) => FloatSource::Constant(v),
+                Operand::Decimal(v) => FloatSource::Constant(v as f32),
+                Operand::Device(Device::D(n)) => {
+                    FloatSource::Register(register(mnemonic, 0, n, Width::Double)?)
+                }
+                ref other => {
+                    return Err(wrong(
+                        mnemonic,
+                        0,
+                        other,
+                        "an E constant (E1.6667) or a D register",
+                    ));
+                }
+            };
+            let dst = match ops[1] {
+                Operand::Device(Device::D(n)) => register(mnemonic, 1, n, Width::Double)?,
+                ref other => return Err(wrong(mnemonic, 1, other, "a D register")),
+            };
+            Instruction::FloatMove { exec, src, dst }
+        }
+        "ADD" | "SUB" => {
+            arity(mnemonic, ops, &["S1", "S2", "D"])?;
+            Instruction::Arith {
+                op: if base == "ADD" {
+                    ArithOp::Add
+                } else {
+                    ArithOp::Sub
+                },
+                width,
+                exec,
+                s1: source(mnemonic, 0, &ops[0], width)?,
+                s2: source(mnemonic, 1, &ops[1], width)?,
+                dst: word_dest(mnemonic, 2, &ops[2], width)?,
+            }
+        }
+        "CMP" => {
+            arity(mnemonic, ops, &["S1", "S2", "D"])?;
+            let dst = bit_dest(mnemonic, 2, &ops[2])?.0;
+            let last_ok = match dst {
+                Device::M(n) => n.checked_add(2).is_some_and(|l| l < M_COUNT),
+                Device::Y(n) => n.checked_add(2).is_some_and(|l| l < XY_COUNT),
+                _ => false,
+            };
+            if !last_ok {
+                return Err(format!(
+                    "{mnemonic} operand 3: {dst} and the two bits after it must exist"
+                ));
+            }
+            Instruction::Compare {
+                width,
+                exec,
+                s1: source(mnemonic, 0, &ops[0], width)?,
+                s2: source(mnemonic, 1, &ops[1], width)?,
+                dst,
+            }
+        }
+        "ZRST" => {
+            no_double()?;
+            arity(mnemonic, ops, &["D1", "D2"])?;
+            let (kind, first, last) = match (ops[0], ops[1]) {
+                (Operand::Device(Device::M(a)), Operand::Device(Device::M(b))) => {
+                    (ZoneDevice::M, a, b)
+                }
+                (Operand::Device(Device::Y(a)), Operand::Device(Device::Y(b))) => {
+                    (ZoneDevice::Y, a, b)
+                }
+                (Operand::Device(Device::D(a)), Operand::Device(Device::D(b))) => {
+                    (ZoneDevice::D, a, b)
+                }
+                (Operand::Device(Device::C(a)), Operand::Device(Device::C(b))) => {
+                    (ZoneDevice::C, a, b)
+                }
+                _ => {
+                    return Err(format!(
+                        "{mnemonic} expects two devices of the same kind (M, Y, D or C), found {} {}",
+                        ops[0].describe(),
+                        ops[1].describe()
+                    ));
+                }
+            };
+            if first > last {
+                return Err(format!(
+                    "{mnemonic}: the first device must not come after the last"
+                ));
+            }
+            Instruction::ZoneReset {
+                exec,
+                kind,
+                first,
+                last,
+            }
+        }
+        "PLSY" => {
+            no_pulse()?;
+            arity(
+                mnemonic,
+                ops,
+                &["S1 (frequency)", "S2 (pulses)", "D (Y0-Y3)"],
+            )?;
+            Instruction::PulseOutput {
+                width,
+                frequency: source(mnemonic, 0, &ops[0], width)?,
+                count: source(mnemonic, 1, &ops[1], width)?,
+                output: pulse_output(mnemonic, 2, &ops[2])?,
+            }
+        }
+        "ECAM" => {
+            no_pulse()?;
+            if width != Width::Double {
+                return Err(format!(
+                    "unknown instruction `{mnemonic}` (the E-cam instruction is DECAM)"
+                ));
+            }
+            arity(
+                mnemonic,
+                ops,
+                &[
+                    "S1 (master)",
+                    "S2 (block)",
+                    "S3 (start)",
+                    "D1 (Y0-Y3)",
+                    "D2 (direction Y)",
+                ],
+            )?;
+            let master = match ops[0] {
+                Operand::Device(Device::C(n)) => MasterSpec::Counter(n),
+                Operand::Device(Device::D(n)) => {
+                    MasterSpec::Register(register(mnemonic, 0, n, Width::Double)?)
+                }
+                Operand::Decimal(k) if (1..=i64::from(u32::MAX)).contains(&k) => {
+                    MasterSpec::TimeBase(k as u32)
+                }
+                ref other => {
+                    return Err(wrong(
+                        mnemonic,
+                        0,
+                        other,
+                        "a counter C, a D register or a time base K1 or more",
+                    ));
+                }
+            };
+            let block = match ops[1] {
+                Operand::Device(Device::D(n)) => n,
+                ref other => return Err(wrong(mnemonic, 1, other, "a D register")),
+            };
+            let start = match ops[2] {
+                Operand::Device(d @ (Device::X(_) | Device::M(_))) => d,
+                ref other => return Err(wrong(mnemonic, 2, other, "an X or M device")),
+            };
+            let direction = match ops[4] {
+                Operand::Device(d @ Device::Y(_)) => d,
+                ref other => return Err(wrong(mnemonic, 4, other, "a Y output")),
+            };
+            Instruction::Decam {
+                master,
+                block,
+                start,
+                pulse_output: pulse_output(mnemonic, 3, &ops[3])?,
+                direction,
+            }
+        }
+        _ => {
+            // ECAMTBX: the only base left in `applied`'s list.
+            no_double()?;
+            no_pulse()?;
+            arity(mnemonic, ops, &["S0", "S1", "D1", "D2"])?;
+            let d = |i: usize| match ops[i] {
+                Operand::Device(Device::D(n)) => Ok(n),
+                ref other => Err(wrong(mnemonic, i, other, "a D register")),
+            };
+            Instruction::Ecamtbx {
+                params: d(0)?,
+                kind: source(mnemonic, 1, &ops[1], Width::Double)?,
+                table: d(2)?,
+                result: d(3)?,
+            }
+        }
+    })
+}
+
+fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, String> {
+    match op {
+        Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))) => Ok(*d),
+        other => Err(wrong(
+            mnemonic,
+            index,
+            other,
+            "a bit device X, Y, M or a counter contact C",
+        )),
+    }
+}
+
+fn bit_dest(mnemonic: &str, index: usize, op: &Operand) -> Result<BitDest, String> {
+    match op {
+        Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitDest(*d)),
+        other => Err(wrong(mnemonic, index, other, "an output Y or a relay M")),
+    }
+}
+
+fn register(mnemonic: &str, index: usize, n: u16, width: Width) -> Result<u16, String> {
+    if width == Width::Double && n.checked_add(1).is_none_or(|hi| hi >= D_COUNT) {
+        return Err(format!(
+            "{mnemonic} operand {}: D{n} has no D{} for the high word",
+            index + 1,
+            u32::from(n) + 1
+        ));
+    }
+    Ok(n)
+}
+
+fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<Source, String> {
+    let out_of_range = |range: &str| {
+        format!(
+            "{mnemonic} operand {}: {} is out of range ({range})",
+            index + 1,
+            op.describe()
+        )
+    };
+    match (*op, width) {
+        (Operand::Decimal(v), Width::Word) => i16::try_from(v)
+            .map(|v| Source::Constant(i32::from(v)))
+            .map_err(|_| out_of_range("K-32768 to K32767")),
+        (Operand::Decimal(v), Width::Double) => i32::try_from(v)
+            .map(Source::Constant)
+            .map_err(|_| out_of_range("K-2147483648 to K2147483647")),
+        (Operand::Hex(v), Width::Word) => u16::try_from(v)
+            .map(|v| Source::Constant(i32::from(v as i16)))
+            .map_err(|_| out_of_range("H0 to HFFFF")),
+        (Operand::Hex(v), Width::Double) => u32::try_from(v)
+            .map(|v| Source::Constant(v as i32))
+            .map_err(|_| out_of_range("H0 to HFFFFFFFF")),
+        (Operand::Device(Device::D(n)), _) => {
+            Ok(Source::Register(register(mnemonic, index, n, width)?))
+        }
+        (Operand::Device(Device::C(n)), _) => Ok(Source::Counter(n)),
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a K/H constant, a D register or a counter C",
+        )),
+    }
+}
+
+fn word_dest(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<Device, String> {
+    match *op {
+        Operand::Device(Device::D(n)) => Ok(Device::D(register(mnemonic, index, n, width)?)),
+        Operand::Device(c @ Device::C(_)) => Ok(c),
+        _ => Err(wrong(mnemonic, index, op, "a D register or a counter C")),
+    }
+}
+
+fn pulse_output(mnemonic: &str, index: usize, op: &Operand) -> Result<u8, String> {
+    match *op {
+        Operand::Device(Device::Y(n)) if n <= 3 => Ok(n as u8),
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a pulse output Y0, Y1, Y2 or Y3",
+        )),
+    }
+}

@@ -1,0 +1,98 @@
+//! Static check of the logic-block and MPS stacks, so that a program whose
+//! ANB/ORB/MRD/MPP has nothing to work on is refused at load time with its
+//! line, instead of misbehaving at run time.
+
+use super::instruction::{Instruction, Statement};
+
+/// MPS depth of the FX family.
+pub(crate) const MPS_DEPTH: usize = 11;
+
+/// True for instructions that consume the power flow (coils and applied
+/// instructions): the next LD after one starts a new rung.
+pub(crate) fn is_output(instruction: &Instruction) -> bool {
+    !matches!(
+        instruction,
+        Instruction::Load(..)
+            | Instruction::And(..)
+            | Instruction::Or(..)
+            | Instruction::AndBlock
+            | Instruction::OrBlock
+            | Instruction::Push
+            | Instruction::Read
+            | Instruction::Pop
+            | Instruction::Nop
+    )
+}
+
+/// Returns the line and message of the first misuse.
+pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
+    let mut blocks = 0usize;
+    let mut pushed = 0usize;
+    let mut after_output = true;
+    for statement in statements {
+        let line = statement.line;
+        let instruction = &statement.instruction;
+        let need_flow = |blocks: usize, what: &str| {
+            if blocks == 0 {
+                Err((
+                    line,
+                    format!("{what} has no power flow: expected LD/LDI/LDP/LDF before it"),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        match instruction {
+            Instruction::Load(..) => {
+                if after_output && pushed == 0 {
+                    blocks = 0;
+                }
+                blocks += 1;
+            }
+            Instruction::And(..) | Instruction::Or(..) => need_flow(blocks, "AND/OR contact")?,
+            Instruction::AndBlock | Instruction::OrBlock => {
+                if blocks < 2 {
+                    return Err((
+                        line,
+                        "ANB/ORB needs two logic blocks: expected a second LD before it".into(),
+                    ));
+                }
+                blocks -= 1;
+            }
+            Instruction::Push => {
+                need_flow(blocks, "MPS")?;
+                if pushed >= MPS_DEPTH {
+                    return Err((line, format!("MPS nested deeper than {MPS_DEPTH} levels")));
+                }
+                pushed += 1;
+            }
+            Instruction::Read => {
+                if pushed == 0 {
+                    return Err((line, "MRD without a matching MPS before it".into()));
+                }
+            }
+            Instruction::Pop => {
+                if pushed == 0 {
+                    return Err((line, "MPP without a matching MPS before it".into()));
+                }
+                pushed -= 1;
+            }
+            Instruction::Nop => {}
+            _ => {
+                need_flow(blocks, "this instruction")?;
+                if blocks > 1 {
+                    return Err((
+                        line,
+                        format!(
+                            "{blocks} logic blocks are open: expected ANB or ORB to join them before this output"
+                        ),
+                    ));
+                }
+            }
+        }
+        if !matches!(instruction, Instruction::Nop) {
+            after_output = is_output(instruction);
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,272 @@
+//! Coils and applied instructions (everything after the contacts).
+
+use super::operands::{device_error, read_source, write_word};
+use super::{Machine, Memory, runs};
+use crate::devices::Device;
+use crate::hardware::PulseTrain;
+use crate::il::{ArithOp, FloatSource, Instruction, Width, ZoneDevice};
+use crate::operation_error::{CODE_OPERAND, OperationError};
+use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
+
+/// Highest PLSY frequency (16-bit operand).
+const PLSY_MAX_HZ: i32 = 32_767;
+/// Highest DPLSY frequency: the LX3V's 200 kHz pulse outputs (document 003,
+/// "Maximum frequency of E-cam ... 200K").
+const DPLSY_MAX_HZ: i32 = 200_000;
+
+/// Executes a coil or applied instruction with power flow `power`.
+pub(super) fn execute(
+    instruction: &Instruction,
+    power: bool,
+    memory: &mut Memory,
+    machine: &mut Machine<'_>,
+) -> Result<(), OperationError> {
+    let devices = &mut *machine.devices;
+    match *instruction {
+        Instruction::Out(dest) => devices
+            .set_bit(dest.0, power)
+            .map_err(|e| device_error(dest.0, e)),
+        Instruction::Set(dest) if power => devices
+            .set_bit(dest.0, true)
+            .map_err(|e| device_error(dest.0, e)),
+        Instruction::Reset(device) if power => reset(machine, device),
+        Instruction::Set(_) | Instruction::Reset(_) => Ok(()),
+        Instruction::Pulse { rising, dest } => {
+            let edge = if rising {
+                power && !memory.previous
+            } else {
+                !power && memory.previous
+            };
+            memory.previous = power;
+            devices
+                .set_bit(dest.0, edge)
+                .map_err(|e| device_error(dest.0, e))
+        }
+        Instruction::OutCounter { counter, set_value } => {
+            let width = if counter >= crate::devices::C_32BIT_FIRST {
+                Width::Double
+            } else {
+                Width::Word
+            };
+            let set_value = read_source(devices, set_value, width)?;
+            machine
+                .hardware
+                .counters_mut()
+                .drive_coil(devices, counter, power, set_value);
+            Ok(())
+        }
+        Instruction::Move {
+            width,
+            exec,
+            src,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let value = read_source(devices, src, width)?;
+            write_word(devices, dst, width, value)
+        }
+        Instruction::FloatMove { exec, src, dst } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let value = match src {
+                FloatSource::Constant(v) => v,
+                FloatSource::Register(n) => devices
+                    .float(n)
+                    .map_err(|e| device_error(Device::D(n), e))?,
+            };
+            devices
+                .set_float(dst, value)
+                .map_err(|e| device_error(Device::D(dst), e))
+        }
+        Instruction::ZoneReset {
+            exec,
+            kind,
+            first,
+            last,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            for n in first..=last {
+                let device = match kind {
+                    ZoneDevice::M => Device::M(n),
+                    ZoneDevice::Y => Device::Y(n),
+                    ZoneDevice::D => Device::D(n),
+                    ZoneDevice::C => Device::C(n),
+                };
+                reset(machine, device)?;
+            }
+            Ok(())
+        }
+        Instruction::Arith {
+            op,
+            width,
+            exec,
+            s1,
+            s2,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let a = i64::from(read_source(devices, s1, width)?);
+            let b = i64::from(read_source(devices, s2, width)?);
+            let exact = match op {
+                ArithOp::Add => a + b,
+                ArithOp::Sub => a - b,
+            };
+            let (min, max) = match width {
+                Width::Word => (i64::from(i16::MIN), i64::from(i16::MAX)),
+                Width::Double => (i64::from(i32::MIN), i64::from(i32::MAX)),
+            };
+            // FX: the result wraps; M8022 carry above, M8021 borrow below, M8020 zero.
+            let wrapped = match width {
+                Width::Word => i32::from(exact as i16),
+                Width::Double => exact as i32,
+            };
+            set_flag(devices, M_CARRY, exact > max)?;
+            set_flag(devices, M_BORROW, exact < min)?;
+            set_flag(devices, M_ZERO, wrapped == 0)?;
+            write_word(devices, dst, width, wrapped)
+        }
+        Instruction::Compare {
+            width,
+            exec,
+            s1,
+            s2,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let a = read_source(devices, s1, width)?;
+            let b = read_source(devices, s2, width)?;
+            let bit = |offset: u16| match dst {
+                Device::M(n) => Device::M(n.saturating_add(offset)),
+                Device::Y(n) => Device::Y(n.saturating_add(offset)),
+                other => other,
+            };
+            for (offset, on) in [(0u16, a > b), (1, a == b), (2, a < b)] {
+                let device = bit(offset);
+                devices
+                    .set_bit(device, on)
+                    .map_err(|e| device_error(device, e))?;
+            }
+            Ok(())
+        }
+        Instruction::PulseOutput {
+            width,
+            frequency,
+            count,
+            output,
+        } => pulse_output(machine, memory, power, width, (frequency, count), output),
+        Instruction::Ecamtbx {
+            params,
+            kind,
+            table,
+            result,
+        } => {
+            if !power {
+                return Ok(());
+            }
+            let kind = read_source(devices, kind, Width::Double)?;
+            crate::ecamtbx::execute(devices, params, kind, table, result)
+        }
+        // Contacts, stack instructions and DECAM are handled by the scan loop.
+        Instruction::Load(..)
+        | Instruction::And(..)
+        | Instruction::Or(..)
+        | Instruction::AndBlock
+        | Instruction::OrBlock
+        | Instruction::Push
+        | Instruction::Read
+        | Instruction::Pop
+        | Instruction::Nop
+        | Instruction::Decam { .. } => Ok(()),
+    }
+}
+
+fn set_flag(devices: &mut crate::devices::Devices, m: u16, on: bool) -> Result<(), OperationError> {
+    devices
+        .set_m(m, on)
+        .map_err(|e| device_error(Device::M(m), e))
+}
+
+/// RST of one device: bits off, words and counters to 0.
+fn reset(machine: &mut Machine<'_>, device: Device) -> Result<(), OperationError> {
+    let devices = &mut *machine.devices;
+    match device {
+        Device::D(n) => devices.set_word(n, 0),
+        Device::C(n) => devices.set_counter(n, 0),
+        bit => devices.set_bit(bit, false),
+    }
+    .map_err(|e| device_error(device, e))
+}
+
+/// PLSY/DPLSY: starts a pulse train when the power flow turns on, follows
+/// frequency changes while it runs, stops it when the power flow goes off;
+/// a finished train turns M8029 on and is not restarted until the power flow
+/// has been off.
+fn pulse_output(
+    machine: &mut Machine<'_>,
+    memory: &mut Memory,
+    power: bool,
+    width: Width,
+    (frequency, count): (crate::il::Source, crate::il::Source),
+    output: u8,
+) -> Result<(), OperationError> {
+    let devices = &mut *machine.devices;
+    let hardware = &mut *machine.hardware;
+    if !power {
+        if memory.latched {
+            hardware.stop_pulse_train(output);
+            memory.latched = false;
+            set_flag(devices, M_EXECUTION_COMPLETE, false)?;
+        }
+        return Ok(());
+    }
+    let max_hz = if width == Width::Double {
+        DPLSY_MAX_HZ
+    } else {
+        PLSY_MAX_HZ
+    };
+    let hz = read_source(devices, frequency, width)?;
+    let pulses = read_source(devices, count, width)?;
+    let name = if width == Width::Double {
+        "DPLSY"
+    } else {
+        "PLSY"
+    };
+    let invalid = if !(0..=max_hz).contains(&hz) {
+        Some(format!(
+            "{name} frequency {hz} Hz is out of range (0-{max_hz})"
+        ))
+    } else if pulses < 0 {
+        Some(format!(
+            "{name} pulse count {pulses} is negative (0 = endless)"
+        ))
+    } else {
+        None
+    };
+    if let Some(message) = invalid {
+        hardware.stop_pulse_train(output);
+        return Err(OperationError::new(CODE_OPERAND, message));
+    }
+    let hz = hz.unsigned_abs();
+    if !memory.latched {
+        hardware.start_pulse_train(
+            output,
+            PulseTrain::new(hz, u64::from(pulses.unsigned_abs())),
+        );
+        memory.latched = true;
+        set_flag(devices, M_EXECUTION_COMPLETE, false)?;
+    } else if hardware.pulse_train(output).is_some() {
+        hardware.set_train_frequency(output, hz);
+    } else {
+        set_flag(devices, M_EXECUTION_COMPLETE, true)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,61 @@
+//! Reading and writing operands at run time.
+
+use crate::devices::{C_32BIT_FIRST, Device, DeviceError, Devices};
+use crate::hardware::Hardware;
+use crate::il::{Source, Width};
+use crate::operation_error::{CODE_DEVICE_RANGE, OperationError};
+
+/// A device error at run time (the parser checks ranges, so this is rare).
+pub(crate) fn device_error(device: impl core::fmt::Display, err: DeviceError) -> OperationError {
+    OperationError::new(CODE_DEVICE_RANGE, format!("{device}: {err}"))
+}
+
+/// State of a bit operand: X/Y/M, or a counter's contact.
+pub(crate) fn read_bit(devices: &Devices, hardware: &Hardware, device: Device) -> bool {
+    match device {
+        Device::C(n) => hardware.counters().contact(devices, n),
+        Device::D(_) => false,
+        bit => devices.bit(bit).unwrap_or(false),
+    }
+}
+
+/// Value of a source operand at the instruction's width (16-bit reads are sign-extended).
+pub(crate) fn read_source(
+    devices: &Devices,
+    source: Source,
+    width: Width,
+) -> Result<i32, OperationError> {
+    let value = match source {
+        Source::Constant(v) => return Ok(v),
+        Source::Register(n) => match width {
+            Width::Word => devices.word(n).map(i32::from),
+            Width::Double => devices.dword(n),
+        }
+        .map_err(|e| device_error(Device::D(n), e))?,
+        Source::Counter(n) => devices
+            .counter(n)
+            .map_err(|e| device_error(Device::C(n), e))?,
+    };
+    Ok(match width {
+        Width::Word => i32::from(value as i16),
+        Width::Double => value,
+    })
+}
+
+/// Writes a D or C destination at the instruction's width.
+pub(crate) fn write_word(
+    devices: &mut Devices,
+    dst: Device,
+    width: Width,
+    value: i32,
+) -> Result<(), OperationError> {
+    match (dst, width) {
+        (Device::D(n), Width::Word) => devices.set_word(n, value as i16),
+        (Device::D(n), Width::Double) => devices.set_dword(n, value),
+        (Device::C(n), Width::Word) if n < C_32BIT_FIRST => devices.set_counter(n, value),
+        (Device::C(n), Width::Word) => devices.set_counter(n, i32::from(value as i16)),
+        (Device::C(n), Width::Double) => devices.set_counter(n, value),
+        (other, _) => Err(DeviceError::WrongKind).map_err(|e| device_error(other, e))?,
+    }
+    .map_err(|e| device_error(dst, e))
+}

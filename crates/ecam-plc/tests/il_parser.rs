@@ -1,0 +1,186 @@
+//! The IL parser: accepted forms, and errors that name file:line and what was expected.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use ecam_plc::devices::Device;
+use ecam_plc::il::{
+    ArithOp, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Width, ZoneDevice, parse,
+};
+
+fn one(line: &str) -> Instruction {
+    let program = parse(&format!("LD M8000\n{line}\n"), "t.il").unwrap();
+    program.statements[1].instruction.clone()
+}
+
+fn error(source: &str) -> String {
+    parse(source, "prog.il").unwrap_err().to_string()
+}
+
+#[test]
+fn contacts_and_stack_instructions() {
+    let src = "ld x0\nLDI X1\nANB\nANDP M5\nORF C231\nMPS\nANI Y7\nOUT Y0\nMRD\nOUT Y1\nMPP\nOUT Y2\nEND\nGARBAGE";
+    let program = parse(src, "t.il").unwrap();
+    let got: Vec<_> = program
+        .statements
+        .iter()
+        .map(|s| s.instruction.clone())
+        .collect();
+    assert_eq!(got[0], Instruction::Load(Contact::Open, Device::X(0)));
+    assert_eq!(got[1], Instruction::Load(Contact::Closed, Device::X(1)));
+    assert_eq!(got[2], Instruction::AndBlock);
+    assert_eq!(got[3], Instruction::And(Contact::Rising, Device::M(5)));
+    assert_eq!(got[4], Instruction::Or(Contact::Falling, Device::C(231)));
+    assert_eq!(got[5], Instruction::Push);
+    assert_eq!(got[8], Instruction::Read);
+    assert_eq!(got[10], Instruction::Pop);
+    assert_eq!(got.len(), 12, "lines after END are ignored");
+    assert_eq!(program.statements[11].line, 12);
+}
+
+#[test]
+fn applied_instructions_and_their_forms() {
+    assert_eq!(
+        one("MOV K100 D0"),
+        Instruction::Move {
+            width: Width::Word,
+            exec: Exec::Continuous,
+            src: Source::Constant(100),
+            dst: Device::D(0)
+        }
+    );
+    assert_eq!(
+        one("DMOVP HFFFFFFFF D10"),
+        Instruction::Move {
+            width: Width::Double,
+            exec: Exec::Pulse,
+            src: Source::Constant(-1),
+            dst: Device::D(10)
+        }
+    );
+    assert_eq!(
+        one("DEMOV E1.6667 D106"),
+        Instruction::FloatMove {
+            exec: Exec::Continuous,
+            src: FloatSource::Constant(1.6667),
+            dst: 106
+        }
+    );
+    assert_eq!(
+        one("DSUB C231 D0 D2"),
+        Instruction::Arith {
+            op: ArithOp::Sub,
+            width: Width::Double,
+            exec: Exec::Continuous,
+            s1: Source::Counter(231),
+            s2: Source::Register(0),
+            dst: Device::D(2)
+        }
+    );
+    assert_eq!(
+        one("ZRST M0 M10"),
+        Instruction::ZoneReset {
+            exec: Exec::Continuous,
+            kind: ZoneDevice::M,
+            first: 0,
+            last: 10
+        }
+    );
+    assert_eq!(
+        one("DPLSY K20000 K0 Y1"),
+        Instruction::PulseOutput {
+            width: Width::Double,
+            frequency: Source::Constant(20000),
+            count: Source::Constant(0),
+            output: 1
+        }
+    );
+    assert_eq!(
+        one("DECAM C231 D2000 X000 Y000 Y001"),
+        Instruction::Decam {
+            master: MasterSpec::Counter(231),
+            block: 2000,
+            start: Device::X(0),
+            pulse_output: 0,
+            direction: Device::Y(1)
+        }
+    );
+    assert_eq!(
+        one("DECAM K10 D1000 M5 Y2 Y5"),
+        Instruction::Decam {
+            master: MasterSpec::TimeBase(10),
+            block: 1000,
+            start: Device::M(5),
+            pulse_output: 2,
+            direction: Device::Y(5)
+        }
+    );
+    assert_eq!(
+        one("ECAMTBX D100 K100 D1000 D200"),
+        Instruction::Ecamtbx {
+            params: 100,
+            kind: Source::Constant(100),
+            table: 1000,
+            result: 200
+        }
+    );
+    assert_eq!(
+        one("OUT C231 K2147483647"),
+        Instruction::OutCounter {
+            counter: 231,
+            set_value: Source::Constant(i32::MAX)
+        }
+    );
+    assert!(matches!(
+        one("CMPP K1 D0 M10"),
+        Instruction::Compare {
+            exec: Exec::Pulse,
+            ..
+        }
+    ));
+    assert!(matches!(
+        one("PLF M3"),
+        Instruction::Pulse { rising: false, .. }
+    ));
+}
+
+#[test]
+fn errors_name_file_line_and_expectation() {
+    assert_eq!(
+        error("LD X0\n\nOUT Q5\n"),
+        "prog.il:3: OUT operand 1: unknown device `Q5` (expected D, M, X, Y, C and a number, X/Y in octal, or a K/H/E constant)"
+    );
+    assert!(
+        error("LD X0\nMOV K1 D9000\n")
+            .starts_with("prog.il:2: MOV operand 2: device `D9000` is out of range")
+    );
+    assert!(error("LD X8\n").starts_with("prog.il:1: LD operand 1: unknown device `X8`"));
+    assert!(error("LD X0\nFOO D0\n").starts_with("prog.il:2: unknown instruction `FOO`"));
+    assert!(error("LD X0\nMOV K1\n").contains("MOV expects 2 operands (S D), found 1"));
+    assert!(
+        error("LD D0\n").contains("expected a bit device X, Y, M or a counter contact C, found D0")
+    );
+    assert!(error("LD X0\nOUT X1\n").contains("expected an output Y or a relay M, found X1"));
+    assert!(error("LD X0\nMOV K40000 D0\n").contains("out of range (K-32768 to K32767)"));
+    assert!(error("LD X0\nDMOV K1 D8511\n").contains("D8511 has no D8512"));
+    assert!(error("LD X0\nMOV D0 K1\n").contains("expected a D register or a counter C"));
+    assert!(
+        error("LD X0\nPLSY K100 K10 Y4\n").contains("expected a pulse output Y0, Y1, Y2 or Y3")
+    );
+    assert!(error("LD X0\nDEMOV Efoo D0\n").contains("not an E constant"));
+    assert!(error("OUT Y0\n").starts_with("prog.il:1: this instruction has no power flow"));
+    assert!(error("LD X0\nANB\n").starts_with("prog.il:2: ANB/ORB needs two logic blocks"));
+    assert!(error("LD X0\nMPP\n").starts_with("prog.il:2: MPP without a matching MPS"));
+    assert!(error("LD X0\nLD X1\nOUT Y0\n").starts_with("prog.il:3: 2 logic blocks are open"));
+    assert!(error("LD X0\nOUT C0\n").contains("needs a set value"));
+    assert!(error("LD X0\nZRST D10 D0\n").contains("must not come after"));
+    assert!(error("LD X0\nZRST D0 M10\n").contains("same kind"));
+    assert!(error("LD X0\nECAM C231 D0 X0 Y0 Y1\n").contains("DECAM"));
+    assert!(error("LD X0\nMOVQ K1 D0\n").contains("unknown instruction `MOVQ`"));
+    assert!(error("LD X0\nCMP K1 K2 M8510\n").contains("two bits after it"));
+    assert!(error("LD X0\nEND K1\n").starts_with("prog.il:2: END takes no operands"));
+}
+
+#[test]
+fn branches_after_mpp_may_open_blocks() {
+    let src = "LD X0\nMPS\nAND X1\nOUT Y1\nMPP\nLD X2\nOR X3\nANB\nOUT Y2\nLD X4\nOUT Y3\n";
+    assert!(parse(src, "t.il").is_ok());
+}

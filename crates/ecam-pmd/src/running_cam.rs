@@ -1,0 +1,98 @@
+//! One started cam: the engine axis that turns the input into the commanded position.
+//!
+//! Document 002's rules map onto the engine like this: the table wraps both
+//! ways with the offset adjusted so the output stays continuous (repeat
+//! coupling; a table whose first and last values are equal is periodic and
+//! behaves the same); `CamStartCount` is the table input at the start
+//! (`MasterAlign::StartAt`, so `CamInputOffset = CamStartCount − input`);
+//! the start is bumpless (`SlaveAlign::Relative`, so
+//! `CamOutputOffset = commanded − table value`). The document's prose says
+//! the offset is "the current commanded position subtracted from the table
+//! value", but then adds it to the table values to avoid a bump; only
+//! commanded − table does that, so that is the sign used.
+
+use ecam_engine::{
+    AxisConfig, CamAxis, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind, TickInput,
+};
+
+use crate::BufferCam;
+
+/// Time per processor cycle handed to the engine. The face reads the
+/// commanded position (not the emitted pulses), so the pulse limit that
+/// this feeds never delays a motion processor's servo reference.
+const CYCLE_US: u32 = 100;
+
+/// A cam that was started by `StartCam`.
+pub struct RunningCam {
+    axis: CamAxis<BufferCam>,
+}
+
+/// What one cycle of a running cam produced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CamCycle {
+    /// Commanded position.
+    pub commanded: i64,
+    /// `CamOutputOffset`.
+    pub output_offset: i64,
+    /// `CamInputOffset`.
+    pub input_offset: i64,
+    /// The cam is still active after this cycle.
+    pub active: bool,
+}
+
+impl core::fmt::Debug for RunningCam {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RunningCam")
+            .field("state", &self.axis.status().state)
+            .finish()
+    }
+}
+
+impl RunningCam {
+    /// Arms a cam on `table` starting at table input `start_count` from the
+    /// commanded position `commanded`; it engages on the next [`RunningCam::cycle`].
+    ///
+    /// # Errors
+    /// The engine's refusal, as text (e.g. an empty cycle).
+    pub fn start(table: BufferCam, start_count: i64, commanded: i64) -> Result<Self, String> {
+        let config = AxisConfig {
+            coupling: Coupling::Repeat { min_stroke: 1 },
+            start: StartMode::Immediate,
+            master_align: MasterAlign::StartAt(start_count),
+            slave_align: SlaveAlign::Relative,
+            ..AxisConfig::default()
+        };
+        let mut axis = CamAxis::new(table, config).map_err(|e| e.to_string())?;
+        axis.set_slave_position(commanded)
+            .map_err(|e| e.to_string())?;
+        axis.arm().map_err(|e| e.to_string())?;
+        Ok(Self { axis })
+    }
+
+    /// Runs one processor cycle with the cam input `input`.
+    pub fn cycle(&mut self, input: i64) -> CamCycle {
+        let out = self.axis.tick(&TickInput {
+            master: input,
+            start_input: false,
+            watch: 0,
+            dt_us: CYCLE_US,
+            output_enabled: true,
+        });
+        CamCycle {
+            commanded: out.slave,
+            output_offset: out.output_offset,
+            input_offset: out.input_offset,
+            active: out.state.is_active(),
+        }
+    }
+
+    /// Abrupt stop: the commanded position stays where it is.
+    pub fn stop_abrupt(&mut self) {
+        self.axis.stop(StopKind::Immediate);
+    }
+
+    /// Smooth stop: at the next end of the table, in either direction.
+    pub fn stop_smooth(&mut self) {
+        self.axis.stop(StopKind::EndOfCycle);
+    }
+}
