@@ -445,3 +445,32 @@ fn shipped_example_tables_match_their_parameter_files() {
         (Some(3), Some(1500))
     );
 }
+
+#[test]
+fn plots_are_drawn_without_text_when_no_font_is_found() {
+    let dir = scratch("nofont");
+    for name in ["t.png", "t.svg"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_ecam"))
+            .args([
+                "table",
+                "gen",
+                "keypoints",
+                "-o",
+                s(&dir.join("t.csv")),
+                "--plot",
+                s(&dir.join(name)),
+            ])
+            .env("ECAM_FONT", "none")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(String::from_utf8_lossy(&out.stderr).contains("without text"));
+        assert!(std::fs::metadata(dir.join(name)).unwrap().len() > 1000);
+    }
+    let svg = std::fs::read_to_string(dir.join("t.svg")).unwrap();
+    assert!(!svg.contains("<text"));
+}

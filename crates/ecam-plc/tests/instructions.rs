@@ -387,3 +387,22 @@ fn clock_relays_follow_simulated_time() {
     run(&mut p, Timing::default(), RunLength::Millis(980), |_| {}).unwrap();
     assert_eq!(p.devices().word(0), Ok(10), "ten 100 ms periods in 1 s");
 }
+
+#[test]
+fn inc_dec_wrap_without_flags() {
+    let mut p = plc("LD M8000\nINC D0\nDECP D1\nDINC D2\nLD X0\nDDEC D4\nINC C10\n");
+    p.devices_mut().set_word(0, i16::MAX).unwrap();
+    p.devices_mut().set_dword(2, -1).unwrap();
+    p.scan();
+    p.scan();
+    let d = p.devices();
+    assert_eq!(d.word(0), Ok(i16::MIN + 1));
+    assert_eq!(d.word(1), Ok(-1), "DECP once");
+    assert_eq!(d.dword(2), Ok(1));
+    assert_eq!(d.dword(4), Ok(0), "no power flow");
+    assert_eq!(d.m(8022), Ok(false));
+    set(&mut p, "X0", true);
+    p.scan();
+    assert_eq!(p.devices().dword(4), Ok(-1));
+    assert_eq!(p.devices().counter(10), Ok(1));
+}

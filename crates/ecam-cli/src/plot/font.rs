@@ -2,9 +2,10 @@
 //!
 //! The workspace builds plotters without its system-font loader (`ttf` pulls
 //! in native font libraries), so labels are drawn with `ab_glyph` from a
-//! TrueType file that we register once. `ECAM_FONT` names one explicitly;
-//! otherwise a few common system locations are tried. Without any font the
-//! plots are still drawn, only without text, and the caller says so.
+//! TrueType file that we register once. `ECAM_FONT` names one explicitly
+//! (`ECAM_FONT=none` for no text); otherwise a few common system locations
+//! are tried. Without any font the plots are still drawn, only without text,
+//! and the caller says so.
 
 use std::sync::OnceLock;
 
@@ -36,6 +37,10 @@ pub fn available() -> bool {
 
 fn register_first() -> bool {
     let explicit = std::env::var_os("ECAM_FONT").map(std::path::PathBuf::from);
+    // `ECAM_FONT=none` draws without text, as on a machine without fonts.
+    if explicit.as_deref() == Some(std::path::Path::new("none")) {
+        return false;
+    }
     let paths = explicit
         .into_iter()
         .chain(CANDIDATES.iter().map(std::path::PathBuf::from));

@@ -175,6 +175,17 @@ pub enum Instruction {
         /// Destination D or C.
         dst: Device,
     },
+    /// INC/DEC/DINC/DDEC[P] D: add or subtract 1, wrapping, no flags (FX).
+    Step {
+        /// True for INC, false for DEC.
+        up: bool,
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The register or counter.
+        dst: Device,
+    },
     /// CMP/DCMP[P] S1 S2 D: D = S1>S2, D+1 = S1=S2, D+2 = S1<S2.
     Compare {
         /// 16 or 32 bit.

@@ -89,8 +89,8 @@ fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> Str
 /// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
 /// that have 32-bit and pulse forms.
 fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
-    const BASES: [&str; 9] = [
-        "MOV", "EMOV", "ADD", "SUB", "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+    const BASES: [&str; 11] = [
+        "MOV", "EMOV", "ADD", "SUB", "INC", "DEC", "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
     ];
     let (width, rest) = match mnemonic.strip_prefix('D') {
         Some(rest)
@@ -279,6 +279,15 @@ fn applied_instruction(
                 s1: source(mnemonic, 0, &ops[0], width)?,
                 s2: source(mnemonic, 1, &ops[1], width)?,
                 dst: word_dest(mnemonic, 2, &ops[2], width)?,
+            }
+        }
+        "INC" | "DEC" => {
+            arity(mnemonic, ops, &["D"])?;
+            Instruction::Step {
+                up: base == "INC",
+                width,
+                exec,
+                dst: word_dest(mnemonic, 0, &ops[0], width)?,
             }
         }
         "CMP" => {

@@ -3,8 +3,9 @@
 use super::operands::{device_error, read_source, write_word};
 use super::{Machine, Memory, runs};
 use crate::devices::Device;
+use crate::devices::DeviceError;
 use crate::hardware::PulseTrain;
-use crate::il::{ArithOp, FloatSource, Instruction, Width, ZoneDevice};
+use crate::il::{ArithOp, FloatSource, Instruction, Source, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
 use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
 
@@ -131,6 +132,32 @@ pub(super) fn execute(
             set_flag(devices, M_BORROW, exact < min)?;
             set_flag(devices, M_ZERO, wrapped == 0)?;
             write_word(devices, dst, width, wrapped)
+        }
+        Instruction::Step {
+            up,
+            width,
+            exec,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let source = match dst {
+                Device::C(n) => Source::Counter(n),
+                Device::D(n) => Source::Register(n),
+                other => return Err(device_error(other, DeviceError::WrongKind)),
+            };
+            let value = read_source(devices, source, width)?;
+            let next = if up {
+                value.wrapping_add(1)
+            } else {
+                value.wrapping_sub(1)
+            };
+            let next = match width {
+                Width::Word => i32::from(next as i16),
+                Width::Double => next,
+            };
+            write_word(devices, dst, width, next)
         }
         Instruction::Compare {
             width,
