@@ -11,6 +11,7 @@ mod generate;
 mod plot;
 mod progress;
 mod scenario;
+mod serve;
 mod table_file;
 mod table_source;
 mod trace;
@@ -40,6 +41,8 @@ enum Command {
     /// The motion-processor face: run command scripts.
     #[command(subcommand)]
     Pmd(cmd::pmd::Command),
+    /// Run the PLC in real time behind Modbus TCP and HTTP (API + designer page).
+    Serve(cmd::serve::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -50,6 +53,7 @@ fn main() -> std::process::ExitCode {
         Command::Simulate(args) => cmd::simulate::run(args),
         Command::Plc(command) => cmd::plc::run(command),
         Command::Pmd(command) => cmd::pmd::run(command),
+        Command::Serve(args) => cmd::serve::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

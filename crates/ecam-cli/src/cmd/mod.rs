@@ -3,5 +3,6 @@
 pub mod law;
 pub mod plc;
 pub mod pmd;
+pub mod serve;
 pub mod simulate;
 pub mod table;

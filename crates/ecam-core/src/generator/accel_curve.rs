@@ -118,6 +118,47 @@ impl AccelCurve {
         }
     }
 
+    /// Normalised acceleration `dh/du`, the slope of [`AccelCurve::velocity`].
+    /// `u` is clamped onto `[0, 1]`; the value is the one at the clamped point.
+    ///
+    /// A ramp from `v0` to `v1` over `len` master counts has the acceleration
+    /// `(v1 − v0)·dh/du / len`.
+    pub fn acceleration(self, u: f64) -> f64 {
+        let u = u.clamp(0.0, 1.0);
+        match self {
+            Self::Uniform => 1.0,
+            Self::UniformAcceleration => {
+                if u < 0.5 {
+                    4.0 * u
+                } else {
+                    4.0 * (1.0 - u)
+                }
+            }
+            Self::BType => 1.0 - libm::cos(2.0 * PI * u),
+        }
+    }
+
+    /// Normalised jerk `d²h/du²`, the slope of [`AccelCurve::acceleration`].
+    /// `u` is clamped onto `[0, 1]`. Where the acceleration has a corner
+    /// (the S-type ramp's peak at `u = ½`) the value is the one after it,
+    /// as a table's joint belongs to the section starting there. The
+    /// uniform curve's jerk is zero inside the ramp: its acceleration steps
+    /// at the ramp's ends, an impulse of jerk no finite value describes.
+    pub fn jerk(self, u: f64) -> f64 {
+        let u = u.clamp(0.0, 1.0);
+        match self {
+            Self::Uniform => 0.0,
+            Self::UniformAcceleration => {
+                if u < 0.5 {
+                    4.0
+                } else {
+                    -4.0
+                }
+            }
+            Self::BType => 2.0 * PI * libm::sin(2.0 * PI * u),
+        }
+    }
+
     /// Peak of `dh/du`: how much steeper than a linear ramp the curve gets
     /// (1 for uniform, 2 for the other two).
     pub const fn peak_acceleration_factor(self) -> f64 {
@@ -168,6 +209,46 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Central difference of `f` at `u`, step `h`.
+    fn slope(f: impl Fn(f64) -> f64, u: f64, h: f64) -> f64 {
+        (f(u + h) - f(u - h)) / (2.0 * h)
+    }
+
+    #[test]
+    fn acceleration_and_jerk_are_the_derivatives() {
+        let h = 1e-6;
+        for c in AccelCurve::ALL {
+            // Stay a step away from the ends and from the S-type's corner at ½.
+            for i in 1..200 {
+                let u = f64::from(i) / 200.0;
+                if (u - 0.5).abs() < 2.0 * h {
+                    continue;
+                }
+                let a = slope(|u| c.velocity(u), u, h);
+                assert!((a - c.acceleration(u)).abs() < 1e-6, "{c:?} a at {u}");
+                let j = slope(|u| c.acceleration(u), u, h);
+                assert!((j - c.jerk(u)).abs() < 1e-5, "{c:?} j at {u}");
+            }
+        }
+    }
+
+    #[test]
+    fn acceleration_ends_and_peaks() {
+        // Uniform: a step at both ends; S-type and B-type start and end at rest.
+        assert_eq!(AccelCurve::Uniform.acceleration(0.0), 1.0);
+        for c in [AccelCurve::UniformAcceleration, AccelCurve::BType] {
+            assert_eq!(c.acceleration(0.0), 0.0);
+            assert!(c.acceleration(1.0).abs() < 1e-12);
+            assert!((c.acceleration(0.5) - c.peak_acceleration_factor()).abs() < 1e-12);
+        }
+        assert_eq!(AccelCurve::UniformAcceleration.jerk(0.25), 4.0);
+        assert_eq!(AccelCurve::UniformAcceleration.jerk(0.5), -4.0);
+        assert!(AccelCurve::BType.jerk(0.0).abs() < 1e-12);
+        // Clamped outside the ramp.
+        assert_eq!(AccelCurve::UniformAcceleration.acceleration(-1.0), 0.0);
+        assert_eq!(AccelCurve::Uniform.jerk(2.0), 0.0);
     }
 
     #[test]

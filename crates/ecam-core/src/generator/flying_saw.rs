@@ -48,6 +48,7 @@
 //! ```
 
 use super::accel_curve::AccelCurve;
+use super::design_curve::DesignCurve;
 use super::motion_path::{Path, Ramp};
 use super::placement::CamPlacement;
 use super::sampling::{peak_ratio, sample};
@@ -141,6 +142,9 @@ pub struct Generated {
     pub stroke: Stroke,
     /// Steepest section of the table, in absolute value (≤ `P5`).
     pub peak_ratio: f64,
+    /// The exact motion the table samples (mirrored on return, like the
+    /// table; every point within ½ pulse of it).
+    pub design: DesignCurve,
 }
 
 fn check(p: &Params) -> Result<(), TableError> {
@@ -273,15 +277,21 @@ pub fn generate(p: &Params) -> Result<Generated, TableError> {
             reason: "the table rounded onto whole pulses exceeds the max ratio (P5): raise it or lower the resolution",
         });
     }
-    let (table, direction, sign) = if p.slave_length < 0 {
+    let design = DesignCurve::new(path, p.master_length);
+    let (table, design, direction, sign) = if p.slave_length < 0 {
         let mirrored = table
             .points()
             .iter()
             .map(|q| CamPoint::new(q.master, -q.slave))
             .collect();
-        (PointTable::new(mirrored)?, Stroke::Return, -1)
+        (
+            PointTable::new(mirrored)?,
+            design.mirrored(),
+            Stroke::Return,
+            -1,
+        )
     } else {
-        (table, Stroke::Forward, 1)
+        (table, design, Stroke::Forward, 1)
     };
     Ok(Generated {
         table,
@@ -291,6 +301,7 @@ pub fn generate(p: &Params) -> Result<Generated, TableError> {
         sync_ratio: sign as f64 * r,
         stroke: direction,
         peak_ratio: peak,
+        design,
     })
 }
 

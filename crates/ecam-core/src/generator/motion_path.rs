@@ -7,7 +7,7 @@
 use alloc::vec::Vec;
 
 use super::accel_curve::AccelCurve;
-use crate::TableError;
+use crate::{Kinematics, TableError};
 
 /// One piece of a path: part `[offset, offset + len]` of a ramp of the
 /// velocity ratio from `v0` to `v1` over `ramp_len` master counts.
@@ -59,6 +59,42 @@ impl Piece {
         self.slave_at(self.master_end())
     }
 
+    /// Slave position and its derivatives at `master` (clamped onto the
+    /// piece), analytic: each derivative of the ramp's curve carries one more
+    /// factor `1/ramp_len`.
+    pub fn kinematics_at(&self, master: f64) -> Kinematics {
+        let s = self.slave_at(master);
+        if self.ramp_len <= 0.0 || self.is_constant_velocity() {
+            return Kinematics {
+                s,
+                v: self.v1,
+                a: 0.0,
+                j: 0.0,
+            };
+        }
+        let x = (master - self.master_start).clamp(0.0, self.len);
+        let u = (self.offset + x) / self.ramp_len;
+        let dv = self.v1 - self.v0;
+        Kinematics {
+            s,
+            v: self.v0 + dv * self.curve.velocity(u),
+            a: dv * self.curve.acceleration(u) / self.ramp_len,
+            j: dv * self.curve.jerk(u) / (self.ramp_len * self.ramp_len),
+        }
+    }
+
+    /// The same piece moving the other way (slave positions and velocities
+    /// negated; negation is exact in floating point, so this is the exact
+    /// mirror of the piece).
+    fn mirrored(&self) -> Piece {
+        Piece {
+            slave_start: -self.slave_start,
+            v0: -self.v0,
+            v1: -self.v1,
+            ..*self
+        }
+    }
+
     /// The two parts of this piece either side of `master` (inside it).
     fn split(&self, master: f64) -> (Piece, Piece) {
         let first_len = (master - self.master_start).clamp(0.0, self.len);
@@ -105,6 +141,11 @@ impl Path {
 
     pub fn pieces(&self) -> &[Piece] {
         &self.pieces
+    }
+
+    /// Slave position where the path ends.
+    pub fn slave_end(&self) -> f64 {
+        self.slave_end
     }
 
     #[cfg(test)]
@@ -158,6 +199,37 @@ impl Path {
         match self.pieces.get(i.saturating_sub(1)) {
             Some(p) => p.slave_at(master),
             None => self.slave_end,
+        }
+    }
+
+    /// Slave position and derivatives at `master` (clamped onto the path).
+    /// A master on a joint belongs to the piece starting there.
+    pub fn kinematics_at(&self, master: f64) -> Kinematics {
+        let i = self.pieces.partition_point(|p| p.master_start <= master);
+        match self.pieces.get(i.saturating_sub(1)) {
+            Some(p) => p.kinematics_at(master),
+            None => Kinematics::at_rest(self.slave_end),
+        }
+    }
+
+    /// The mirror image of this path: the same motion with the slave
+    /// running the other way (what the generators do for negative strokes).
+    pub fn mirrored(&self) -> Path {
+        Path {
+            pieces: self.pieces.iter().map(Piece::mirrored).collect(),
+            master_end: self.master_end,
+            slave_end: -self.slave_end,
+        }
+    }
+
+    /// Appends `other`'s pieces moved by `master_shift` and `slave_shift`.
+    pub fn append_shifted(&mut self, other: &Path, master_shift: f64, slave_shift: f64) {
+        for p in &other.pieces {
+            self.push_piece(Piece {
+                master_start: p.master_start + master_shift,
+                slave_start: p.slave_start + slave_shift,
+                ..*p
+            });
         }
     }
 

@@ -59,6 +59,7 @@
 //! ```
 
 use super::accel_curve::AccelCurve;
+use super::design_curve::DesignCurve;
 use super::motion_path::{Bend, Path, transition};
 use super::placement::CamPlacement;
 use super::sampling::{peak_ratio, round_half_up, sample};
@@ -140,6 +141,9 @@ pub struct Generated {
     pub capped_at_max: bool,
     /// Steepest section of the table (≤ `P5`).
     pub peak_ratio: f64,
+    /// The exact motion the table samples (every point within ½ pulse of
+    /// it): its velocity is the sync ratio in the sync zone, exactly.
+    pub design: DesignCurve,
 }
 
 fn check(p: &Params) -> Result<(), TableError> {
@@ -315,6 +319,7 @@ pub fn generate(p: &Params) -> Result<Generated, TableError> {
             regime,
             capped_at_max: d.bend == Bend::CruiseAtMax,
             peak_ratio: peak,
+            design: DesignCurve::new(d.path, p.master_length),
         });
     }
     Err(TableError::Infeasible {

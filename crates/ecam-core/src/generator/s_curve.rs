@@ -43,6 +43,7 @@
 //! ```
 
 use super::accel_curve::AccelCurve;
+use super::design_curve::DesignCurve;
 use super::motion_path::{Path, Ramp};
 use super::sampling::{peak_ratio, sample};
 use crate::{CamPoint, PointTable, TableError};
@@ -107,6 +108,9 @@ pub struct Generated {
     pub uniform_time: i64,
     /// `P11`: highest speed the table commands, Hz at 1 kHz master.
     pub max_speed_hz: i64,
+    /// The exact move the table samples (master in ms at 1 kHz; mirrored
+    /// for a negative `P1`; every point within ½ pulse of it).
+    pub design: DesignCurve,
 }
 
 fn check(params: &Params) -> Result<(), TableError> {
@@ -220,6 +224,8 @@ pub fn generate(params: &Params) -> Result<Generated, TableError> {
         }
         let sign = params.total_pulses.signum();
         let table = if sign < 0 { mirrored(&table)? } else { table };
+        let design = DesignCurve::new(plan.path, plan.duration);
+        let design = if sign < 0 { design.mirrored() } else { design };
         return Ok(Generated {
             table,
             sync: None,
@@ -228,6 +234,7 @@ pub fn generate(params: &Params) -> Result<Generated, TableError> {
             last_section_slave: sign * libm::round(plan.decel_distance) as i64,
             uniform_time: libm::round(plan.uniform) as i64,
             max_speed_hz: libm::round(peak * f64::from(MASTER_HZ)) as i64,
+            design,
         });
     }
 }
