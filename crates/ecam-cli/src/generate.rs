@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use ecam_core::generator::accel_curve::AccelCurve;
+use ecam_core::generator::design_curve::DesignCurve;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint};
 use ecam_core::generator::placement::CamPlacement;
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
@@ -33,6 +34,22 @@ pub struct Generated {
     /// Exact velocity, acceleration and jerk at each point, from the curve
     /// the table samples (the points themselves are rounded to whole pulses).
     pub kinematics: Option<Vec<Kinematics>>,
+    /// The exact motion the S-curve, rotary-cut and flying-saw generators
+    /// designed before rounding it into the table (what `--plot` draws).
+    pub design: Option<DesignCurve>,
+}
+
+/// The design curve's derivatives at each point of `table`, keeping the
+/// table's (rounded) positions.
+fn design_along(table: &PointTable, design: &DesignCurve) -> Vec<Kinematics> {
+    table
+        .points()
+        .iter()
+        .map(|p| Kinematics {
+            s: p.slave as f64,
+            ..design.eval(p.master as f64)
+        })
+        .collect()
 }
 
 /// The exact curve's derivatives at each point of `table`, keeping the
@@ -295,10 +312,11 @@ fn s_curve_table(args: &SCurveArgs) -> anyhow::Result<Generated> {
             ("P10 uniform time", g.uniform_time.to_string()),
             ("P11 max speed (Hz)", g.max_speed_hz.to_string()),
         ],
+        kinematics: Some(design_along(&g.table, &g.design)),
         table: g.table,
         sync: g.sync,
         name: "s-curve",
-        kinematics: None,
+        design: Some(g.design),
     })
 }
 
@@ -418,10 +436,11 @@ fn rotary_cut_table(args: &CutArgs) -> anyhow::Result<Generated> {
             ("peak ratio", g.peak_ratio.to_string()),
             ("capped at max ratio", g.capped_at_max.to_string()),
         ],
+        kinematics: Some(design_along(&g.table, &g.design)),
         table: g.table,
         sync: g.sync,
         name: "rotary-cut",
-        kinematics: None,
+        design: Some(g.design),
     })
 }
 
@@ -472,10 +491,11 @@ fn fly_saw_table(args: &FlySawArgs) -> anyhow::Result<Generated> {
                 ),
                 ("peak ratio", g.peak_ratio.to_string()),
             ],
+            kinematics: Some(design_along(&g.table, &g.design)),
             table: g.table,
             sync: g.sync,
             name: "fly-saw",
-            kinematics: None,
+            design: Some(g.design),
         });
     }
     let (forward, back) = flying_saw::generate_pair(&params)?;
@@ -486,15 +506,18 @@ fn fly_saw_table(args: &FlySawArgs) -> anyhow::Result<Generated> {
         let slave = q.slave.checked_add(s_end).context("slave overflow")?;
         points.push(CamPoint::new(master, slave));
     }
+    let table = PointTable::new(points)?;
+    let design = forward.design.followed_by(&back.design);
     Ok(Generated {
         outputs: vec![(
             "peak ratio",
             forward.peak_ratio.max(back.peak_ratio).to_string(),
         )],
-        table: PointTable::new(points)?,
+        kinematics: Some(design_along(&table, &design)),
+        table,
         sync: forward.sync,
         name: "fly-saw",
-        kinematics: None,
+        design: Some(design),
     })
 }
 
@@ -645,6 +668,7 @@ fn key_points_table(args: &KeyPointArgs) -> anyhow::Result<Generated> {
         table: generated.table,
         sync: generated.sync,
         name: "keypoints",
+        design: None,
         outputs: vec![(
             "segment resolutions",
             generated
@@ -730,6 +754,7 @@ fn function(args: &FunctionArgs) -> anyhow::Result<Generated> {
         name: "function",
         outputs: Vec::new(),
         kinematics: Some(kinematics),
+        design: None,
     })
 }
 

@@ -11,7 +11,7 @@ use ecam_core::table::Summary;
 use serde::Serialize;
 
 use crate::generate::{self, GenCommand};
-use crate::plot::{self, Figure, Panel, Series};
+use crate::plot;
 use crate::table_file::{self, Columns, TableFile};
 
 /// Subcommands of `ecam table`.
@@ -118,7 +118,8 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         eprintln!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
-        plot::draw(&table_figure(&file, generated.name), path)?;
+        let design = generated.design.as_ref();
+        plot::draw_chart(&plot::cam_table::chart(&file, design, generated.name), path)?;
     }
     Ok(())
 }
@@ -205,45 +206,11 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
         .generator
         .clone()
         .unwrap_or_else(|| display_name(&args.file));
-    plot::draw(&table_figure(&file, &name), &args.output)
+    plot::draw_chart(&plot::cam_table::chart(&file, None, &name), &args.output)
 }
 
 fn display_name(path: &Path) -> String {
     path.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
-}
-
-/// Displacement, velocity, acceleration and jerk over the master.
-pub fn table_figure(file: &TableFile, name: &str) -> Figure {
-    let points = file.table.points();
-    let kin = file.kinematics();
-    let panel = |title: &str, values: Vec<f64>| Panel {
-        title: title.to_string(),
-        series: vec![Series {
-            name: title.split(' ').next().unwrap_or(title).to_string(),
-            values,
-        }],
-    };
-    Figure {
-        title: format!("cam table: {name}"),
-        x_label: "master (counts)".into(),
-        x: points.iter().map(|p| p.master as f64).collect(),
-        panels: vec![
-            panel(
-                "displacement (pulses)",
-                points.iter().map(|p| p.slave as f64).collect(),
-            ),
-            panel("velocity (pulses/count)", kin.iter().map(|k| k.v).collect()),
-            panel(
-                "acceleration (pulses/count²)",
-                kin.iter().map(|k| k.a).collect(),
-            ),
-            panel("jerk (pulses/count³)", kin.iter().map(|k| k.j).collect()),
-        ],
-        shaded: file
-            .sync
-            .map(|(lo, hi)| vec![(lo as f64, hi as f64)])
-            .unwrap_or_default(),
-    }
 }

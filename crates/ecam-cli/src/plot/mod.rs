@@ -5,7 +5,13 @@
 //! time. Both are a [`Figure`]: one x vector, several panels of y series, and
 //! optional shaded x ranges (the synchronised zone of a rotary cut, or the
 //! times a sync window output was on).
+//!
+//! A [`Chart`] is the general form: every [`Trace`] has its own x values and
+//! a [`Style`], so a smooth design curve sampled densely can share a panel
+//! with the few points of the table that samples it. A [`Figure`] is drawn
+//! as the chart whose traces all share its x.
 
+pub mod cam_table;
 mod font;
 
 use std::path::Path;
@@ -44,6 +50,83 @@ pub struct Figure {
     pub shaded: Vec<(f64, f64)>,
 }
 
+/// How a trace is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    /// A line through the points, `width` pixels wide.
+    Line {
+        /// Stroke width in pixels.
+        width: u32,
+    },
+    /// A staircase: `y[i]` holds from `x[i]` to `x[i + 1]` (a point table's
+    /// section velocities); the last value is drawn as a point.
+    Steps,
+    /// A small dot at each point, no line (a table's points over its design).
+    Markers,
+}
+
+/// One drawn series with its own x values.
+pub struct Trace {
+    /// Legend name.
+    pub name: String,
+    /// x values, one per y.
+    pub x: Vec<f64>,
+    /// y values.
+    pub y: Vec<f64>,
+    /// How it is drawn.
+    pub style: Style,
+}
+
+/// One panel of a [`Chart`]: a y axis with its traces.
+pub struct ChartPanel {
+    /// The y quantity, with its unit.
+    pub title: String,
+    /// The traces, drawn in order (later ones on top).
+    pub traces: Vec<Trace>,
+}
+
+/// Panels stacked over one shared x axis, each trace with its own x values.
+pub struct Chart {
+    /// Title above the first panel.
+    pub title: String,
+    /// The x quantity, with its unit.
+    pub x_label: String,
+    /// Panels, top to bottom.
+    pub panels: Vec<ChartPanel>,
+    /// x ranges shaded in every panel.
+    pub shaded: Vec<(f64, f64)>,
+}
+
+impl From<&Figure> for Chart {
+    fn from(figure: &Figure) -> Self {
+        // Wide strokes on dense zig-zags grow miter spikes past the
+        // panel: thin lines once there are more points than pixels.
+        let width = if figure.x.len() > 1000 { 1 } else { 2 };
+        Self {
+            title: figure.title.clone(),
+            x_label: figure.x_label.clone(),
+            panels: figure
+                .panels
+                .iter()
+                .map(|p| ChartPanel {
+                    title: p.title.clone(),
+                    traces: p
+                        .series
+                        .iter()
+                        .map(|s| Trace {
+                            name: s.name.clone(),
+                            x: figure.x.clone(),
+                            y: s.values.clone(),
+                            style: Style::Line { width },
+                        })
+                        .collect(),
+                })
+                .collect(),
+            shaded: figure.shaded.clone(),
+        }
+    }
+}
+
 /// The picture formats `draw` writes, chosen by the output file's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -80,8 +163,26 @@ const WIDTH: u32 = 1100;
 /// # Errors
 /// A bad extension, a figure without panels or x values, or a write failure.
 pub fn draw(figure: &Figure, out: &Path) -> anyhow::Result<()> {
-    let format = Format::of(out)?;
+    Format::of(out)?;
     if figure.panels.is_empty() || figure.x.len() < 2 {
+        bail!("nothing to plot: need at least one panel and two x values");
+    }
+    draw_chart(&Chart::from(figure), out)
+}
+
+/// Draws `chart` to `out` (SVG or PNG by extension).
+///
+/// # Errors
+/// A bad extension, a chart without panels or x values, or a write failure.
+pub fn draw_chart(chart: &Chart, out: &Path) -> anyhow::Result<()> {
+    let format = Format::of(out)?;
+    let xs = chart
+        .panels
+        .iter()
+        .flat_map(|p| p.traces.iter())
+        .map(|t| t.x.len())
+        .sum::<usize>();
+    if chart.panels.is_empty() || xs < 2 {
         bail!("nothing to plot: need at least one panel and two x values");
     }
     let labels = font::available();
@@ -90,17 +191,17 @@ pub fn draw(figure: &Figure, out: &Path) -> anyhow::Result<()> {
             "ecam: no TrueType font found (set ECAM_FONT=/path/to/font.ttf); plot drawn without text"
         );
     }
-    let height = PANEL_HEIGHT.saturating_mul(u32::try_from(figure.panels.len()).unwrap_or(8));
+    let height = PANEL_HEIGHT.saturating_mul(u32::try_from(chart.panels.len()).unwrap_or(8));
     let size = (WIDTH, height.saturating_add(if labels { 40 } else { 0 }));
     let written = match format {
         Format::Svg => {
             let root = SVGBackend::new(out, size).into_drawing_area();
-            draw_on(&root, figure, labels)?;
+            draw_on(&root, chart, labels)?;
             root.present().map_err(|e| anyhow!("{e}"))
         }
         Format::Png => {
             let root = BitMapBackend::new(out, size).into_drawing_area();
-            draw_on(&root, figure, labels)?;
+            draw_on(&root, chart, labels)?;
             root.present().map_err(|e| anyhow!("{e}"))
         }
     };
@@ -120,7 +221,7 @@ const SHADE: RGBColor = RGBColor(255, 221, 120);
 
 fn draw_on<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    figure: &Figure,
+    figure: &Chart,
     labels: bool,
 ) -> anyhow::Result<()>
 where
@@ -136,10 +237,20 @@ where
         root.clone()
     };
     let areas = body.split_evenly((figure.panels.len(), 1));
-    let (x_lo, x_hi) = range(&figure.x);
+    let all_x = figure
+        .panels
+        .iter()
+        .flat_map(|p| p.traces.iter())
+        .flat_map(|t| t.x.iter().copied());
+    let (x_lo, x_hi) = range_of(all_x);
+    let (x_lo, x_hi) = if x_hi > x_lo {
+        (x_lo, x_hi)
+    } else {
+        (x_lo - 1.0, x_lo + 1.0)
+    };
     for (i, (panel, area)) in figure.panels.iter().zip(areas.iter()).enumerate() {
         let last = i + 1 == figure.panels.len();
-        let all = panel.series.iter().flat_map(|s| s.values.iter().copied());
+        let all = panel.traces.iter().flat_map(|t| t.y.iter().copied());
         let (y_lo, y_hi) = padded(range_of(all));
         let mut builder = ChartBuilder::on(area);
         builder.margin(8).margin_right(24);
@@ -151,7 +262,7 @@ where
         let mut chart = builder
             .build_cartesian_2d(x_lo..x_hi, y_lo..y_hi)
             .map_err(err)?;
-        let legend = labels && panel.series.len() > 1;
+        let legend = labels && panel.traces.len() > 1;
         let mut mesh = chart.configure_mesh();
         mesh.light_line_style(RGBColor(235, 235, 235));
         // Ticks computed in floating point land a hair off zero; labels
@@ -181,24 +292,38 @@ where
                 )))
                 .map_err(err)?;
         }
-        for (k, series) in panel.series.iter().enumerate() {
+        for (k, trace) in panel.traces.iter().enumerate() {
             let color = COLORS.get(k % COLORS.len()).copied().unwrap_or(BLACK);
-            let points = figure
+            let points = trace
                 .x
                 .iter()
                 .copied()
-                .zip(series.values.iter().copied())
+                .zip(trace.y.iter().copied())
                 .filter(|(x, y)| x.is_finite() && y.is_finite());
-            // Wide strokes on dense zig-zags grow miter spikes past the
-            // panel: thin lines once there are more points than pixels.
-            let width = if figure.x.len() > 1000 { 1 } else { 2 };
-            let drawn = chart
-                .draw_series(LineSeries::new(points, color.stroke_width(width)))
-                .map_err(err)?;
+            let drawn = match trace.style {
+                Style::Line { width } => chart
+                    .draw_series(LineSeries::new(points, color.stroke_width(width)))
+                    .map_err(err)?,
+                Style::Steps => chart
+                    .draw_series(LineSeries::new(
+                        staircase(points.collect()),
+                        color.stroke_width(2),
+                    ))
+                    .map_err(err)?,
+                Style::Markers => chart
+                    .draw_series(points.map(|p| Circle::new(p, 2, color.filled())))
+                    .map_err(err)?,
+            };
             if legend {
-                drawn.label(series.name.as_str()).legend(move |(x, y)| {
-                    PathElement::new([(x, y), (x + 18, y)], color.stroke_width(2))
-                });
+                let label = drawn.label(trace.name.as_str());
+                match trace.style {
+                    Style::Markers => {
+                        label.legend(move |(x, y)| Circle::new((x + 9, y), 3, color.filled()))
+                    }
+                    _ => label.legend(move |(x, y)| {
+                        PathElement::new([(x, y), (x + 18, y)], color.stroke_width(2))
+                    }),
+                };
             }
         }
         if legend {
@@ -229,13 +354,20 @@ fn short(v: f64, zero: f64) -> String {
     }
 }
 
-fn range(values: &[f64]) -> (f64, f64) {
-    let (lo, hi) = range_of(values.iter().copied());
-    if hi > lo {
-        (lo, hi)
-    } else {
-        (lo - 1.0, lo + 1.0)
+/// The corners of a staircase through `points`: each y holds until the
+/// next x, where the line steps vertically to the next y.
+fn staircase(points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(points.len().saturating_mul(2));
+    for pair in points.windows(2) {
+        if let [(x0, y0), (x1, _)] = *pair {
+            out.push((x0, y0));
+            out.push((x1, y0));
+        }
     }
+    if let Some(&last) = points.last() {
+        out.push(last);
+    }
+    out
 }
 
 fn range_of(values: impl Iterator<Item = f64>) -> (f64, f64) {
@@ -275,6 +407,41 @@ mod tests {
     fn flat_series_get_a_band() {
         let (lo, hi) = padded((5.0, 5.0));
         assert!(lo < 5.0 && hi > 5.0);
+    }
+
+    #[test]
+    fn staircase_holds_each_value_until_the_next_x() {
+        let s = staircase(vec![(0.0, 1.0), (2.0, 3.0), (5.0, 3.0)]);
+        assert_eq!(
+            s,
+            vec![(0.0, 1.0), (2.0, 1.0), (2.0, 3.0), (5.0, 3.0), (5.0, 3.0)]
+        );
+        assert!(staircase(Vec::new()).is_empty());
+    }
+
+    #[test]
+    fn a_figure_becomes_a_chart_of_lines() {
+        let figure = Figure {
+            title: "t".into(),
+            x_label: "x".into(),
+            x: vec![0.0, 1.0],
+            panels: vec![Panel {
+                title: "p".into(),
+                series: vec![Series {
+                    name: "s".into(),
+                    values: vec![2.0, 3.0],
+                }],
+            }],
+            shaded: vec![(0.0, 0.5)],
+        };
+        let chart = Chart::from(&figure);
+        let trace = &chart.panels[0].traces[0];
+        assert_eq!(
+            (trace.x.clone(), trace.y.clone()),
+            (vec![0.0, 1.0], vec![2.0, 3.0])
+        );
+        assert_eq!(trace.style, Style::Line { width: 2 });
+        assert_eq!(chart.shaded, figure.shaded);
     }
 
     #[test]

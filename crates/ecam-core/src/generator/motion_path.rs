@@ -143,11 +143,6 @@ impl Path {
         &self.pieces
     }
 
-    /// Slave position where the path ends.
-    pub fn slave_end(&self) -> f64 {
-        self.slave_end
-    }
-
     #[cfg(test)]
     pub fn master_end(&self) -> f64 {
         self.master_end

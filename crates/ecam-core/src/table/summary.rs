@@ -62,7 +62,13 @@ pub struct Summary {
     /// Peak |slave velocity / master velocity|.
     pub peak_velocity: f64,
     /// Peak |d²slave/dmaster²| in pulses per count² (impulses at joints are
-    /// not counted: see `continuity`).
+    /// not counted: see `continuity`). For a curve made only of straight
+    /// sections (a point table, an evenly spaced table), whose acceleration
+    /// is zero inside every section and all at the joints, this is instead
+    /// an estimate of the motion the points sample: at each joint, the
+    /// change of section velocity divided by the mean length of the two
+    /// sections that meet there, `|v₂ − v₁| / ((L₁ + L₂)/2)` (the central
+    /// second difference); the largest over the interior joints.
     pub peak_acceleration: f64,
     /// Weakest continuity found at a joint between sections.
     pub continuity: Continuity,
@@ -98,6 +104,8 @@ impl Summary {
         let mut worst_jump = Jumps::default();
         // Where each section starts (master, segment index), the first included.
         let mut starts: Vec<(f64, usize)> = Vec::new();
+        // Velocity change at the start of each section after the first.
+        let mut velocity_steps: Vec<f64> = Vec::new();
         let mut cursor = Cursor::new();
         let mut prev_master = first;
         let mut prev_segment = {
@@ -120,6 +128,7 @@ impl Summary {
                     break;
                 }
                 starts.push((at, next));
+                velocity_steps.push(right.v - left.v);
                 lo = at;
                 current = next;
             }
@@ -163,6 +172,14 @@ impl Summary {
         start.s = end.s; // the stroke is carried over
         seam_jump.add(&end, &start);
         let seam = classify(&seam_jump);
+        // Straight sections only (see `peak_acceleration`); estimated after
+        // the classification, which keeps comparing the sections' own
+        // derivatives.
+        let peak_acceleration = if acc.peak_a == 0.0 {
+            joint_acceleration(&starts, &velocity_steps, first, last)
+        } else {
+            acc.peak_a
+        };
         Self {
             sections,
             master_span: curve.master_span(),
@@ -170,11 +187,28 @@ impl Summary {
             slave_min: acc.slave_min,
             slave_max: acc.slave_max,
             peak_velocity: acc.peak_v,
-            peak_acceleration: acc.peak_a,
+            peak_acceleration,
             continuity,
             seam,
         }
     }
+}
+
+/// Largest `|Δv| / mean length of the two sections` over the joints. Joint
+/// `k` is `starts[k + 1]`, with the velocity step `steps[k]`; its sections
+/// run from `starts[k]` to the next joint (or the end `last`).
+fn joint_acceleration(starts: &[(f64, usize)], steps: &[f64], first: f64, last: f64) -> f64 {
+    let mut peak: f64 = 0.0;
+    for (k, step) in steps.iter().enumerate() {
+        let before = starts.get(k).map_or(first, |s| s.0);
+        let after = starts.get(k + 2).map_or(last, |s| s.0);
+        let mean_len = 0.5 * (after - before);
+        if mean_len > 0.0 {
+            // `max` ignores NaN.
+            peak = peak.max((step / mean_len).abs());
+        }
+    }
+    peak
 }
 
 /// Running extremes of the samples.

@@ -1,0 +1,177 @@
+//! `ecam serve`: runs the PLC in real time behind Modbus TCP and HTTP.
+//!
+//! The first two lines on stdout are the bound addresses, `modbus ADDR` and
+//! `http ADDR` (so `--modbus 127.0.0.1:0` can be used and the port read
+//! back); everything else goes to stderr. See `docs/modbus.md`.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::Context as _;
+use ecam_plc::hardware::Wire;
+use ecam_plc::scan::Plc;
+use ecam_plc::sim::{self, Timing};
+use tokio::net::TcpListener;
+
+use crate::serve::clock;
+use crate::serve::http;
+use crate::serve::journal::Journal;
+use crate::serve::modbus;
+use crate::serve::state::{ServeInfo, Shared};
+
+/// Default Modbus TCP address (5020: the Modbus port 502 needs root).
+pub const DEFAULT_MODBUS: &str = "127.0.0.1:5020";
+/// Default HTTP address.
+pub const DEFAULT_HTTP: &str = "127.0.0.1:8080";
+
+/// Arguments of `ecam serve`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Modbus TCP address to listen on (port 0 picks a free one).
+    #[arg(long, value_name = "ADDR", default_value = DEFAULT_MODBUS)]
+    pub modbus: String,
+    /// HTTP address to listen on (API and designer page).
+    #[arg(long, value_name = "ADDR", default_value = DEFAULT_HTTP)]
+    pub http: String,
+    /// Keep every value written from outside in this directory, durably
+    /// (created if missing); without it nothing survives a restart.
+    #[arg(long, value_name = "DIR")]
+    pub state: Option<PathBuf>,
+    /// Instruction-list program to run; without one the PLC runs an empty
+    /// program (device memory, special relays and clocks only).
+    #[arg(long, value_name = "FILE.il")]
+    pub program: Option<PathBuf>,
+    /// Scan period in microseconds.
+    #[arg(long, value_name = "US", default_value_t = sim::DEFAULT_SCAN_US,
+          value_parser = clap::value_parser!(u32).range(1..))]
+    pub scan_us: u32,
+    /// Hardware tick (pulse outputs, E-cam engine, counters) in microseconds.
+    #[arg(long, value_name = "US", default_value_t = sim::DEFAULT_TICK_US,
+          value_parser = clap::value_parser!(u32).range(1..))]
+    pub tick_us: u32,
+    /// Wire a pulse output to a counter input, e.g. Y1:X0.
+    #[arg(long = "wire", value_name = "Yn:Xm")]
+    pub wires: Vec<String>,
+}
+
+/// Runs `ecam serve` until Ctrl-C or SIGTERM.
+///
+/// # Errors
+/// An unreadable program, a bad wire, an unusable state directory, or an
+/// address that cannot be bound.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let (program, program_name) = match &args.program {
+        Some(path) => {
+            let file = path.display().to_string();
+            let source =
+                std::fs::read_to_string(path).with_context(|| format!("cannot read {file}"))?;
+            (ecam_plc::il::parse(&source, &file)?, Some(file))
+        }
+        None => (ecam_plc::il::parse("", "(no program)")?, None),
+    };
+    let mut plc = Plc::new(program)?;
+    for wire in &args.wires {
+        plc.hardware_mut()
+            .add_wire(Wire::parse(wire).context("--wire")?);
+    }
+    let journal = match &args.state {
+        Some(dir) => {
+            let (journal, recovery) =
+                Journal::open(dir).with_context(|| format!("state directory {}", dir.display()))?;
+            journal.restore_into(plc.devices_mut());
+            eprintln!(
+                "ecam serve: state {}: {} values restored ({} journal records replayed{})",
+                dir.display(),
+                journal.persisted().len(),
+                recovery.replayed,
+                if recovery.torn_tail {
+                    ", an unacknowledged torn last record dropped"
+                } else {
+                    ""
+                }
+            );
+            Some(journal)
+        }
+        None => {
+            eprintln!("ecam serve: no --state DIR: writes are not kept across restarts");
+            None
+        }
+    };
+    let timing = Timing {
+        scan_us: args.scan_us,
+        tick_us: args.tick_us,
+    };
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")?;
+    runtime.block_on(async move {
+        let modbus_listener = TcpListener::bind(&args.modbus)
+            .await
+            .with_context(|| format!("--modbus {}: cannot listen", args.modbus))?;
+        let http_listener = TcpListener::bind(&args.http)
+            .await
+            .with_context(|| format!("--http {}: cannot listen", args.http))?;
+        let info = ServeInfo {
+            program: program_name,
+            timing,
+            modbus: modbus_listener.local_addr()?,
+            http: http_listener.local_addr()?,
+            state_dir: args.state.clone(),
+        };
+        {
+            let mut stdout = std::io::stdout().lock();
+            // The address lines are the interface for scripts and tests.
+            writeln!(stdout, "modbus {}", info.modbus)?;
+            writeln!(stdout, "http {}", info.http)?;
+            stdout.flush()?;
+        }
+        eprintln!("ecam serve: designer page at http://{}/", info.http);
+        let shared = Arc::new(Shared::new(plc, journal, info));
+        let stop = Arc::new(AtomicBool::new(false));
+        let scan_loop = {
+            let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
+            std::thread::Builder::new()
+                .name("plc-scan".into())
+                .spawn(move || clock::run(&shared, &stop))
+                .context("cannot start the scan loop")?
+        };
+        let served = tokio::select! {
+            () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),
+            served = axum::serve(http_listener, http::router(Arc::clone(&shared))) => {
+                served.context("http server")
+            }
+            () = shutdown_signal() => Ok(()),
+        };
+        stop.store(true, Ordering::Relaxed);
+        let _ = scan_loop.join();
+        served
+    })
+}
+
+/// Ctrl-C, or SIGTERM on Unix. Nothing needs flushing: every acknowledged
+/// write is already on disk.
+async fn shutdown_signal() {
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{SignalKind, signal};
+        match signal(SignalKind::terminate()) {
+            Ok(mut term) => {
+                tokio::select! {
+                    _ = tokio::signal::ctrl_c() => {}
+                    _ = term.recv() => {}
+                }
+            }
+            Err(_) => {
+                let _ = tokio::signal::ctrl_c().await;
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = tokio::signal::ctrl_c().await;
+    }
+}

@@ -1,0 +1,121 @@
+//! The scan loop in real time: the PLC runtime's simulated-time step (one
+//! scan, then hardware ticks covering one scan period, [`ecam_plc::sim::run`]
+//! with one scan) paced so the PLC's clock follows the wall clock.
+//!
+//! The loop runs a period whenever the PLC's time is not ahead of the wall
+//! clock and sleeps otherwise. If it falls more than [`MAX_LAG`] behind (a
+//! busy machine, a suspended process), it does not race through the backlog
+//! — a burst of scans would make timers and pulse outputs jump — but skips
+//! it, and counts the time skipped in `GET /api/status`.
+
+use std::collections::HashSet;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use ecam_plc::sim::{self, RunLength};
+
+use super::state::{Shared, lock};
+
+/// Largest lag the loop catches up by running scans back to back.
+pub const MAX_LAG: Duration = Duration::from_millis(200);
+
+/// What the loop does next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// The PLC is ahead: sleep this long.
+    Wait(Duration),
+    /// Run one scan period now.
+    Run,
+    /// Too far behind: move the clock's origin on by this much, then run.
+    Skip(Duration),
+}
+
+/// The next step when `elapsed` wall time and `simulated` PLC time have
+/// passed since the loop's origin.
+pub fn next_step(elapsed: Duration, simulated: Duration, max_lag: Duration) -> Step {
+    if simulated > elapsed {
+        Step::Wait(simulated - elapsed)
+    } else if elapsed - simulated > max_lag {
+        Step::Skip(elapsed - simulated)
+    } else {
+        Step::Run
+    }
+}
+
+/// Clears `Stats::scanning` when the loop ends, however it ends.
+struct Scanning<'a>(&'a AtomicBool);
+
+impl Drop for Scanning<'_> {
+    fn drop(&mut self) {
+        self.0.store(false, Ordering::Relaxed);
+    }
+}
+
+/// Runs the PLC until `stop` is set.
+pub fn run(shared: &Shared, stop: &AtomicBool) {
+    shared.stats.scanning.store(true, Ordering::Relaxed);
+    let _scanning = Scanning(&shared.stats.scanning);
+    let timing = shared.info.timing;
+    let mut origin = Instant::now();
+    let start_us = shared.with_plc(|plc| plc.now_us());
+    let mut reported = HashSet::new();
+    while !stop.load(Ordering::Relaxed) {
+        let simulated =
+            Duration::from_micros(shared.with_plc(|plc| plc.now_us()).saturating_sub(start_us));
+        match next_step(origin.elapsed(), simulated, MAX_LAG) {
+            Step::Wait(duration) => {
+                shared.stats.lag_us.store(0, Ordering::Relaxed);
+                // Short naps keep `stop` responsive with long scan periods.
+                std::thread::sleep(duration.min(Duration::from_millis(50)));
+            }
+            Step::Skip(behind) => {
+                origin += behind;
+                let us = u64::try_from(behind.as_micros()).unwrap_or(u64::MAX);
+                shared.stats.skipped_us.fetch_add(us, Ordering::Relaxed);
+            }
+            Step::Run => {
+                let behind = origin.elapsed().saturating_sub(simulated);
+                let us = u64::try_from(behind.as_micros()).unwrap_or(u64::MAX);
+                shared.stats.lag_us.store(us, Ordering::Relaxed);
+                let result =
+                    shared.with_plc(|plc| sim::run(plc, timing, RunLength::Scans(1), |_| {}));
+                // The timing was checked non-zero at start, so `run` cannot fail.
+                let errors = result.unwrap_or_default();
+                for e in errors {
+                    shared
+                        .stats
+                        .operation_errors
+                        .fetch_add(1, Ordering::Relaxed);
+                    let file = shared.info.program.as_deref().unwrap_or("program");
+                    let text = format!("{file}:{}: {} (D8067={})", e.line, e.error, e.error.code);
+                    // Like `ecam plc run`: each distinct error once on stderr.
+                    if reported.insert((e.line, e.error.code)) {
+                        eprintln!("ecam serve: warning: {text}");
+                    }
+                    *lock(&shared.stats.last_operation_error) = Some(text);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used)]
+mod tests {
+    use super::*;
+
+    const MS: fn(u64) -> Duration = Duration::from_millis;
+
+    #[test]
+    fn waits_while_ahead_runs_while_behind() {
+        assert_eq!(next_step(MS(10), MS(12), MAX_LAG), Step::Wait(MS(2)));
+        assert_eq!(next_step(MS(10), MS(10), MAX_LAG), Step::Run);
+        assert_eq!(next_step(MS(10), MS(9), MAX_LAG), Step::Run);
+        assert_eq!(next_step(MS(300), MS(100), MAX_LAG), Step::Run);
+    }
+
+    #[test]
+    fn skips_a_backlog_over_the_limit() {
+        assert_eq!(next_step(MS(1000), MS(10), MAX_LAG), Step::Skip(MS(990)));
+    }
+}

@@ -1,0 +1,312 @@
+//! The designer page's JSON: motion laws sampled like `ecam law`, and cam
+//! tables from the generators of `ecam table gen` (same parameter names as
+//! its TOML `--params` files, same defaults: the documents' cases).
+
+use ecam_core::generator::key_points::{self, CurveType};
+use ecam_core::generator::{rotary_cut, s_curve};
+use ecam_core::table::Summary;
+use ecam_core::{CamCurve, MotionLaw};
+use serde_json::{Value, json};
+
+use crate::derivatives;
+use crate::generate;
+
+/// Points of `GET /api/law/NAME` when none are asked for (as `ecam law`).
+pub const DEFAULT_LAW_POINTS: usize = 1001;
+/// Most points a law may be sampled at.
+pub const MAX_LAW_POINTS: usize = 100_001;
+
+/// Every motion law with its characteristic values (∞ as `null`).
+pub fn laws() -> Value {
+    Value::Array(
+        MotionLaw::ALL
+            .iter()
+            .map(|law| {
+                let c = law.characteristics();
+                json!({
+                    "name": law.name(),
+                    "cv": c.cv,
+                    "ca": c.ca,
+                    "cj": c.cj,
+                    "zero_end_velocity": c.zero_end_velocity,
+                    "zero_end_acceleration": c.zero_end_acceleration,
+                })
+            })
+            .collect(),
+    )
+}
+
+/// The normalised rise of law `name` at `points` values of u ∈ [0, 1],
+/// ends included: `{"law", "u", "s", "v", "a", "j"}`.
+///
+/// # Errors
+/// An unknown law, or fewer than 2 / more than [`MAX_LAW_POINTS`] points.
+pub fn law_curves(name: &str, points: usize) -> Result<Value, String> {
+    let law = MotionLaw::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = MotionLaw::ALL.iter().map(|l| l.name()).collect();
+        format!("unknown motion law `{name}`; known: {}", names.join(", "))
+    })?;
+    if !(2..=MAX_LAW_POINTS).contains(&points) {
+        return Err(format!("points must be 2..={MAX_LAW_POINTS}"));
+    }
+    let last = (points - 1) as f64;
+    let u: Vec<f64> = (0..points).map(|k| k as f64 / last).collect();
+    let k: Vec<_> = u.iter().map(|&u| law.eval(u)).collect();
+    Ok(json!({
+        "law": law.name(),
+        "u": u,
+        "s": k.iter().map(|k| k.s).collect::<Vec<_>>(),
+        "v": k.iter().map(|k| k.v).collect::<Vec<_>>(),
+        "a": k.iter().map(|k| k.a).collect::<Vec<_>>(),
+        "j": k.iter().map(|k| k.j).collect::<Vec<_>>(),
+    }))
+}
+
+fn field(key: &str, label: &str, kind: &str, default: Value) -> Value {
+    json!({"key": key, "label": label, "type": kind, "default": default})
+}
+
+fn choice(key: &str, label: &str, choices: &[&str], default: &str) -> Value {
+    json!({"key": key, "label": label, "type": "choice", "choices": choices, "default": default})
+}
+
+/// The generators and their parameters, for the page's form. Field types:
+/// `int`, `number` (arithmetic such as `5/3` allowed), `text`, `bool`,
+/// `choice`, and `keys` (key points, one `master slave curve [resolution]`
+/// per line, sent as the `key` array).
+pub fn generators() -> Value {
+    let s = s_curve::Params::default();
+    let r = rotary_cut::Params::default();
+    let k = key_points::Params::default();
+    let accels = ["uniform", "uniform-acceleration", "b-type"];
+    let cut = |placements: &[&str]| {
+        vec![
+            field(
+                "master",
+                "P1 master length (pulses per cut)",
+                "int",
+                json!(r.master_length),
+            ),
+            field(
+                "slave",
+                "P2 slave length (pulses per turn / stroke)",
+                "int",
+                json!(r.slave_length),
+            ),
+            field(
+                "sync",
+                "P3 sync length (slave pulses)",
+                "int",
+                json!(r.sync_length),
+            ),
+            field(
+                "ratio",
+                "P4 sync ratio (slave/master)",
+                "number",
+                json!("5/3"),
+            ),
+            field(
+                "max_ratio",
+                "P5 max ratio (empty: 10 × P4)",
+                "number",
+                json!(""),
+            ),
+            choice("accel", "P6 acceleration curve", &accels, "uniform"),
+            choice("placement", "P6 cam placement", placements, "left"),
+            field("resolution", "P7 points", "int", json!(r.resolution)),
+        ]
+    };
+    let mut fly_saw = cut(&["left", "mid-all", "right"]);
+    fly_saw.push(field(
+        "cycle",
+        "whole cycle (forward + return)",
+        "bool",
+        json!(false),
+    ));
+    let key_lines: Vec<String> = k
+        .key_points
+        .iter()
+        .map(|p| format!("{} {} {}", p.master, p.slave, curve_name(p.curve)))
+        .collect();
+    json!([
+        {
+            "name": "s-curve",
+            "title": "S-curve point-to-point (ECAMTBX K0/K1)",
+            "fields": [
+                field("pulses", "P1 total pulses", "int", json!(s.total_pulses)),
+                field("max_speed", "P2 top speed (Hz)", "int", json!(s.max_speed_hz)),
+                field("accel_ms", "P4 acceleration time (ms)", "int", json!(s.accel_ms)),
+                field("decel_ms", "P5 deceleration time (ms)", "int", json!(s.decel_ms)),
+                field("resolution", "P6 points", "int", json!(s.resolution)),
+                choice("curve", "ramp shape", &accels, "uniform-acceleration"),
+            ],
+        },
+        {
+            "name": "rotary-cut",
+            "title": "Rotary cut (ECAMTBX K100)",
+            "fields": cut(&["left", "mid-all", "mid-begin", "mid-end", "right"]),
+        },
+        {
+            "name": "fly-saw",
+            "title": "Flying saw (ECAMTBX K101)",
+            "fields": fly_saw,
+        },
+        {
+            "name": "keypoints",
+            "title": "Key points (ECAMTBX K2)",
+            "fields": [
+                field("key", "key points: master slave curve [points] per line", "keys", json!(key_lines.join("\n"))),
+                field("resolution", "total points", "int", json!(k.total_resolution)),
+                field("initial_slave", "initial slave", "int", json!(k.initial_slave)),
+            ],
+        },
+        {
+            "name": "function",
+            "title": "Function of the master x",
+            "fields": [
+                field("expr", "slave(x) =", "text", json!("1000*sin(2*pi*x/36000)")),
+                field("from", "first master", "int", json!(0)),
+                field("to", "last master", "int", json!(36000)),
+                field("points", "points", "int", json!(361)),
+            ],
+        },
+    ])
+}
+
+const fn curve_name(curve: CurveType) -> &'static str {
+    match curve {
+        CurveType::ConstantAcceleration => "constant-acceleration",
+        CurveType::SType => "s-type",
+        CurveType::Cycloid => "cycloid",
+        CurveType::ConstantSpeed => "constant-speed",
+    }
+}
+
+/// Runs a generator: `{"generator": "rotary-cut", "params": {...}}` →
+/// the table's points, velocity, acceleration and jerk at each point
+/// (`exact_kinematics`: from the exact curve, or else section slopes), the
+/// sync zone, the generator's extra outputs and the table's summary.
+///
+/// # Errors
+/// A body of the wrong shape, an unknown generator or parameter, or
+/// parameters the generator refuses (with the PLC's error code).
+pub fn generate_table(body: &Value) -> Result<Value, String> {
+    let name = body.get("generator").and_then(Value::as_str).ok_or(
+        "the body needs \"generator\", e.g. {\"generator\": \"rotary-cut\", \"params\": {}}",
+    )?;
+    let params = body.get("params").cloned().unwrap_or_else(|| json!({}));
+    let params: toml::Table = serde_json::from_value(params).map_err(|e| {
+        format!("\"params\" must be an object of numbers, strings and booleans: {e}")
+    })?;
+    let g = generate::from_toml(name, params).map_err(|e| format!("{e:#}"))?;
+    let points = g.table.points();
+    let exact = g.kinematics.is_some();
+    let kinematics = g
+        .kinematics
+        .clone()
+        .unwrap_or_else(|| derivatives::of_points(points));
+    let summary = Summary::of(&g.table);
+    let outputs: serde_json::Map<String, Value> = g
+        .outputs
+        .iter()
+        .map(|(label, value)| ((*label).to_string(), Value::String(value.clone())))
+        .collect();
+    Ok(json!({
+        "generator": g.name,
+        "points": points.len(),
+        "master": points.iter().map(|p| p.master).collect::<Vec<_>>(),
+        "slave": points.iter().map(|p| p.slave).collect::<Vec<_>>(),
+        "velocity": kinematics.iter().map(|k| k.v).collect::<Vec<_>>(),
+        "acceleration": kinematics.iter().map(|k| k.a).collect::<Vec<_>>(),
+        "jerk": kinematics.iter().map(|k| k.j).collect::<Vec<_>>(),
+        // false: slopes of the table's straight sections, each holding
+        // from its point to the next (see `crate::derivatives`).
+        "exact_kinematics": exact,
+        "sync": g.sync.map(|(lo, hi)| vec![lo, hi]),
+        "outputs": outputs,
+        "summary": {
+            "sections": summary.sections,
+            "master_span": g.table.master_span(),
+            "stroke": summary.stroke,
+            "slave_min": summary.slave_min,
+            "slave_max": summary.slave_max,
+            "peak_velocity": summary.peak_velocity,
+            "peak_acceleration": summary.peak_acceleration,
+            "continuity": summary.continuity.to_string(),
+            "seam": summary.seam.to_string(),
+        },
+    }))
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_law_rises_from_zero_to_one() {
+        let v = law_curves("cycloid", 5).unwrap();
+        assert_eq!(v["u"], json!([0.0, 0.25, 0.5, 0.75, 1.0]));
+        assert_eq!(v["s"][0], json!(0.0));
+        assert_eq!(v["s"][4], json!(1.0));
+        assert_eq!(v["v"][2], json!(2.0)); // cycloid: Cv = 2 at u = 1/2
+        assert!(law_curves("nope", 5).is_err());
+        assert!(law_curves("cycloid", 1).is_err());
+    }
+
+    #[test]
+    fn every_listed_generator_runs_with_its_defaults() {
+        let Value::Array(list) = generators() else {
+            panic!("an array");
+        };
+        for g in list {
+            let name = g["name"].as_str().unwrap();
+            // What the page sends for an untouched form.
+            let mut params = serde_json::Map::new();
+            for f in g["fields"].as_array().unwrap() {
+                let key = f["key"].as_str().unwrap().to_string();
+                let value = match (f["type"].as_str().unwrap(), &f["default"]) {
+                    (_, Value::String(s)) if s.is_empty() => continue,
+                    ("keys", Value::String(lines)) => Value::Array(
+                        lines
+                            .lines()
+                            .map(|line| {
+                                let w: Vec<&str> = line.split_whitespace().collect();
+                                json!({"master": w[0].parse::<i64>().unwrap(),
+                                       "slave": w[1].parse::<i64>().unwrap(), "curve": w[2]})
+                            })
+                            .collect(),
+                    ),
+                    (_, v) => v.clone(),
+                };
+                params.insert(key, value);
+            }
+            let out = generate_table(&json!({"generator": name, "params": params})).unwrap();
+            let n = out["points"].as_u64().unwrap() as usize;
+            assert!(n >= 2, "{name}");
+            for key in ["master", "slave", "velocity", "acceleration", "jerk"] {
+                assert_eq!(out[key].as_array().unwrap().len(), n, "{name} {key}");
+            }
+        }
+    }
+
+    #[test]
+    fn rotary_cut_defaults_span_the_cut() {
+        let out = generate_table(&json!({"generator": "rotary-cut", "params": {"ratio": "5/3"}}))
+            .unwrap();
+        assert_eq!(out["master"][0], json!(0));
+        assert_eq!(out["master"].as_array().unwrap().last(), Some(&json!(3000)));
+        assert_eq!(out["slave"].as_array().unwrap().last(), Some(&json!(1000)));
+        assert!(out["sync"].is_array());
+    }
+
+    #[test]
+    fn bad_parameters_say_what_is_wrong() {
+        let err = generate_table(&json!({"generator": "s-curve", "params": {"resolution": 5}}))
+            .unwrap_err();
+        assert!(err.contains("6781") || err.contains("resolution"), "{err}");
+        assert!(generate_table(&json!({"generator": "nope"})).is_err());
+        assert!(generate_table(&json!({"params": {}})).is_err());
+        assert!(generate_table(&json!({"generator": "s-curve", "params": {"bogus": 1}})).is_err());
+    }
+}

@@ -1,0 +1,192 @@
+//! Device names and values as JSON, for `GET`/`POST /api/devices`: the
+//! same names and value forms as `ecam plc run --dump/--set` (`D2000`,
+//! `DD2019` signed 32-bit, `DE106` float, `M0`, `X17`, `Y7`, `C231`;
+//! `NAME:COUNT` for consecutive devices).
+
+use std::collections::HashSet;
+use std::fmt::Write as _;
+
+use ecam_plc::devices::{Device, Devices};
+use ecam_plc::view::View;
+use serde_json::Value;
+
+use super::write::WriteBatch;
+
+/// Most values one `GET /api/devices` returns.
+pub const MAX_NAMES: usize = 10_000;
+
+/// Expands a comma-separated list of `NAME[:COUNT]`, in order, each device once.
+///
+/// # Errors
+/// An unknown or out-of-range name, a bad count, or more than [`MAX_NAMES`] values.
+pub fn parse_names(names: &str) -> Result<Vec<View>, String> {
+    let mut views = Vec::new();
+    let mut seen = HashSet::new();
+    for item in names.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let (name, count) = match item.split_once(':') {
+            Some((name, count)) => {
+                let count: u16 = count
+                    .trim()
+                    .parse()
+                    .ok()
+                    .filter(|&c| c >= 1)
+                    .ok_or_else(|| format!("`{item}`: COUNT must be a whole number 1..65535"))?;
+                (name, count)
+            }
+            None => (item, 1),
+        };
+        let first = View::parse(name).map_err(|e| e.to_string())?;
+        for k in 0..count {
+            let view = first.nth(k).map_err(|e| e.to_string())?;
+            if seen.insert(view) {
+                views.push(view);
+            }
+            if views.len() > MAX_NAMES {
+                return Err(format!("at most {MAX_NAMES} values per request"));
+            }
+        }
+    }
+    if views.is_empty() {
+        return Err("give device names, e.g. ?names=D2000,M0,DD2019".to_string());
+    }
+    Ok(views)
+}
+
+/// `{"D2000": 5200, "M0": 1}` with keys in the order of `views` (like
+/// `ecam plc run`'s dump).
+pub fn to_json(views: &[View], devices: &Devices) -> String {
+    let mut json = String::from("{");
+    for (i, view) in views.iter().enumerate() {
+        if i > 0 {
+            json.push_str(", ");
+        }
+        let _ = write!(json, "\"{view}\": {}", view.read(devices));
+    }
+    json.push('}');
+    json
+}
+
+/// Reads a `POST /api/devices` body, `{"D100": 3183, "DE106": 1.6667,
+/// "M0": 1, "X17": true}`, into the words and bits to write, and the views
+/// to answer with. Keys are taken in name order.
+///
+/// # Errors
+/// Not an object, an unknown name, a Y output or counter (read only from
+/// outside), or a value that does not fit the device.
+pub fn parse_sets(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
+    let object = body
+        .as_object()
+        .ok_or("the body must be a JSON object such as {\"D100\": 3183, \"M0\": 1}")?;
+    if object.is_empty() {
+        return Err("nothing to set".to_string());
+    }
+    let mut batch = WriteBatch::new();
+    let mut views = Vec::new();
+    // Values are parsed exactly as `--set` parses them, into scratch memory,
+    // then copied from there word by word.
+    let mut scratch = Devices::new();
+    for (name, value) in object {
+        let view = View::parse(name).map_err(|e| e.to_string())?;
+        let text = match value {
+            Value::Number(n) => n.to_string(),
+            Value::Bool(b) => u8::from(*b).to_string(),
+            Value::String(s) => s.clone(),
+            _ => {
+                return Err(format!(
+                    "{view}: the value must be a number, a boolean or a string"
+                ));
+            }
+        };
+        match view {
+            View::Bit(Device::Y(_)) => {
+                return Err(format!("{view} is an output: the program drives it"));
+            }
+            View::Counter(_) => {
+                return Err(format!(
+                    "{view} is a counter: the program and inputs drive it"
+                ));
+            }
+            _ => {}
+        }
+        view.write(&mut scratch, &text).map_err(|e| e.to_string())?;
+        let word = |n: u16| scratch.word(n).unwrap_or(0) as u16;
+        match view {
+            View::Word(n) => {
+                batch.word(n, word(n));
+            }
+            View::Double(n) | View::Float(n) => {
+                // View::parse checked that n + 1 exists.
+                let high = n.saturating_add(1);
+                batch.word(n, word(n)).word(high, word(high));
+            }
+            View::Bit(device) => {
+                batch.bit(device, scratch.bit(device).unwrap_or(false));
+            }
+            View::Counter(_) => {}
+        }
+        views.push(view);
+    }
+    Ok((batch, views))
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn names_expand_in_order_without_repeats() {
+        let views = parse_names("D2019:2, DD2019, M0,D2019,X17").unwrap();
+        let names: Vec<String> = views.iter().map(ToString::to_string).collect();
+        assert_eq!(names, ["D2019", "D2020", "DD2019", "M0", "X17"]);
+        assert!(parse_names("").is_err());
+        assert!(parse_names("D8512").is_err());
+        assert!(parse_names("D8511:2").is_err());
+        assert!(parse_names("Q1").is_err());
+    }
+
+    #[test]
+    fn dump_matches_plc_run() {
+        let mut devices = Devices::new();
+        devices.set_dword(2019, -70000).unwrap();
+        devices.set_m(0, true).unwrap();
+        let views = parse_names("DD2019,D2019,M0").unwrap();
+        assert_eq!(
+            to_json(&views, &devices),
+            r#"{"DD2019": -70000, "D2019": -4464, "M0": 1}"#
+        );
+    }
+
+    #[test]
+    fn sets_become_word_and_bit_writes() {
+        let (batch, views) =
+            parse_sets(&json!({"DD100": -2, "DE106": 1.5, "M0": true, "X17": "1", "D7": 65535}))
+                .unwrap();
+        let mut devices = Devices::new();
+        batch.apply(&mut devices);
+        assert_eq!(devices.dword(100), Ok(-2));
+        assert_eq!(devices.float(106), Ok(1.5));
+        assert_eq!(devices.m(0), Ok(true));
+        assert_eq!(devices.bit(Device::X(15)), Ok(true));
+        assert_eq!(devices.word(7), Ok(-1));
+        assert_eq!(views.len(), 5);
+    }
+
+    #[test]
+    fn read_only_and_bad_values_are_refused() {
+        for body in [
+            json!({"Y7": 1}),
+            json!({"C231": 5}),
+            json!({"M0": 2}),
+            json!({"D0": 70000}),
+            json!({"D0": 1.5}),
+            json!({"D0": null}),
+            json!({"Q0": 1}),
+            json!({}),
+            json!([1]),
+        ] {
+            assert!(parse_sets(&body).is_err(), "{body}");
+        }
+    }
+}

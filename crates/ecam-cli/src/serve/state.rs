@@ -1,0 +1,155 @@
+//! The PLC shared by the scan loop and the Modbus and HTTP servers.
+//!
+//! One lock guards the PLC (program, device memory, hardware); the scan
+//! loop holds it for one scan period's work, a client request for one read
+//! or one write. Writes go through a second lock, the journal's, which is
+//! taken first and held until the write is applied, so the journal's order
+//! is the order writes reach device memory.
+
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use ecam_plc::devices::Devices;
+use ecam_plc::scan::Plc;
+use ecam_plc::sim::Timing;
+use serde_json::{Value, json};
+
+use super::journal::{Journal, JournalError};
+use super::write::WriteBatch;
+
+/// How the server was started (for `GET /api/status`).
+#[derive(Clone, Debug)]
+pub struct ServeInfo {
+    /// The program file, if one was loaded.
+    pub program: Option<String>,
+    /// Scan period and hardware tick.
+    pub timing: Timing,
+    /// Bound Modbus TCP address.
+    pub modbus: SocketAddr,
+    /// Bound HTTP address.
+    pub http: SocketAddr,
+    /// The state directory, if writes are kept.
+    pub state_dir: Option<PathBuf>,
+}
+
+/// Counters the servers and the scan loop update.
+#[derive(Debug, Default)]
+pub struct Stats {
+    /// Whether the scan loop is running.
+    pub scanning: AtomicBool,
+    /// How far the PLC's simulated time is behind the wall clock, µs.
+    pub lag_us: AtomicU64,
+    /// Wall-clock time the scan loop gave up catching up on, µs.
+    pub skipped_us: AtomicU64,
+    /// Operation errors raised by scans.
+    pub operation_errors: AtomicU64,
+    /// Modbus connections accepted.
+    pub modbus_connections: AtomicU64,
+    /// Modbus requests answered (responses and exceptions).
+    pub modbus_requests: AtomicU64,
+    /// Modbus exception responses sent.
+    pub modbus_exceptions: AtomicU64,
+    /// Connections closed for a malformed MBAP header.
+    pub modbus_garbage: AtomicU64,
+    /// The last operation error (`file:line: message`).
+    pub last_operation_error: Mutex<Option<String>>,
+}
+
+/// Locks `mutex`, carrying on after a panic elsewhere: device memory is
+/// plain data, always in a usable state.
+pub fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Everything the server threads share.
+pub struct Shared {
+    plc: Mutex<Plc>,
+    journal: Mutex<Option<Journal>>,
+    /// How the server was started.
+    pub info: ServeInfo,
+    /// Counters.
+    pub stats: Stats,
+}
+
+impl Shared {
+    /// Shares `plc` (with any kept values already restored) and `journal`.
+    pub fn new(plc: Plc, journal: Option<Journal>, info: ServeInfo) -> Self {
+        Self {
+            plc: Mutex::new(plc),
+            journal: Mutex::new(journal),
+            info,
+            stats: Stats::default(),
+        }
+    }
+
+    /// Runs `f` with the PLC locked (the scan loop).
+    pub fn with_plc<T>(&self, f: impl FnOnce(&mut Plc) -> T) -> T {
+        f(&mut lock(&self.plc))
+    }
+
+    /// Reads device memory.
+    pub fn read<T>(&self, f: impl FnOnce(&Devices) -> T) -> T {
+        f(lock(&self.plc).devices())
+    }
+
+    /// Makes `batch` durable (when there is a state directory), then applies
+    /// it to device memory. Once this returns `Ok` the write may be
+    /// acknowledged.
+    ///
+    /// # Errors
+    /// The journal could not be written; nothing was applied.
+    pub fn write(&self, batch: &WriteBatch) -> Result<(), JournalError> {
+        let mut journal = lock(&self.journal);
+        if let Some(journal) = journal.as_mut() {
+            journal.append(batch)?;
+        }
+        batch.apply(lock(&self.plc).devices_mut());
+        Ok(())
+    }
+
+    /// The body of `GET /api/status`.
+    pub fn status(&self) -> Value {
+        let (scans, now_us, operation_error) = self.with_plc(|plc| {
+            (
+                plc.scans(),
+                plc.now_us(),
+                plc.devices()
+                    .word(ecam_plc::special::D_OPERATION_ERROR)
+                    .unwrap_or(0),
+            )
+        });
+        let (kept, records) = lock(&self.journal)
+            .as_ref()
+            .map_or((0, 0), |j| (j.persisted().len(), j.records()));
+        let load = |a: &AtomicU64| a.load(Ordering::Relaxed);
+        let s = &self.stats;
+        json!({
+            "running": s.scanning.load(Ordering::Relaxed),
+            "program": self.info.program,
+            "scan_us": self.info.timing.scan_us,
+            "tick_us": self.info.timing.tick_us,
+            "scans": scans,
+            "sim_time_us": now_us,
+            "lag_us": load(&s.lag_us),
+            "skipped_us": load(&s.skipped_us),
+            "operation_errors": load(&s.operation_errors),
+            "last_operation_error": *lock(&s.last_operation_error),
+            "D8067": operation_error,
+            "modbus": {
+                "address": self.info.modbus.to_string(),
+                "connections": load(&s.modbus_connections),
+                "requests": load(&s.modbus_requests),
+                "exceptions": load(&s.modbus_exceptions),
+                "closed_malformed": load(&s.modbus_garbage),
+            },
+            "http": self.info.http.to_string(),
+            "state": {
+                "dir": self.info.state_dir.as_ref().map(|d| d.display().to_string()),
+                "kept_values": kept,
+                "journal_records": records,
+            },
+        })
+    }
+}

@@ -1,0 +1,586 @@
+//! `ecam serve`: Modbus TCP (the address-map contract of ARCHITECTURE.md)
+//! and HTTP, driven against the real binary on ephemeral loopback ports.
+//! Every wait is bounded, and every server is killed when its test ends.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::io::{BufRead as _, BufReader, Read as _, Write as _};
+use std::net::{SocketAddr, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+use tokio_modbus::client::Context;
+use tokio_modbus::prelude::*;
+
+/// Longest any single step may take before the test fails.
+const STEP: Duration = Duration::from_secs(20);
+
+/// A running `ecam serve`, killed (SIGKILL) and reaped on drop.
+struct Server {
+    child: Child,
+    modbus: SocketAddr,
+    http: SocketAddr,
+}
+
+impl Server {
+    fn start(state: &Path, extra: &[&str]) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
+            .args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"])
+            .arg("--state")
+            .arg(state)
+            .args(extra)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let stdout = child.stdout.take().unwrap();
+        let (tx, rx) = mpsc::channel();
+        std::thread::spawn(move || {
+            let mut reader = BufReader::new(stdout);
+            for _ in 0..2 {
+                let mut line = String::new();
+                if reader.read_line(&mut line).unwrap_or(0) == 0 {
+                    return;
+                }
+                let _ = tx.send(line);
+            }
+            // Keep the pipe open (and drained) while the server lives.
+            let _ = std::io::copy(&mut reader, &mut std::io::sink());
+        });
+        let mut server = Self {
+            child,
+            modbus: "127.0.0.1:1".parse().unwrap(),
+            http: "127.0.0.1:1".parse().unwrap(),
+        };
+        for _ in 0..2 {
+            let line = rx
+                .recv_timeout(STEP)
+                .expect("ecam serve should print its addresses");
+            let (kind, addr) = line.trim().split_once(' ').unwrap();
+            match kind {
+                "modbus" => server.modbus = addr.parse().unwrap(),
+                "http" => server.http = addr.parse().unwrap(),
+                other => panic!("unexpected line {other:?}"),
+            }
+        }
+        server
+    }
+
+    /// `kill -9` and wait for it to be gone.
+    fn kill_9(mut self) {
+        self.child.kill().unwrap();
+        self.child.wait().unwrap();
+    }
+
+    fn is_running(&mut self) -> bool {
+        self.child.try_wait().unwrap().is_none()
+    }
+
+    async fn client(&self) -> Context {
+        tokio::time::timeout(STEP, tokio_modbus::client::tcp::connect(self.modbus))
+            .await
+            .unwrap()
+            .unwrap()
+    }
+
+    fn http(&self, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
+        http(self.http, method, path, body)
+    }
+
+    fn get_json(&self, path: &str) -> Value {
+        let (status, body) = self.http("GET", path, None);
+        assert_eq!(status, 200, "GET {path}: {body}");
+        serde_json::from_str(&body).unwrap()
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// A fresh, empty state directory for one test.
+fn state_dir(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("serve-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn program(name: &str, source: &str) -> PathBuf {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&path, source).unwrap();
+    path
+}
+
+/// One HTTP/1.1 request over a plain socket; returns status and body.
+fn http(addr: SocketAddr, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
+    let mut stream = TcpStream::connect_timeout(&addr, STEP).unwrap();
+    stream.set_read_timeout(Some(STEP)).unwrap();
+    stream.set_write_timeout(Some(STEP)).unwrap();
+    let body = body.unwrap_or("");
+    write!(
+        stream,
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\
+         Content-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        body.len()
+    )
+    .unwrap();
+    let mut response = String::new();
+    stream.read_to_string(&mut response).unwrap();
+    let (head, body) = response.split_once("\r\n\r\n").unwrap();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    (status, body.to_string())
+}
+
+/// Sends one raw request PDU (transaction 7, unit 1) on `stream`; returns
+/// the response PDU, or `None` when the server closed the connection.
+fn raw_on(stream: &mut TcpStream, pdu: &[u8]) -> Option<Vec<u8>> {
+    let len = (pdu.len() + 1) as u16;
+    let mut frame = vec![0, 7, 0, 0];
+    frame.extend_from_slice(&len.to_be_bytes());
+    frame.push(1);
+    frame.extend_from_slice(pdu);
+    stream.write_all(&frame).ok()?;
+    let mut header = [0u8; 7];
+    stream.read_exact(&mut header).ok()?;
+    assert_eq!(
+        &header[..4],
+        &[0, 7, 0, 0],
+        "transaction and protocol echoed"
+    );
+    assert_eq!(header[6], 1, "unit id echoed");
+    let len = u16::from_be_bytes([header[4], header[5]]) as usize;
+    let mut body = vec![0u8; len - 1];
+    stream.read_exact(&mut body).ok()?;
+    Some(body)
+}
+
+fn connect_raw(addr: SocketAddr) -> TcpStream {
+    let stream = TcpStream::connect_timeout(&addr, STEP).unwrap();
+    stream.set_read_timeout(Some(STEP)).unwrap();
+    stream
+}
+
+/// Whether the server closed `stream` (EOF), rather than answering.
+fn closed(stream: &mut TcpStream) -> bool {
+    let mut buf = [0u8; 16];
+    matches!(stream.read(&mut buf), Ok(0) | Err(_))
+}
+
+/// Polls `check` until it holds (the PLC scans in real time), at most `STEP`.
+async fn eventually(mut check: impl AsyncFnMut() -> bool) {
+    let start = Instant::now();
+    while !check().await {
+        assert!(start.elapsed() < STEP, "condition not reached in time");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+}
+
+#[tokio::test]
+async fn every_area_reads_and_writes_over_modbus() {
+    // Y7 follows M10, M11 follows X17, D102 copies D100: the program runs;
+    // DPLSY emits 1 kHz on Y1, counted in D8142/D8143: the hardware ticks.
+    let il = program(
+        "serve-areas.il",
+        "LD M10\nOUT Y7\nLD X17\nOUT M11\nLD M8000\nMOV D100 D102\n\
+         LD M8000\nDPLSY K1000 K0 Y1\nEND\n",
+    );
+    let server = Server::start(
+        &state_dir("areas"),
+        &["--program", il.to_str().unwrap(), "--wire", "Y1:X0"],
+    );
+    let mut ctx = server.client().await;
+
+    // D: holding registers at n; input registers mirror them.
+    ctx.write_single_register(100, 1234).await.unwrap().unwrap();
+    ctx.write_multiple_registers(200, &[1, 0xFFFF, 3])
+        .await
+        .unwrap()
+        .unwrap();
+    ctx.write_single_register(8511, 42).await.unwrap().unwrap();
+    assert_eq!(
+        ctx.read_holding_registers(100, 1).await.unwrap().unwrap(),
+        [1234]
+    );
+    assert_eq!(
+        ctx.read_holding_registers(200, 3).await.unwrap().unwrap(),
+        [1, 0xFFFF, 3]
+    );
+    assert_eq!(
+        ctx.read_input_registers(200, 3).await.unwrap().unwrap(),
+        [1, 0xFFFF, 3]
+    );
+    assert_eq!(
+        ctx.read_holding_registers(8511, 1).await.unwrap().unwrap(),
+        [42]
+    );
+    assert_eq!(
+        ctx.read_holding_registers(0, 125)
+            .await
+            .unwrap()
+            .unwrap()
+            .len(),
+        125
+    );
+
+    // M: coils at n.
+    ctx.write_multiple_coils(0, &[true, false, true])
+        .await
+        .unwrap()
+        .unwrap();
+    ctx.write_single_coil(10, true).await.unwrap().unwrap();
+    ctx.write_single_coil(8511, true).await.unwrap().unwrap();
+    assert_eq!(
+        ctx.read_coils(0, 3).await.unwrap().unwrap()[..3],
+        [true, false, true]
+    );
+    assert!(ctx.read_coils(8511, 1).await.unwrap().unwrap()[0]);
+
+    // X (octal names): coils at 10000 + index, writable; X17 = 10015.
+    ctx.write_single_coil(10015, true).await.unwrap().unwrap();
+    assert_eq!(
+        ctx.read_coils(10014, 3).await.unwrap().unwrap()[..3],
+        [false, true, false]
+    );
+
+    // Y: coils at 12000 + index, driven by the program; D102 copied by it.
+    eventually(async || {
+        ctx.read_coils(12007, 1).await.unwrap().unwrap()[0]
+            && ctx.read_coils(11, 1).await.unwrap().unwrap()[0]
+            && ctx.read_holding_registers(102, 1).await.unwrap().unwrap() == [1234]
+    })
+    .await;
+    assert_eq!(
+        ctx.read_discrete_inputs(12006, 2).await.unwrap().unwrap()[..2],
+        [false, true]
+    );
+    eventually(async || {
+        let pulses = ctx.read_holding_registers(8142, 2).await.unwrap().unwrap();
+        (u32::from(pulses[1]) << 16 | u32::from(pulses[0])) > 0
+    })
+    .await;
+
+    // The same memory through HTTP, with the dump's names and formats.
+    let values = server.get_json("/api/devices?names=D100,D201,DD200,M10,X17,Y7,D8511");
+    assert_eq!(
+        values,
+        json!({"D100": 1234, "D201": -1, "DD200": -65535, "M10": 1, "X17": 1, "Y7": 1, "D8511": 42})
+    );
+}
+
+#[tokio::test]
+async fn bad_requests_get_the_exception_they_deserve() {
+    let server = Server::start(&state_dir("exceptions"), &[]);
+    let mut ctx = server.client().await;
+    let address = Some(ExceptionCode::IllegalDataAddress);
+    let value = Some(ExceptionCode::IllegalDataValue);
+
+    // Past a device's end, and gaps between areas.
+    assert_eq!(
+        ctx.read_holding_registers(8511, 2).await.unwrap().err(),
+        address
+    );
+    assert_eq!(
+        ctx.read_holding_registers(8512, 1).await.unwrap().err(),
+        address
+    );
+    assert_eq!(
+        ctx.write_single_register(9000, 1).await.unwrap().err(),
+        address
+    );
+    assert_eq!(
+        ctx.write_multiple_registers(8510, &[1, 2, 3])
+            .await
+            .unwrap()
+            .err(),
+        address
+    );
+    assert_eq!(ctx.read_coils(8511, 2).await.unwrap().err(), address);
+    assert_eq!(ctx.read_coils(9000, 1).await.unwrap().err(), address);
+    assert_eq!(ctx.read_coils(10255, 2).await.unwrap().err(), address);
+    assert_eq!(ctx.read_coils(12256, 1).await.unwrap().err(), address);
+    assert_eq!(
+        ctx.write_single_coil(11000, true).await.unwrap().err(),
+        address
+    );
+    // Y is read only.
+    assert_eq!(
+        ctx.write_single_coil(12000, true).await.unwrap().err(),
+        address
+    );
+    assert_eq!(
+        ctx.write_multiple_coils(11999, &[true, true])
+            .await
+            .unwrap()
+            .err(),
+        address
+    );
+    assert_eq!(
+        ctx.write_multiple_coils(12000, &[true; 8])
+            .await
+            .unwrap()
+            .err(),
+        address
+    );
+    // Quantity 0 and over the protocol maximum.
+    assert_eq!(ctx.read_holding_registers(0, 0).await.unwrap().err(), value);
+    assert_eq!(
+        ctx.read_holding_registers(0, 126).await.unwrap().err(),
+        value
+    );
+    assert_eq!(ctx.read_input_registers(0, 126).await.unwrap().err(), value);
+    assert_eq!(ctx.read_coils(0, 0).await.unwrap().err(), value);
+    assert_eq!(ctx.read_coils(0, 2001).await.unwrap().err(), value);
+    // Nothing was written by the refused requests.
+    assert_eq!(
+        ctx.read_holding_registers(8510, 2).await.unwrap().unwrap(),
+        [0, 0]
+    );
+    assert_eq!(
+        ctx.read_coils(12000, 8).await.unwrap().unwrap()[..8],
+        [false; 8]
+    );
+
+    let mut raw = connect_raw(server.modbus);
+    // Unsupported functions: 01 (0x08 diagnostics, 0x2B device id, 0x16 mask write).
+    assert_eq!(
+        raw_on(&mut raw, &[0x08, 0, 0, 0x12, 0x34]).unwrap(),
+        [0x88, 0x01]
+    );
+    assert_eq!(raw_on(&mut raw, &[0x2B, 0x0E, 1, 0]).unwrap(), [0xAB, 0x01]);
+    assert_eq!(
+        raw_on(&mut raw, &[0x16, 0, 0, 0xFF, 0xFF, 0, 0]).unwrap(),
+        [0x96, 0x01]
+    );
+    // Quantity over the maximum for writes (1969 coils), with a consistent
+    // byte count: 03. (124 registers do not fit in a 253-byte PDU at all.)
+    let mut pdu = vec![0x0F, 0, 0, 0x07, 0xB1, 247];
+    pdu.extend(std::iter::repeat_n(0u8, 247));
+    assert_eq!(raw_on(&mut raw, &pdu).unwrap(), [0x8F, 0x03]);
+    // A coil value other than 0xFF00 / 0x0000: 03.
+    assert_eq!(
+        raw_on(&mut raw, &[0x05, 0, 1, 0x12, 0x34]).unwrap(),
+        [0x85, 0x03]
+    );
+    // Register write at the end of D, raw: echoed.
+    assert_eq!(
+        raw_on(&mut raw, &[0x06, 0x21, 0x3F, 0x12, 0x34]).unwrap(),
+        [0x06, 0x21, 0x3F, 0x12, 0x34]
+    );
+}
+
+#[tokio::test]
+async fn malformed_frames_do_not_kill_the_server() {
+    let mut server = Server::start(&state_dir("malformed"), &[]);
+
+    // A quantity claiming more coils than the data holds (a panic in naive
+    // decoders), a byte count that does not match, a truncated read: 03 on
+    // a connection that stays open.
+    let mut raw = connect_raw(server.modbus);
+    assert_eq!(
+        raw_on(&mut raw, &[0x0F, 0, 0, 0x07, 0xB0, 1, 0xFF]).unwrap(),
+        [0x8F, 0x03]
+    );
+    assert_eq!(
+        raw_on(&mut raw, &[0x10, 0, 0, 0x80, 0x00, 0]).unwrap(),
+        [0x90, 0x03]
+    );
+    assert_eq!(raw_on(&mut raw, &[0x03, 0, 0]).unwrap(), [0x83, 0x03]);
+    assert_eq!(
+        raw_on(&mut raw, &[0x03, 0, 0, 0, 1, 0]).unwrap(),
+        [0x83, 0x03]
+    );
+    assert_eq!(
+        raw_on(&mut raw, &[0x03, 0, 0, 0, 1]).unwrap(),
+        [0x03, 2, 0, 0]
+    );
+
+    // Not Modbus at all: the connection is closed.
+    let mut garbage = connect_raw(server.modbus);
+    garbage
+        .write_all(b"GET / HTTP/1.1\r\nHost: x\r\n\r\n")
+        .unwrap();
+    assert!(closed(&mut garbage));
+    // MBAP length 0, and a length over the 254 maximum.
+    for header in [[0u8, 1, 0, 0, 0, 0, 1], [0, 1, 0, 0, 0x01, 0x00, 1]] {
+        let mut bad = connect_raw(server.modbus);
+        bad.write_all(&header).unwrap();
+        assert!(closed(&mut bad));
+    }
+    // Half a frame, then the client goes away.
+    let mut half = connect_raw(server.modbus);
+    half.write_all(&[0, 1, 0, 0, 0, 6, 1, 0x03]).unwrap();
+    drop(half);
+
+    // Still serving, on old and new connections.
+    assert_eq!(
+        raw_on(&mut raw, &[0x03, 0, 0, 0, 1]).unwrap(),
+        [0x03, 2, 0, 0]
+    );
+    let mut ctx = server.client().await;
+    ctx.write_single_register(5, 55).await.unwrap().unwrap();
+    assert_eq!(
+        ctx.read_holding_registers(5, 1).await.unwrap().unwrap(),
+        [55]
+    );
+    assert!(server.is_running());
+    let status = server.get_json("/api/status");
+    assert!(status["modbus"]["closed_malformed"].as_u64().unwrap() >= 3);
+}
+
+#[tokio::test]
+async fn acknowledged_writes_survive_kill_9() {
+    let dir = state_dir("durable");
+    let server = Server::start(&dir, &[]);
+    {
+        let mut ctx = server.client().await;
+        ctx.write_single_register(10, 1234).await.unwrap().unwrap();
+        ctx.write_multiple_registers(20, &[7, 0xFFFE, 9])
+            .await
+            .unwrap()
+            .unwrap();
+        ctx.write_single_register(10, 4321).await.unwrap().unwrap();
+        ctx.write_single_coil(5, true).await.unwrap().unwrap();
+        ctx.write_multiple_coils(10002, &[true, false, true])
+            .await
+            .unwrap()
+            .unwrap();
+    }
+    let (status, body) = server.http(
+        "POST",
+        "/api/devices",
+        Some(r#"{"DD300": -70000, "M6": 1}"#),
+    );
+    assert_eq!(status, 200, "{body}");
+    // The write returned: it is on disk. Kill without warning.
+    server.kill_9();
+
+    let server = Server::start(&dir, &[]);
+    let mut ctx = server.client().await;
+    assert_eq!(
+        ctx.read_holding_registers(10, 1).await.unwrap().unwrap(),
+        [4321]
+    );
+    assert_eq!(
+        ctx.read_holding_registers(20, 3).await.unwrap().unwrap(),
+        [7, 0xFFFE, 9]
+    );
+    assert_eq!(
+        ctx.read_coils(4, 3).await.unwrap().unwrap()[..3],
+        [false, true, true]
+    );
+    assert_eq!(
+        ctx.read_coils(10002, 3).await.unwrap().unwrap()[..3],
+        [true, false, true]
+    );
+    assert_eq!(
+        server.get_json("/api/devices?names=DD300,D11"),
+        json!({"DD300": -70000, "D11": 0})
+    );
+    // And again, after a second crash with nothing new written.
+    server.kill_9();
+    let server = Server::start(&dir, &[]);
+    assert_eq!(
+        server.get_json("/api/devices?names=D10,D21,M5,M6,X2"),
+        json!({"D10": 4321, "D21": -2, "M5": 1, "M6": 1, "X2": 1})
+    );
+}
+
+#[test]
+fn http_api_and_designer_page() {
+    let server = Server::start(&state_dir("http"), &[]);
+
+    let (status, page) = server.http("GET", "/", None);
+    assert_eq!(status, 200);
+    assert!(page.contains("<canvas") && page.contains("app.js"));
+    let (status, js) = server.http("GET", "/app.js", None);
+    assert_eq!(status, 200);
+    assert!(js.contains("/api/law/"));
+    assert_eq!(server.http("GET", "/style.css", None).0, 200);
+    assert_eq!(server.http("GET", "/nope", None).0, 404);
+
+    // Status: the PLC scans in real time.
+    let first = server.get_json("/api/status");
+    assert_eq!(first["scan_us"], 1000);
+    assert_eq!(first["modbus"]["address"], server.modbus.to_string());
+    let start = Instant::now();
+    loop {
+        let now = server.get_json("/api/status");
+        if now["scans"].as_u64() > first["scans"].as_u64() {
+            assert_eq!(now["running"], true);
+            assert!(now["sim_time_us"].as_u64() > first["sim_time_us"].as_u64());
+            break;
+        }
+        assert!(start.elapsed() < STEP, "the scan count should grow");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+
+    // Devices: set, read back, refuse what is read only or malformed.
+    let (status, body) = server.http(
+        "POST",
+        "/api/devices",
+        Some(r#"{"D2000": 5200, "DE106": 1.5, "M0": true, "X17": 1}"#),
+    );
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(
+        serde_json::from_str::<Value>(&body).unwrap(),
+        json!({"D2000": 5200, "DE106": 1.5, "M0": 1, "X17": 1})
+    );
+    assert_eq!(
+        server.get_json("/api/devices?names=D2000:2,M0,X17,Y0"),
+        json!({"D2000": 5200, "D2001": 0, "M0": 1, "X17": 1, "Y0": 0})
+    );
+    for (path, body) in [
+        ("/api/devices?names=Q7", None),
+        ("/api/devices?names=D8512", None),
+        ("/api/devices", None),
+    ] {
+        assert_eq!(server.http("GET", path, body).0, 400, "{path}");
+    }
+    for body in [r#"{"Y7": 1}"#, r#"{"M0": 2}"#, "not json", r#"{"C231": 1}"#] {
+        let (status, reply) = server.http("POST", "/api/devices", Some(body));
+        assert_eq!(status, 400, "{body}");
+        assert!(serde_json::from_str::<Value>(&reply).unwrap()["error"].is_string());
+    }
+
+    // Designer endpoints.
+    let laws = server.get_json("/api/laws");
+    assert_eq!(laws.as_array().unwrap().len(), 11);
+    let law = server.get_json("/api/law/modified-sine?points=3");
+    assert_eq!(law["u"], json!([0.0, 0.5, 1.0]));
+    assert_eq!(law["s"][0], json!(0.0));
+    assert_eq!(law["s"][2], json!(1.0));
+    for key in ["v", "a", "j"] {
+        assert_eq!(law[key].as_array().unwrap().len(), 3);
+    }
+    assert_eq!(server.http("GET", "/api/law/nope", None).0, 400);
+    assert_eq!(server.http("GET", "/api/law/cycloid?points=1", None).0, 400);
+    let generators = server.get_json("/api/generators");
+    assert!(generators.as_array().unwrap().len() >= 4);
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/gen",
+        Some(r#"{"generator": "rotary-cut", "params": {"master": 3000, "slave": 1000, "sync": 300, "ratio": "5/3"}}"#),
+    );
+    assert_eq!(status, 200, "{body}");
+    let table: Value = serde_json::from_str(&body).unwrap();
+    let master = table["master"].as_array().unwrap();
+    assert_eq!(master.first(), Some(&json!(0)));
+    assert_eq!(master.last(), Some(&json!(3000)));
+    assert_eq!(
+        table["slave"].as_array().unwrap().last(),
+        Some(&json!(1000))
+    );
+    assert_eq!(table["velocity"].as_array().unwrap().len(), master.len());
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/gen",
+        Some(r#"{"generator": "s-curve", "params": {"max_speed": 0}}"#),
+    );
+    assert_eq!(status, 400, "{body}");
+}
