@@ -14,7 +14,7 @@
 //! pulses (negative: return), `P3` sync length in slave pulses, `P4` slave
 //! pulses per master pulse in the sync zone (the demo's "slave pulses per mm
 //! over master pulses per mm" = 3π), `P5` the ratio cap, `P6` low word the
-//! [`AccelCurve`], high word the [`CamPlacement`] (plus `H1000` for return),
+//! [`AccelCurve`](super::accel_curve::AccelCurve), high word the [`CamPlacement`] (plus `H1000` for return),
 //! `P7` points in the table.
 //!
 //! # Geometry
@@ -47,7 +47,6 @@
 //! # Ok::<(), ecam_core::TableError>(())
 //! ```
 
-use super::accel_curve::AccelCurve;
 use super::design_curve::DesignCurve;
 use super::motion_path::{Path, Ramp};
 use super::placement::CamPlacement;
@@ -55,12 +54,7 @@ use super::sampling::{peak_ratio, sample};
 use super::sync_zone::choose;
 use crate::{CamPoint, PointTable, TableError};
 
-/// Fewest points (`P7`). The manual gives no range; two points are one
-/// section, and a resolution too low for the pieces of the motion is reported
-/// as a section-count error (6783) naming how many sections it needs.
-pub const MIN_RESOLUTION: u16 = 2;
-/// Most points (`P7`).
-pub const MAX_RESOLUTION: u16 = 512;
+pub use super::cut_params::{MAX_RESOLUTION, MIN_RESOLUTION};
 /// `P6` high-word flag of the return table (the manual's `H1000`).
 pub const RETURN_FLAG: u16 = 0x1000;
 
@@ -87,43 +81,8 @@ pub fn decode_cam_word(high_word: u16) -> Result<(CamPlacement, Stroke), TableEr
     Ok((CamPlacement::from_code(high_word & !RETURN_FLAG)?, stroke))
 }
 
-/// ECAMTBX K101 parameters. `Default` holds the manual's defaults (3000,
-/// 1000, 300, 5/3); for `P5`–`P7`, which it leaves blank, 10× the sync
-/// ratio, curve code 0, leftCAM and 100 points.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Params {
-    /// `P1`: master counts of this table (half the cut length in the demo).
-    pub master_length: i64,
-    /// `P2`: stroke in slave pulses; negative for the return table.
-    pub slave_length: i64,
-    /// `P3`: sync length in slave pulses (at least 1, less than `|P2|` − 1).
-    pub sync_length: i64,
-    /// `P4`: slave pulses per master pulse in the sync zone.
-    pub sync_ratio: f64,
-    /// `P5`: highest ratio allowed anywhere.
-    pub max_ratio: f64,
-    /// `P6` low word.
-    pub accel_curve: AccelCurve,
-    /// `P6` high word (without the `H1000` flag: the sign of `P2` decides).
-    pub placement: CamPlacement,
-    /// `P7`: points in the table, 2 to 512.
-    pub resolution: u16,
-}
-
-impl Default for Params {
-    fn default() -> Self {
-        Self {
-            master_length: 3000,
-            slave_length: 1000,
-            sync_length: 300,
-            sync_ratio: 5.0 / 3.0,
-            max_ratio: 50.0 / 3.0,
-            accel_curve: AccelCurve::Uniform,
-            placement: CamPlacement::LeftCam,
-            resolution: 100,
-        }
-    }
-}
+/// ECAMTBX K101 parameters: the block both cut generators share.
+pub type Params = super::cut_params::CutParams;
 
 /// A flying-saw table and what was made of the parameters.
 #[derive(Clone, Debug, PartialEq)]
@@ -150,12 +109,7 @@ pub struct Generated {
 fn check(p: &Params) -> Result<(), TableError> {
     let bad = |name, reason| Err(TableError::Parameter { name, reason });
     let max = i64::from(i32::MAX);
-    if !(1..=max).contains(&p.master_length) {
-        return bad(
-            "master length (P1)",
-            "must be between 1 and 2147483647 pulses",
-        );
-    }
+    p.check_common()?;
     if p.slave_length == 0 || p.slave_length.unsigned_abs() > max as u64 {
         return bad(
             "slave length (P2)",
@@ -168,15 +122,6 @@ fn check(p: &Params) -> Result<(), TableError> {
             "must be at least 1 pulse and at least 2 less than the stroke",
         );
     }
-    if !(p.sync_ratio.is_finite() && p.sync_ratio > 0.0) {
-        return bad("sync ratio (P4)", "must be a finite number above 0");
-    }
-    if !(p.max_ratio.is_finite() && p.max_ratio > 0.0) {
-        return bad("max ratio (P5)", "must be a finite number above 0");
-    }
-    if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&p.resolution) {
-        return bad("resolution (P7)", "must be between 2 and 512");
-    }
     if matches!(
         p.placement,
         CamPlacement::MidCamBegin | CamPlacement::MidCamEnd
@@ -186,12 +131,7 @@ fn check(p: &Params) -> Result<(), TableError> {
             "must be leftCAM, midCAMall or rightCAM for a flying saw",
         );
     }
-    if p.sync_ratio > p.max_ratio {
-        return Err(TableError::Infeasible {
-            reason: "the sync ratio (P4) is above the max ratio (P5)",
-        });
-    }
-    Ok(())
+    p.check_ratio_order()
 }
 
 /// Generates one flying-saw table (forward for `P2 > 0`, return for `P2 < 0`).

@@ -4,6 +4,7 @@
 //! document's default values and returns a validated table.
 
 pub mod accel_curve;
+pub mod cut_params;
 pub mod design_curve;
 pub mod flying_saw;
 pub mod key_points;

@@ -15,7 +15,7 @@
 //! pulse moves 0.1π mm of material and one slave pulse 0.06π mm of blade, so
 //! equal surface speeds need 5/3 slave pulses per master pulse: the value is
 //! slave/master, and that is how `P4` is used. `P5` caps the ratio anywhere in
-//! the table. `P6` low word: [`AccelCurve`]; high word: [`CamPlacement`].
+//! the table. `P6` low word: [`AccelCurve`](super::accel_curve::AccelCurve); high word: [`CamPlacement`].
 //! `P7` resolution: points in the table (2 to 512).
 //!
 //! # Geometry
@@ -58,7 +58,6 @@
 //! # Ok::<(), ecam_core::TableError>(())
 //! ```
 
-use super::accel_curve::AccelCurve;
 use super::design_curve::DesignCurve;
 use super::motion_path::{Bend, Path, transition};
 use super::placement::CamPlacement;
@@ -66,50 +65,10 @@ use super::sampling::{peak_ratio, round_half_up, sample};
 use super::sync_zone::{SyncZone, choose};
 use crate::{CamPoint, PointTable, TableError};
 
-/// Fewest points (`P7`). The manual gives no range; two points are one
-/// section, and a resolution too low for the pieces of the motion is reported
-/// as a section-count error (6783) naming how many sections it needs.
-pub const MIN_RESOLUTION: u16 = 2;
-/// Most points (`P7`).
-pub const MAX_RESOLUTION: u16 = 512;
+pub use super::cut_params::{MAX_RESOLUTION, MIN_RESOLUTION};
 
-/// ECAMTBX K100 parameters. `Default` holds the manual's defaults (3000,
-/// 1000, 300, 5/3); it gives none for `P5`–`P7`, so the max ratio is 10× the
-/// sync ratio (the demo's rule), the curves are code 0 and the resolution 100.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Params {
-    /// `P1`: cut length in master (feed) pulses.
-    pub master_length: i64,
-    /// `P2`: knife pulses per revolution.
-    pub slave_length: i64,
-    /// `P3`: sync length in slave pulses (at least 1, less than `P2`).
-    pub sync_length: i64,
-    /// `P4`: slave pulses per master pulse in the sync zone.
-    pub sync_ratio: f64,
-    /// `P5`: highest ratio allowed anywhere.
-    pub max_ratio: f64,
-    /// `P6` low word.
-    pub accel_curve: AccelCurve,
-    /// `P6` high word.
-    pub placement: CamPlacement,
-    /// `P7`: points in the table, 2 to 512.
-    pub resolution: u16,
-}
-
-impl Default for Params {
-    fn default() -> Self {
-        Self {
-            master_length: 3000,
-            slave_length: 1000,
-            sync_length: 300,
-            sync_ratio: 5.0 / 3.0,
-            max_ratio: 50.0 / 3.0,
-            accel_curve: AccelCurve::Uniform,
-            placement: CamPlacement::LeftCam,
-            resolution: 100,
-        }
-    }
-}
+/// ECAMTBX K100 parameters: the block both cut generators share.
+pub type Params = super::cut_params::CutParams;
 
 /// What the knife does between cuts (the manual's four cut-length cases).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,12 +108,7 @@ pub struct Generated {
 fn check(p: &Params) -> Result<(), TableError> {
     let bad = |name, reason| Err(TableError::Parameter { name, reason });
     let max = i64::from(i32::MAX);
-    if !(1..=max).contains(&p.master_length) {
-        return bad(
-            "master length (P1)",
-            "must be between 1 and 2147483647 pulses",
-        );
-    }
+    p.check_common()?;
     if !(1..=max).contains(&p.slave_length) {
         return bad(
             "slave length (P2)",
@@ -167,21 +121,7 @@ fn check(p: &Params) -> Result<(), TableError> {
             "must be at least 1 pulse and less than the slave length",
         );
     }
-    if !(p.sync_ratio.is_finite() && p.sync_ratio > 0.0) {
-        return bad("sync ratio (P4)", "must be a finite number above 0");
-    }
-    if !(p.max_ratio.is_finite() && p.max_ratio > 0.0) {
-        return bad("max ratio (P5)", "must be a finite number above 0");
-    }
-    if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&p.resolution) {
-        return bad("resolution (P7)", "must be between 2 and 512");
-    }
-    if p.sync_ratio > p.max_ratio {
-        return Err(TableError::Infeasible {
-            reason: "the sync ratio (P4) is above the max ratio (P5)",
-        });
-    }
-    Ok(())
+    p.check_ratio_order()
 }
 
 /// The cycle in table coordinates, and where its sync zone starts.

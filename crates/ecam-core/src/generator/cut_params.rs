@@ -1,0 +1,88 @@
+//! The parameter block shared by ECAMTBX K100 (rotary cut) and K101 (flying
+//! saw): the manual gives both the same P1–P7 table, so both generators take
+//! this one struct and share the checks that do not depend on the geometry.
+
+use super::accel_curve::AccelCurve;
+use super::placement::CamPlacement;
+use crate::TableError;
+
+/// Fewest points (`P7`). The manual gives no range; two points are one
+/// section, and a resolution too low for the pieces of the motion is reported
+/// as a section-count error (6783) naming how many sections it needs.
+pub const MIN_RESOLUTION: u16 = 2;
+/// Most points (`P7`).
+pub const MAX_RESOLUTION: u16 = 512;
+
+/// ECAMTBX K100/K101 parameters. `Default` holds the manual's defaults (3000,
+/// 1000, 300, 5/3); it gives none for `P5`–`P7`, so the max ratio is 10× the
+/// sync ratio (the demo's rule), the curves are code 0, leftCAM and 100 points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CutParams {
+    /// `P1`: master (feed) counts of the table: the cut length for a rotary
+    /// cut, the counts of one stroke for a flying saw.
+    pub master_length: i64,
+    /// `P2`: slave pulses of the table: knife pulses per revolution for a
+    /// rotary cut; the stroke for a flying saw (negative for its return table).
+    pub slave_length: i64,
+    /// `P3`: sync length in slave pulses.
+    pub sync_length: i64,
+    /// `P4`: slave pulses per master pulse in the sync zone.
+    pub sync_ratio: f64,
+    /// `P5`: highest ratio allowed anywhere.
+    pub max_ratio: f64,
+    /// `P6` low word.
+    pub accel_curve: AccelCurve,
+    /// `P6` high word (for a flying saw without the `H1000` flag: the sign of `P2` decides).
+    pub placement: CamPlacement,
+    /// `P7`: points in the table, 2 to 512.
+    pub resolution: u16,
+}
+
+impl Default for CutParams {
+    fn default() -> Self {
+        Self {
+            master_length: 3000,
+            slave_length: 1000,
+            sync_length: 300,
+            sync_ratio: 5.0 / 3.0,
+            max_ratio: 50.0 / 3.0,
+            accel_curve: AccelCurve::Uniform,
+            placement: CamPlacement::LeftCam,
+            resolution: 100,
+        }
+    }
+}
+
+impl CutParams {
+    /// Checks `P1`, `P4`, `P5` and `P7`, which mean the same for both
+    /// generators (`P2`, `P3` and `P6` are checked by each generator).
+    pub(crate) fn check_common(&self) -> Result<(), TableError> {
+        let bad = |name, reason| Err(TableError::Parameter { name, reason });
+        if !(1..=i64::from(i32::MAX)).contains(&self.master_length) {
+            return bad(
+                "master length (P1)",
+                "must be between 1 and 2147483647 pulses",
+            );
+        }
+        if !(self.sync_ratio.is_finite() && self.sync_ratio > 0.0) {
+            return bad("sync ratio (P4)", "must be a finite number above 0");
+        }
+        if !(self.max_ratio.is_finite() && self.max_ratio > 0.0) {
+            return bad("max ratio (P5)", "must be a finite number above 0");
+        }
+        if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&self.resolution) {
+            return bad("resolution (P7)", "must be between 2 and 512");
+        }
+        Ok(())
+    }
+
+    /// The sync ratio must not exceed the max ratio.
+    pub(crate) fn check_ratio_order(&self) -> Result<(), TableError> {
+        if self.sync_ratio > self.max_ratio {
+            return Err(TableError::Infeasible {
+                reason: "the sync ratio (P4) is above the max ratio (P5)",
+            });
+        }
+        Ok(())
+    }
+}
