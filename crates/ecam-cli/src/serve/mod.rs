@@ -3,7 +3,7 @@
 //! - [`map`]: the Modbus address map (the **contract** in ARCHITECTURE.md),
 //! - [`pdu`]: Modbus request/response PDUs, checked byte by byte,
 //! - [`modbus`]: the Modbus TCP listener (MBAP framing, one task per client),
-//! - [`write`]: a batch of device writes, and its one-line text form,
+//! - [`write`](mod@write): a batch of device writes, and its one-line text form,
 //! - [`journal`]: durable writes (append-only journal + snapshot),
 //! - [`state`]: the PLC shared by the scan loop and the servers,
 //! - [`clock`]: the scan loop, paced by the wall clock,

@@ -129,7 +129,7 @@ pub enum Instruction {
         /// The coil.
         dest: BitDest,
     },
-    /// MOV/DMOV[P] S D.
+    /// `MOV`/`DMOV`(`P`) S D.
     Move {
         /// 16 or 32 bit.
         width: Width,
@@ -140,7 +140,7 @@ pub enum Instruction {
         /// Destination D or C.
         dst: Device,
     },
-    /// DEMOV[P] S D: 32-bit float move (E constant or Dn).
+    /// `DEMOV`(`P`) S D: 32-bit float move (E constant or Dn).
     FloatMove {
         /// Continuous or pulse form.
         exec: Exec,
@@ -149,7 +149,7 @@ pub enum Instruction {
         /// Destination register pair.
         dst: u16,
     },
-    /// ZRST[P] D1 D2.
+    /// `ZRST`(`P`) D1 D2.
     ZoneReset {
         /// Continuous or pulse form.
         exec: Exec,
@@ -160,7 +160,7 @@ pub enum Instruction {
         /// Last index (inclusive).
         last: u16,
     },
-    /// ADD/SUB/DADD/DSUB[P] S1 S2 D.
+    /// `ADD`/`SUB`/`DADD`/`DSUB`(`P`) S1 S2 D.
     Arith {
         /// ADD or SUB.
         op: ArithOp,
@@ -175,7 +175,7 @@ pub enum Instruction {
         /// Destination D or C.
         dst: Device,
     },
-    /// INC/DEC/DINC/DDEC[P] D: add or subtract 1, wrapping, no flags (FX).
+    /// `INC`/`DEC`/`DINC`/`DDEC`(`P`) D: add or subtract 1, wrapping, no flags (FX).
     Step {
         /// True for INC, false for DEC.
         up: bool,
@@ -186,7 +186,7 @@ pub enum Instruction {
         /// The register or counter.
         dst: Device,
     },
-    /// CMP/DCMP[P] S1 S2 D: D = S1>S2, D+1 = S1=S2, D+2 = S1<S2.
+    /// `CMP`/`DCMP`(`P`) S1 S2 D: D = S1>S2, D+1 = S1=S2, D+2 = S1<S2.
     Compare {
         /// 16 or 32 bit.
         width: Width,
