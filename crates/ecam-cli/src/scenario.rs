@@ -231,7 +231,7 @@ pub struct Scenario {
 fn micros(seconds: f64, what: &str) -> anyhow::Result<u64> {
     // A year of simulated time is far beyond any useful scenario.
     if !(0.0..=3.2e7).contains(&seconds) {
-        bail!("{what} = {seconds} s: must be between 0 and 3.2e7 seconds");
+        bail!("{what} = {seconds:?} s: must be between 0 and 3.2e7 seconds");
     }
     Ok((seconds * 1e6).round() as u64)
 }
@@ -259,6 +259,10 @@ impl Scenario {
         if raw.tick_us == 0 {
             bail!("tick_us must be at least 1");
         }
+        if raw.trace_every == Some(0) {
+            bail!("trace_every must be at least 1 (1 writes every tick)");
+        }
+        unused_keys(&raw.cam, &raw.start)?;
         let curve = crate::table_source::load(&raw.table, base).context("in [table]")?;
         let moves = raw
             .master
@@ -267,7 +271,12 @@ impl Scenario {
             .enumerate()
             .map(|(i, &[duration, target])| {
                 let duration_us = micros(duration, &format!("[master] moves[{i}] duration"))?;
-                if target.fract() != 0.0 || target.abs() > 4.5e15 {
+                if !target.is_finite() || target.abs() > 4.5e15 {
+                    bail!(
+                        "[master] moves[{i}] target {target:?} is out of range: at most ±4.5e15 counts"
+                    );
+                }
+                if target.fract() != 0.0 {
                     bail!("[master] moves[{i}] target {target} must be a whole number of counts");
                 }
                 Ok(MasterMove {
@@ -403,6 +412,89 @@ impl Scenario {
             None => master,
         }
     }
+}
+
+/// Refuses keys that the chosen `kind`/`mode`/alignment never reads: like a
+/// typo, a `delay` under an immediate start or `repeats` on a periodic cam
+/// would otherwise be silently ignored, and the run would not be the one the
+/// user wrote.
+fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
+    let cam_kind = match cam.kind {
+        CamKind::Periodic => "periodic",
+        CamKind::Repeat => "repeat",
+        CamKind::OneShot => "one-shot",
+        CamKind::Normal => "normal",
+    };
+    if cam.kind != CamKind::OneShot && cam.repeats != 0 {
+        bail!("[cam] repeats only applies to kind = \"one-shot\" (this cam is \"{cam_kind}\")");
+    }
+    if cam.kind != CamKind::Repeat && cam.min_stroke != 1 {
+        bail!("[cam] min_stroke only applies to kind = \"repeat\" (this cam is \"{cam_kind}\")");
+    }
+    let mode = match start.mode {
+        StartKind::Immediate => "immediate",
+        StartKind::RisingEdge => "rising-edge",
+        StartKind::AfterDelay => "after-delay",
+        StartKind::AtPosition => "at-position",
+        StartKind::Breakpoint => "breakpoint",
+    };
+    let only = |given: bool, key: &str, modes: &str| -> anyhow::Result<()> {
+        if given {
+            bail!("[start] {key} only applies to mode = {modes} (this start is mode = \"{mode}\")");
+        }
+        Ok(())
+    };
+    let delayed = matches!(start.mode, StartKind::AfterDelay);
+    let positioned = matches!(start.mode, StartKind::AtPosition);
+    let breakpoint = matches!(start.mode, StartKind::Breakpoint);
+    only(
+        !delayed && start.delay.is_some(),
+        "delay",
+        "\"after-delay\"",
+    )?;
+    only(
+        !positioned && start.position.is_some(),
+        "position",
+        "\"at-position\"",
+    )?;
+    only(
+        !(delayed || positioned) && start.after_edge,
+        "after_edge",
+        "\"after-delay\" or \"at-position\"",
+    )?;
+    let edge = matches!(start.mode, StartKind::RisingEdge) || start.after_edge;
+    if !edge && !start.input.is_empty() {
+        bail!(
+            "[start] input is only read by mode = \"rising-edge\" or with after_edge = true (this start is mode = \"{mode}\")"
+        );
+    }
+    only(
+        !breakpoint && start.compare.is_some(),
+        "compare",
+        "\"breakpoint\"",
+    )?;
+    only(
+        !breakpoint && start.value.is_some(),
+        "value",
+        "\"breakpoint\"",
+    )?;
+    let master_value_used = matches!(
+        start.master_align,
+        Some(RawMasterAlign::Offset | RawMasterAlign::StartAt | RawMasterAlign::StartAtUnzoomed)
+    );
+    if !master_value_used && start.master_value.is_some() {
+        bail!(
+            "[start] master_value only applies to master_align = \"offset\", \"start-at\" or \"start-at-unzoomed\""
+        );
+    }
+    let slave_value_used = matches!(
+        start.slave_align,
+        Some(RawSlaveAlign::Offset | RawSlaveAlign::At)
+    );
+    if !slave_value_used && start.slave_value.is_some() {
+        bail!("[start] slave_value only applies to slave_align = \"offset\" or \"at\"");
+    }
+    Ok(())
 }
 
 fn coupling(cam: &RawCam) -> Coupling {
@@ -541,6 +633,52 @@ moves = [[1.0, 60000], [0.5, 60000]]
         assert_eq!(s.config.slave_align, SlaveAlign::NearestEquivalent);
         assert_eq!(s.master_input(35000), 5000);
         assert_eq!(s.master_input(-1), 29999);
+    }
+
+    #[test]
+    fn keys_the_chosen_mode_never_reads_are_refused() {
+        let err = |extra: &str| {
+            let text = format!("{DOC001}\n{extra}\n");
+            format!(
+                "{:#}",
+                Scenario::parse(&text, Path::new(".")).err().unwrap()
+            )
+        };
+        // A delay without mode = "after-delay" would silently start at once.
+        assert!(err("[start]\ndelay = 500").contains("delay only applies"));
+        assert!(err("[start]\nposition = 5").contains("position only applies"));
+        assert!(err("[start]\nafter_edge = true").contains("after_edge"));
+        assert!(err("[start]\ncompare = \">=\"").contains("compare"));
+        assert!(err("[start]\nmode = \"rising-edge\"\nvalue = 3").contains("value only applies"));
+        assert!(err("[start]\nmaster_value = 3").contains("master_value"));
+        assert!(err("[start]\ninput = [[0.1, 0.2]]").contains("input is only read"));
+        assert!(
+            err("[start]\nslave_align = \"relative\"\nslave_value = 3").contains("slave_value")
+        );
+        let periodic = DOC001.replace("kind = \"repeat\"", "kind = \"periodic\"\nrepeats = 2");
+        let e = Scenario::parse(&periodic, Path::new(".")).err().unwrap();
+        assert!(format!("{e:#}").contains("repeats only applies"));
+        let periodic = DOC001.replace("kind = \"repeat\"", "min_stroke = 10");
+        let e = Scenario::parse(&periodic, Path::new(".")).err().unwrap();
+        assert!(format!("{e:#}").contains("min_stroke only applies"));
+        // The keys a mode does read still work.
+        let ok =
+            format!("{DOC001}\n[start]\nmode = \"after-delay\"\ndelay = 500\nafter_edge = true\n");
+        assert!(Scenario::parse(&ok, Path::new(".")).is_ok());
+    }
+
+    #[test]
+    fn trace_every_zero_and_huge_targets_are_explained() {
+        let text = format!("trace_every = 0\n{DOC001}");
+        let e = Scenario::parse(&text, Path::new(".")).err().unwrap();
+        assert!(format!("{e:#}").contains("trace_every must be at least 1"));
+        let text = DOC001.replace("[[1.0, 60000]", "[[1.0, 9223372036854775807]");
+        let e = format!(
+            "{:#}",
+            Scenario::parse(&text, Path::new(".")).err().unwrap()
+        );
+        assert!(e.contains("out of range"), "{e}");
+        assert!(!e.contains("whole number"), "{e}");
     }
 
     #[test]

@@ -87,6 +87,12 @@ impl fmt::Display for TableError {
                 f,
                 "table error ({CODE_TABLE}) at section {section}: value is not finite or out of range"
             ),
+            // The Rust API has no upper limit (`max == usize::MAX`); printing
+            // that number would read as noise rather than as "no limit".
+            Self::SectionCount { count, min, max } if *max == usize::MAX => write!(
+                f,
+                "section count error ({CODE_SECTION_COUNT}): {count} sections, at least {min} needed"
+            ),
             Self::SectionCount { count, min, max } => write!(
                 f,
                 "section count error ({CODE_SECTION_COUNT}): {count} sections, allowed {min} to {max}"
@@ -102,3 +108,27 @@ impl fmt::Display for TableError {
 }
 
 impl core::error::Error for TableError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::string::ToString;
+
+    #[test]
+    fn an_unbounded_section_count_says_what_is_needed() {
+        let e = TableError::SectionCount {
+            count: 1,
+            min: 2,
+            max: usize::MAX,
+        };
+        let text = e.to_string();
+        assert!(text.contains("at least 2"), "{text}");
+        assert!(!text.contains(&usize::MAX.to_string()), "{text}");
+        let bounded = TableError::SectionCount {
+            count: 600,
+            min: 2,
+            max: 512,
+        };
+        assert!(bounded.to_string().contains("allowed 2 to 512"));
+    }
+}

@@ -47,6 +47,15 @@ pub(crate) fn sample(
         .map(|p| p.len)
         .sum();
     let spare = budget - constant - ramps;
+    let mut shares = ramp_shares(
+        pieces
+            .iter()
+            .filter(|p| !p.is_constant_velocity())
+            .map(|p| p.len),
+        ramp_master,
+        spare,
+    )
+    .into_iter();
 
     let end = master_end as f64;
     let mut masters: Vec<i64> = Vec::with_capacity(points + pinned.len());
@@ -59,12 +68,7 @@ pub(crate) fn sample(
             continue;
         }
         // Each ramp gets one section plus its share of the spare ones.
-        let share = if ramp_master > 0.0 {
-            (spare as f64 * p.len / ramp_master) as usize
-        } else {
-            0
-        };
-        let sections = share.saturating_add(1);
+        let sections = shares.next().unwrap_or(0).saturating_add(1);
         for j in 1..sections {
             masters.push(round_master(
                 p.master_start + p.len * j as f64 / sections as f64,
@@ -104,6 +108,34 @@ pub(crate) fn sample(
         ceiling = p.slave;
     }
     PointTable::new(table)
+}
+
+/// Splits `spare` sections over ramps of master lengths `lens` (summing to
+/// `total`) in proportion to their length, by largest remainder: the shares
+/// add up to exactly `spare`, so a table gets the resolution asked for
+/// (P7 is the number of points) unless whole-count masters coincide.
+fn ramp_shares(lens: impl Iterator<Item = f64>, total: f64, spare: usize) -> Vec<usize> {
+    if !(total > 0.0) {
+        return lens.map(|_| 0).collect();
+    }
+    let exact: Vec<f64> = lens.map(|len| spare as f64 * len / total).collect();
+    let mut shares: Vec<usize> = exact.iter().map(|&q| q as usize).collect();
+    let given: usize = shares.iter().sum();
+    let mut order: Vec<usize> = (0..exact.len()).collect();
+    // Largest fractional part first; ties keep the ramps' order.
+    order.sort_by(|&a, &b| {
+        let (fa, fb) = (
+            exact[a] - libm::floor(exact[a]),
+            exact[b] - libm::floor(exact[b]),
+        );
+        fb.total_cmp(&fa)
+    });
+    for &i in order.iter().take(spare.saturating_sub(given)) {
+        if let Some(s) = shares.get_mut(i) {
+            *s += 1;
+        }
+    }
+    shares
 }
 
 fn round_master(m: f64, end: f64) -> i64 {
@@ -169,6 +201,35 @@ mod tests {
         assert!(t.points().iter().any(|q| q.master == 50 && q.slave == 50));
         assert!(t.points().iter().any(|q| q.master == 150 && q.slave == 250));
         assert!(peak_ratio(&t) <= 2.0 + 1e-12);
+    }
+
+    #[test]
+    fn ramps_share_every_spare_section() {
+        // Three ramps of equal length and 10 spare sections: 10/3 each
+        // would floor to 3 + 3 + 3 and lose a point.
+        assert_eq!(
+            ramp_shares([5.0, 5.0, 5.0].into_iter(), 15.0, 10),
+            [4, 3, 3]
+        );
+        assert_eq!(ramp_shares([1.0, 2.0].into_iter(), 3.0, 0), [0, 0]);
+        assert_eq!(ramp_shares([0.0].into_iter(), 0.0, 4), [0]);
+        let s = ramp_shares([399.0, 0.5, 399.0].into_iter(), 798.5, 93);
+        assert_eq!(s.iter().sum::<usize>(), 93);
+    }
+
+    #[test]
+    fn the_rotary_cut_demo_gets_every_point_asked_for() {
+        use crate::generator::rotary_cut::{Params, generate};
+        let g = generate(&Params {
+            master_length: 3183,
+            slave_length: 1000,
+            sync_length: 333,
+            sync_ratio: 5.0 / 3.0,
+            max_ratio: 50.0 / 3.0,
+            ..Params::default()
+        })
+        .unwrap();
+        assert_eq!(g.table.points().len(), 100);
     }
 
     #[test]
