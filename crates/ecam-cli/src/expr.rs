@@ -33,7 +33,8 @@ impl MasterFunction {
     }
 
     fn with_variables(text: &str, master_allowed: bool) -> anyhow::Result<Self> {
-        let expr = exmex::parse::<f64>(text)
+        let plain = expand_exponents(text)?;
+        let expr = exmex::parse::<f64>(&plain)
             .map_err(|e| anyhow!("cannot parse expression {text:?}: {e}"))?;
         let slots = expr
             .var_names()
@@ -107,6 +108,64 @@ impl MasterFunction {
     }
 }
 
+/// Rewrites number literals in scientific notation (`1.5e3`, `2E-4`) as
+/// plain decimals. exmex reads `1e3` as the number 1 followed by a variable
+/// `e3` and reports a cryptic syntax error, yet engineers type exponents
+/// (and spreadsheets paste them). Rust's `Display` for `f64` never uses an
+/// exponent and round-trips exactly, so the value is unchanged.
+fn expand_exponents(text: &str) -> anyhow::Result<String> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while let Some(&c) = chars.get(i) {
+        let after_name = i > 0
+            && chars
+                .get(i - 1)
+                .is_some_and(|p| p.is_alphanumeric() || *p == '_' || *p == '.');
+        if !(c.is_ascii_digit() || c == '.') || after_name {
+            out.push(c);
+            i += 1;
+            continue;
+        }
+        // A number literal starts here: mantissa, then maybe an exponent.
+        let start = i;
+        while chars
+            .get(i)
+            .is_some_and(|d| d.is_ascii_digit() || *d == '.')
+        {
+            i += 1;
+        }
+        let mantissa_end = i;
+        let mut j = i;
+        if chars.get(j).is_some_and(|e| *e == 'e' || *e == 'E') {
+            j += 1;
+            if chars.get(j).is_some_and(|s| *s == '+' || *s == '-') {
+                j += 1;
+            }
+            let digits = j;
+            while chars.get(j).is_some_and(char::is_ascii_digit) {
+                j += 1;
+            }
+            let ends_name = chars
+                .get(j)
+                .is_some_and(|n| n.is_alphanumeric() || *n == '_');
+            if j > digits && !ends_name {
+                let literal: String = chars.get(start..j).unwrap_or_default().iter().collect();
+                if let Ok(v) = literal.parse::<f64>() {
+                    if !v.is_finite() {
+                        bail!("the number {literal} in {text:?} is too large for a 64-bit float");
+                    }
+                    out.push_str(&format!("{v}"));
+                    i = j;
+                    continue;
+                }
+            }
+        }
+        out.extend(chars.get(start..mantissa_end).unwrap_or_default());
+    }
+    Ok(out)
+}
+
 /// Evaluates a constant expression such as `5/3`, `50/3`, `3*pi` or `1.6667`.
 ///
 /// # Errors
@@ -163,6 +222,21 @@ mod tests {
         assert!((k.v - 300.0).abs() < 1.0, "{k:?}");
         assert!((k.a - 60.0).abs() < 1e-6, "{k:?}");
         assert!((k.j - 6.0).abs() < 1e-6, "{k:?}");
+    }
+
+    #[test]
+    fn scientific_notation_reads_as_a_number() {
+        assert_eq!(number("1e3").unwrap(), 1000.0);
+        assert_eq!(number("1.5E-3").unwrap(), 0.0015);
+        assert_eq!(number("2e+2*3").unwrap(), 600.0);
+        assert_eq!(number("1e308").unwrap(), 1e308);
+        let f = MasterFunction::parse("1e-3*x + exp(0)").unwrap();
+        assert!((f.at(1000.0).unwrap() - 2.0).abs() < 1e-12);
+        // `e` alone is still Euler's number, and names are left alone.
+        assert!((number("2*e").unwrap() - 2.0 * std::f64::consts::E).abs() < 1e-12);
+        assert_eq!(expand_exponents("log10(x)+x2e3").unwrap(), "log10(x)+x2e3");
+        let e = number("1e999").err().unwrap().to_string();
+        assert!(e.contains("too large"), "{e}");
     }
 
     #[test]

@@ -765,6 +765,14 @@ fn function(args: &FunctionArgs) -> anyhow::Result<Generated> {
 /// table the core refuses.
 pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::Result<PointTable> {
     let f = MasterFunction::parse(expr)?;
+    // The core reports this as a non-increasing last point (6782), which
+    // names a section the user never wrote; say which settings clash.
+    if to <= from {
+        bail!(
+            "table error ({}): the last master position ({to}) must be greater than the first ({from})",
+            ecam_core::CODE_TABLE
+        );
+    }
     let first_error = std::cell::RefCell::new(None);
     let sampled = ecam_core::table::sample_function(
         |x| match f.at(x) {
@@ -876,6 +884,16 @@ mod tests {
         assert!((k[5].v - 100.0).abs() < 1e-9);
         assert!((k[5].a - 2.0).abs() < 1e-9);
         assert!(k[5].j.abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_reversed_function_range_names_both_ends() {
+        let e = function_table("x", 10, 10, 11).err().unwrap().to_string();
+        assert!(
+            e.contains("(10) must be greater than the first (10)"),
+            "{e}"
+        );
+        assert!(function_table("x", 10, 0, 11).is_err());
     }
 
     #[test]

@@ -57,18 +57,13 @@ struct RawCam {
     kind: CamKind,
     #[serde(default)]
     repeats: u16,
-    #[serde(default = "one")]
-    min_stroke: u64,
+    min_stroke: Option<u64>,
     single_turn: Option<u64>,
     master_zoom: Option<[u16; 2]>,
     slave_zoom: Option<[u16; 2]>,
     #[serde(default)]
     max_frequency_hz: i64,
     ramp_in: Option<u64>,
-}
-
-fn one() -> u64 {
-    1
 }
 
 #[derive(Deserialize, Debug, Default, Clone, Copy)]
@@ -428,7 +423,7 @@ fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
     if cam.kind != CamKind::OneShot && cam.repeats != 0 {
         bail!("[cam] repeats only applies to kind = \"one-shot\" (this cam is \"{cam_kind}\")");
     }
-    if cam.kind != CamKind::Repeat && cam.min_stroke != 1 {
+    if cam.kind != CamKind::Repeat && cam.min_stroke.is_some() {
         bail!("[cam] min_stroke only applies to kind = \"repeat\" (this cam is \"{cam_kind}\")");
     }
     let mode = match start.mode {
@@ -501,7 +496,7 @@ fn coupling(cam: &RawCam) -> Coupling {
     match cam.kind {
         CamKind::Periodic => Coupling::Periodic,
         CamKind::Repeat => Coupling::Repeat {
-            min_stroke: cam.min_stroke,
+            min_stroke: cam.min_stroke.unwrap_or(1),
         },
         CamKind::OneShot => Coupling::OneShot {
             repeats: cam.repeats,

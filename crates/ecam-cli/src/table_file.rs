@@ -70,13 +70,17 @@ impl FileFormat {
     }
 }
 
+// Unknown keys are refused throughout: a misspelt `sync` would otherwise
+// silently drop the shaded zone.
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct JsonSync {
     low: i64,
     high: i64,
 }
 
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct JsonPoint {
     master: i64,
     slave: i64,
@@ -89,12 +93,24 @@ struct JsonPoint {
 }
 
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct JsonTable {
+    /// `ecam_core`'s tag: its `{"kind": "points", ...}` reads here too
+    /// (only checked, hence never read).
+    #[serde(default, rename = "kind", skip_serializing)]
+    _kind: Option<PointsKind>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     generator: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     sync: Option<JsonSync>,
     points: Vec<JsonPoint>,
+}
+
+/// The only `kind` this module's JSON takes (other kinds go to `ecam_core`).
+#[derive(Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum PointsKind {
+    Points,
 }
 
 /// Reads a CSV or JSON table file.
@@ -202,6 +218,12 @@ fn parse_json(text: &str) -> anyhow::Result<TableFile> {
             })
         })
         .collect::<Option<Vec<_>>>();
+    // As `--sync LOW:HIGH` is checked on the command line.
+    if let Some(s) = &json.sync
+        && s.low > s.high
+    {
+        bail!("sync zone low {} is above high {}", s.low, s.high);
+    }
     Ok(TableFile {
         table: PointTable::new(points)?,
         sync: json.sync.map(|s| (s.low, s.high)),
@@ -225,8 +247,20 @@ fn other_kind(text: &str, ours: &serde_json::Error) -> anyhow::Error {
                 "this is a {kind:?} table; `ecam table` works on point tables (a scenario's [table] file = ... can run it)"
             )
         }
+        // A `kind` key means the file is meant as `ecam_core`'s own JSON:
+        // its validation error (code and section) says what to fix, while
+        // ours would only complain about a missing `points` key.
+        Err(core) if has_kind_key(text) => anyhow::anyhow!("{core}"),
         Err(_) => anyhow::anyhow!("not a table JSON object: {ours}"),
     }
+}
+
+fn has_kind_key(text: &str) -> bool {
+    serde_json::from_str::<serde_json::Value>(text)
+        .ok()
+        .as_ref()
+        .and_then(serde_json::Value::as_object)
+        .is_some_and(|o| o.contains_key("kind"))
 }
 
 /// Reads any table kind `ecam_core` stores in JSON, or a point table from
@@ -311,6 +345,7 @@ fn to_json(file: &TableFile, columns: Columns) -> anyhow::Result<String> {
     let kin = file.kinematics();
     let full = columns == Columns::Full;
     let json = JsonTable {
+        _kind: None,
         generator: file.generator.clone(),
         sync: file.sync.map(|(low, high)| JsonSync { low, high }),
         points: points
@@ -334,6 +369,37 @@ fn to_json(file: &TableFile, columns: Columns) -> anyhow::Result<String> {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_bad_core_json_table_gets_the_core_error() {
+        let e = parse_json(r#"{"kind": "uniform", "values": [0, 1], "cam_counts": 1}"#)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("6781"), "{e}");
+        assert!(!e.contains("missing field"), "{e}");
+        let e = parse_json(r#"{"kind": "uniform", "values": [0, 1], "cam_counts": 10}"#)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("\"uniform\" table"), "{e}");
+        let e = parse_json(r#"{"pts": []}"#).err().unwrap().to_string();
+        assert!(e.contains("`pts`"), "{e}");
+        // A misspelt key is named, not silently dropped.
+        let e = parse_json(r#"{"sycn": {"low": 0, "high": 5}, "points": [{"master": 0, "slave": 0}, {"master": 9, "slave": 1}]}"#)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("unknown field `sycn`"), "{e}");
+        let e = parse_json(r#"{"sync": {"low": 5, "high": 1}, "points": [{"master": 0, "slave": 0}, {"master": 9, "slave": 1}]}"#)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("low 5 is above high 1"), "{e}");
+        // ecam_core's own point JSON still reads.
+        let t = parse_json(r#"{"kind": "points", "points": [{"master": 0, "slave": 0}, {"master": 9, "slave": 1}]}"#).unwrap();
+        assert_eq!(t.table.points().len(), 2);
+    }
 
     fn sample() -> TableFile {
         TableFile {

@@ -34,15 +34,6 @@ struct File {
     file: String,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Expr {
-    expr: String,
-    from: i64,
-    to: i64,
-    points: usize,
-}
-
 /// Builds the cam a `[table]` describes; `base` resolves relative files.
 ///
 /// # Errors
@@ -77,10 +68,9 @@ pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve
             let path = scenario::resolve(base, &f.file);
             table_file::read_curve(&path)?
         }
-        "expr" => {
-            let e: Expr = value.try_into()?;
-            Box::new(generate::function_table(&e.expr, e.from, e.to, e.points)?)
-        }
+        // Exactly `ecam table gen function`'s keys and defaults (from 0,
+        // to 36000, 361 points), as docs/simulate.md promises.
+        "expr" => Box::new(generate::from_toml("function", table.clone())?.table),
         _ => {
             let mut params = table.clone();
             let name = params
@@ -147,6 +137,14 @@ mod tests {
         let t = load(&table("file = \"u.json\""), &dir).unwrap();
         assert_eq!(t.stroke(), 200);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn expressions_take_the_generators_defaults() {
+        let t = load(&table("expr = \"x/36\""), Path::new(".")).unwrap();
+        assert_eq!(t.master_last(), 36000);
+        assert_eq!(t.slave_last(), 1000);
+        assert!(load(&table("expr = \"x\"\ncolour = 1"), Path::new(".")).is_err());
     }
 
     #[test]

@@ -400,3 +400,56 @@ fn tables_from_files_and_generators() {
     assert_eq!(s["final_slave"], 2000);
     assert_eq!(s["cycles"], 2);
 }
+
+#[test]
+fn a_closed_stdout_is_an_error_not_a_panic() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(["simulate", scenario("001-repeat.toml").to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Close the reading end before the run (10 000 ticks) prints its line.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.status.success());
+}
+
+#[test]
+fn keys_the_start_mode_never_reads_are_refused() {
+    let dir = scratch("unused-keys");
+    let path = dir.join("s.toml");
+    // Without mode = "after-delay" the delay would silently be ignored.
+    std::fs::write(
+        &path,
+        "[table]\npoints = [[0, 0], [10, 1]]\n[start]\ndelay = 500\n[master]\nmoves = [[1.0, 100]]\n",
+    )
+    .unwrap();
+    let out = ecam(&["simulate", path.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("delay only applies"), "{err}");
+}
+
+#[test]
+fn a_table_outside_the_turn_names_both() {
+    let dir = scratch("outside-turn");
+    let path = dir.join("s.toml");
+    std::fs::write(
+        &path,
+        "[table]\npoints = [[0, 0], [200, 5]]\n[cam]\nsingle_turn = 150\n[master]\nmoves = [[0.1, 100]]\n",
+    )
+    .unwrap();
+    let out = ecam(&["simulate", path.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("6782"), "{err}");
+    assert!(
+        err.contains("table master 0 .. 200, single_turn = 150"),
+        "{err}"
+    );
+}

@@ -474,3 +474,118 @@ fn plots_are_drawn_without_text_when_no_font_is_found() {
     let svg = std::fs::read_to_string(dir.join("t.svg")).unwrap();
     assert!(!svg.contains("<text"));
 }
+
+#[test]
+fn review_findings_stay_fixed() {
+    let dir = scratch("review");
+    // A one-point table: the message says what is needed, not "allowed 2 to 2^64 − 1".
+    let one = dir.join("one.csv");
+    std::fs::write(&one, "master,slave\n0,0\n").unwrap();
+    let err = fails(ecam(&["table", "show", s(&one)]));
+    assert!(err.contains("at least 2"), "{err}");
+    assert!(!err.contains("18446744073709551615"), "{err}");
+    // ecam_core's JSON with a bad table gets the core's error, not "missing field points".
+    let bad = dir.join("bad.json");
+    std::fs::write(
+        &bad,
+        r#"{"kind": "uniform", "values": [0, 1], "cam_counts": 1}"#,
+    )
+    .unwrap();
+    let err = fails(ecam(&["table", "show", s(&bad)]));
+    assert!(err.contains("6781") && err.contains("CamCounts"), "{err}");
+    // Scientific notation is a number.
+    let out = ok(ecam(&[
+        "table",
+        "gen",
+        "function",
+        "--expr",
+        "1.5e3*x/36000",
+        "--points",
+        "3",
+    ]));
+    assert_eq!(
+        csv_points(&out, "master,slave,velocity,acceleration,jerk"),
+        [(0, 0), (18000, 750), (36000, 1500)]
+    );
+    // A reversed function range names both ends.
+    let err = fails(ecam(&[
+        "table", "gen", "function", "--expr", "x", "--from", "10", "--to", "10",
+    ]));
+    assert!(err.contains("must be greater than the first (10)"), "{err}");
+    // The rotary-cut demo has the 100 points its resolution asks for.
+    let out = ok(ecam(&[
+        "table",
+        "gen",
+        "rotary-cut",
+        "--master",
+        "3183",
+        "--slave",
+        "1000",
+        "--sync",
+        "333",
+        "--ratio",
+        "5/3",
+        "--max-ratio",
+        "50/3",
+    ]));
+    assert_eq!(
+        csv_points(&out, "master,slave,velocity,acceleration,jerk").len(),
+        100
+    );
+}
+
+/// Runs ecam, failing (not hanging) if it takes longer than a minute.
+fn ecam_within_a_minute(args: &[&str]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    for _ in 0..600 {
+        if child.try_wait().unwrap().is_some() {
+            return child.wait_with_output().unwrap();
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    child.kill().unwrap();
+    panic!("ecam {args:?} did not finish within a minute");
+}
+
+#[test]
+fn extreme_values_plot_without_hanging_or_panicking() {
+    let dir = scratch("extreme-plot");
+    let huge = dir.join("huge.csv");
+    // Derivatives near f64::MAX once made the axis span infinite (an endless
+    // tick search); values far off the axes overflowed the pixel mapping.
+    std::fs::write(
+        &huge,
+        "master,slave,velocity,acceleration,jerk\n0,0,1e308,-1e308,1e308\n10,5,-1e308,1e308,0\n",
+    )
+    .unwrap();
+    let wide = dir.join("wide.csv");
+    std::fs::write(
+        &wide,
+        "master,slave\n0,-9223372036854775808\n1,9223372036854775807\n2,-9223372036854775808\n",
+    )
+    .unwrap();
+    let sync = dir.join("sync.json");
+    std::fs::write(
+        &sync,
+        r#"{"sync": {"low": -9223372036854775808, "high": 9223372036854775807},
+            "points": [{"master": 0, "slave": 0}, {"master": 100, "slave": 5}]}"#,
+    )
+    .unwrap();
+    for (input, out) in [
+        (&huge, "huge.svg"),
+        (&huge, "huge.png"),
+        (&wide, "wide.png"),
+        (&sync, "sync.svg"),
+    ] {
+        let out = dir.join(out);
+        let result = ecam_within_a_minute(&["table", "plot", s(input), "-o", s(&out)]);
+        let err = String::from_utf8_lossy(&result.stderr);
+        assert!(result.status.success(), "{}: {err}", input.display());
+        assert!(std::fs::metadata(&out).unwrap().len() > 0);
+    }
+}

@@ -122,3 +122,22 @@ fn register_image_round_trip() {
         words[38..].to_vec()
     );
 }
+
+#[test]
+fn json_refuses_unknown_keys() {
+    // A misspelt key must not silently fall back to a default (here: the
+    // segment's own resolution would be shared instead).
+    let bad = [
+        r#"{"kind":"points","points":[{"master":0,"slave":0},{"master":1,"slave":1}],"bogus":3}"#,
+        r#"{"kind":"points","points":[{"master":0,"slave":0,"slav":1},{"master":1,"slave":1}]}"#,
+        r#"{"kind":"uniform","values":[0,1],"cam_counts":10,"counts":3}"#,
+        r#"{"kind":"profile","start":{"master":0,"slave":0},"segments":[{"master_end":10,"slave_end":5,"law":"cycloid","resoluton":4}]}"#,
+        r#"{"kind":"profile","start":{"master":0,"slave":0},"segments":[],"extra":1}"#,
+    ];
+    for text in bad {
+        let err = from_json(text).unwrap_err().to_string();
+        assert!(err.contains("unknown field"), "{text}: {err}");
+    }
+    let good = r#"{"kind":"profile","start":{"master":0,"slave":0},"segments":[{"master_end":10,"slave_end":5,"law":"cycloid","resolution":4}]}"#;
+    assert!(from_json(good).is_ok());
+}

@@ -1,7 +1,9 @@
 //! The motion controller: axes with document 001's settings and E-CAM channels.
 
 use ecam_core::PointTable;
-use ecam_engine::{AxisConfig, CamAxis, MasterAlign, SlaveAlign, StartMode, TickInput};
+use ecam_engine::{
+    AxisConfig, CamAxis, EngineError, MasterAlign, SlaveAlign, StartMode, TickInput,
+};
 
 use crate::{CamType, McError, SingleTurn, UserUnit};
 
@@ -27,6 +29,8 @@ struct Axis {
     position: i64,
     single_turn: Option<SingleTurn>,
     user_unit: UserUnit,
+    /// Why the E-CAM this axis followed stopped by itself, if it did.
+    fault: Option<EngineError>,
 }
 
 #[derive(Clone, Debug)]
@@ -188,6 +192,7 @@ impl MotionController {
         }
         if let Some(a) = self.axes.get_mut(data.slave_axis) {
             a.position = out.slave;
+            a.fault = None;
         }
         self.cams.push(Channel {
             master: data.master_axis,
@@ -212,14 +217,37 @@ impl MotionController {
 
     /// One control cycle: every E-CAM reads its master and commands its
     /// slave, in the order they were started.
+    ///
+    /// A cam the engine stops with a fault (e.g. a slave position that
+    /// would overflow) ends here: the slave keeps its last command
+    /// position, becomes free again, and [`MotionController::fault`] says why.
     pub fn update(&mut self) {
-        for channel in &mut self.cams {
-            let master = self.axes.get(channel.master).map_or(0, |a| a.position);
+        let axes = &mut self.axes;
+        self.cams.retain_mut(|channel| {
+            let master = axes.get(channel.master).map_or(0, |a| a.position);
             let out = channel.cam.tick(&TickInput::at(master, CYCLE_US));
-            if let Some(slave) = self.axes.get_mut(channel.slave) {
-                slave.position = out.slave;
+            let Some(slave) = axes.get_mut(channel.slave) else {
+                return false;
+            };
+            slave.position = out.slave;
+            match out.fault {
+                Some(fault) => {
+                    slave.fault = Some(fault);
+                    false
+                }
+                None => true,
             }
-        }
+        });
+    }
+
+    /// Why the E-CAM that drove `slave_axis` stopped by itself (an engine
+    /// fault in [`MotionController::update`]); cleared when a cam is started
+    /// on that axis again.
+    ///
+    /// # Errors
+    /// Unknown axis.
+    pub fn fault(&self, slave_axis: usize) -> Result<Option<EngineError>, McError> {
+        Ok(self.axis(slave_axis)?.fault)
     }
 
     /// Moves `master_axis` to `position` and runs one cycle; gives the

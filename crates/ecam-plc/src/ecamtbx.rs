@@ -87,6 +87,8 @@ struct Failure {
     /// K2 "error parameter position" (`S0 + 1`): the key point number, or
     /// the offset of the header word at fault; 0 when not tied to one.
     position: u16,
+    /// D2 lies inside the table: the result is not written there.
+    result_in_table: bool,
 }
 
 impl Failure {
@@ -95,6 +97,7 @@ impl Failure {
             code: CODE_PARAMETER,
             message: message.into(),
             position,
+            result_in_table: false,
         }
     }
 
@@ -116,6 +119,7 @@ impl Failure {
             code: e.code(),
             message: e.to_string(),
             position,
+            result_in_table: false,
         }
     }
 }
@@ -141,12 +145,33 @@ pub fn execute(
         )),
         Some(kind) => generated_table(devices, params, kind),
     }
-    .and_then(|points| write_table(devices, table, &points).map(|()| points.len()));
+    .and_then(|points| {
+        // D2 inside the words the table takes (D1+38 … its last point) would
+        // be overwritten by the result, corrupting the table it describes.
+        let first = u32::from(table) + 38;
+        let end = u32::from(table) + 40 + 4 * points.len() as u32;
+        if (first..end).contains(&u32::from(result)) {
+            return Err(Failure {
+                result_in_table: true,
+                ..Failure::parameter(
+                    0,
+                    format!(
+                        "the result register D{result} (D2) lies inside the table D{first}..D{} it would describe: put it elsewhere",
+                        end - 1
+                    ),
+                )
+            });
+        }
+        write_table(devices, table, &points).map(|()| points.len())
+    });
     let (value, error) = match outcome {
         Ok(count) => (i16::try_from(count).unwrap_or(i16::MAX), None),
         Err(f) => (-(f.code as i16), Some(f)),
     };
-    let _ = devices.set_word(result, value);
+    // A refused D2 is not written either: it may hold part of the old table.
+    if !error.as_ref().is_some_and(|f| f.result_in_table) {
+        let _ = devices.set_word(result, value);
+    }
     if TableKind::from_code(kind) == Some(TableKind::SCurve) {
         // P13 (NO.19): "results of chart generation".
         let _ = devices.set_word(params.saturating_add(19), value);
@@ -218,9 +243,19 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
                 format!("key point {number}: curve type {code}; allowed 0-3"),
             )
         })?;
-        let resolution = u16::try_from(word(devices, base, at + 5)).map_err(|_| {
-            Failure::parameter(number, format!("key point {number}: negative resolution"))
-        })?;
+        // Checked here, not only by the generator, so S0+1 names the key point.
+        let raw_resolution = word(devices, base, at + 5);
+        let resolution = u16::try_from(raw_resolution)
+            .ok()
+            .filter(|&r| r <= 512)
+            .ok_or_else(|| {
+                Failure::parameter(
+                    number,
+                    format!(
+                        "key point {number}: resolution {raw_resolution}; allowed 0 (shared) to 512"
+                    ),
+                )
+            })?;
         key_points.push(KeyPoint {
             master: i64::from(dword(devices, base, at)),
             slave: i64::from(dword(devices, base, at + 2)),
@@ -383,6 +418,7 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
             code: CODE_SECTION_COUNT,
             message: format!("{} table points; a DECAM table holds 2-512", points.len()),
             position: 0,
+            result_in_table: false,
         });
     }
     let end = u32::from(base) + u32::from(TABLE_START) + 4 * points.len() as u32;
@@ -394,6 +430,7 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
                 points.len()
             ),
             position: 0,
+            result_in_table: false,
         });
     }
     let mut words = Vec::with_capacity(points.len());
@@ -403,6 +440,7 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
                 code: CODE_TABLE,
                 message: format!("table point {i} does not fit 32-bit registers"),
                 position: u16::try_from(i).unwrap_or(u16::MAX),
+                result_in_table: false,
             });
         };
         words.push((m, s));

@@ -4,18 +4,16 @@
 //! A scan sets the run flags (M8000 on, M8001 off, M8002 on and M8003 off in
 //! the first scan only) and the clocks M8011–M8014, executes the program top
 //! to bottom, and reports each operation error the FX way: its code in D8067
-//! and M8067 on. Both stay until the PLC is restarted (a new [`Plc`]), so a
-//! program can test M8067 at any later scan.
+//! and M8067 on, as the instruction fails (a later rung of the same scan
+//! sees it). Both stay until the PLC is restarted (a new [`Plc`]) or the
+//! program resets them, so a program can test M8067 at any later scan.
 
 use crate::decam::{Decam, DecamOperands, MasterOperand};
 use crate::devices::{Device, Devices};
 use crate::hardware::Hardware;
 use crate::il::{Instruction, MasterSpec, ParseError, Program};
 use crate::interpreter::{Interpreter, LineError, Machine};
-use crate::special::{
-    D_OPERATION_ERROR, M_CLOCKS, M_FIRST_SCAN, M_NOT_FIRST_SCAN, M_NOT_RUNNING, M_OPERATION_ERROR,
-    M_RUNNING,
-};
+use crate::special::{M_CLOCKS, M_FIRST_SCAN, M_NOT_FIRST_SCAN, M_NOT_RUNNING, M_RUNNING};
 
 /// A PLC with a program loaded, in RUN.
 pub struct Plc {
@@ -136,13 +134,8 @@ impl Plc {
             decams: &mut self.decams,
             now_us: self.now_us,
         };
+        // The interpreter writes D8067/M8067 as each instruction fails.
         let errors = self.interpreter.scan(&self.program, &mut machine);
-        if let Some(last) = errors.last() {
-            let _ = self
-                .devices
-                .set_word(D_OPERATION_ERROR, last.error.code as i16);
-            let _ = self.devices.set_m(M_OPERATION_ERROR, true);
-        }
         self.scans += 1;
         errors
     }

@@ -125,9 +125,10 @@ impl View {
             Self::Bit(_) => None,
         };
         let out_of_range = || {
+            // Name the largest count that fits: "X0:257 runs past" read as if
+            // the user had typed 257.
             ViewError(format!(
-                "{self}:{} runs past the end of the device range",
-                u32::from(k) + 1
+                "{self}:COUNT runs past the end of the device range: at most {k} from {self}"
             ))
         };
         let next = next.ok_or_else(out_of_range)?;
@@ -310,6 +311,14 @@ mod tests {
         assert!(View::parse("D8511").unwrap().nth(1).is_err());
         assert!(View::parse("DD8509").unwrap().nth(1).is_err());
         assert!(View::parse("C255").unwrap().nth(1).is_err());
+    }
+
+    #[test]
+    fn nth_past_the_end_names_the_largest_count() {
+        // `--dump X0:300` used to say "X0:257 runs past", a count nobody typed.
+        let message = View::parse("X0").unwrap().nth(256).unwrap_err().to_string();
+        assert!(message.contains("at most 256 from X0"), "{message}");
+        assert!(!message.contains("257"), "{message}");
     }
 
     #[test]

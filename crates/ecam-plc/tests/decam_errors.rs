@@ -196,3 +196,67 @@ fn a_start_edge_while_the_block_is_bad_is_ignored() {
     r.tick(0);
     assert!(r.cam.is_running());
 }
+
+#[test]
+fn sync_terminal_on_the_cams_own_outputs_is_6781_and_leaves_them_alone() {
+    // The rig's cam drives Y0 (pulses) and Y4 (direction). A sync terminal
+    // on either would overwrite that output's level with the sync signal.
+    for own in [0i16, 4] {
+        let mut r = Rig::new(GOOD);
+        r.start(1);
+        r.run_to(300, 10);
+        r.set(8, own);
+        r.set_d(9, 0);
+        r.set_d(11, 1_000_000);
+        r.set(4, 1);
+        r.scan();
+        assert_eq!(last_code(&r), Some(6781), "sync on Y{own}");
+        assert_eq!(r.reg(2), 6781);
+        assert!(r.cam.is_running(), "the running cam is left unchanged");
+        r.run_to(400, 10);
+        assert_eq!(r.pulses(), 400);
+        // Corrected to Y7: accepted, and Y7 shows the window.
+        r.set(8, 7);
+        r.scan();
+        assert_eq!(r.reg(2), 0);
+        r.run_to(500, 10);
+        assert!(r.y(7));
+    }
+}
+
+#[test]
+fn a_cam_the_engine_must_stop_shows_an_error_not_a_completed_cycle() {
+    // Noncyclic forever (offset 14 = 0xFFFF), slave zoom 65535:1, a steep
+    // 1-count table: the commanded slave position leaves the 64-bit range
+    // after about 65000 master counts, and the engine stops the cam.
+    let mut r = Rig::new(&[(0, 0), (1, i32::MAX)]);
+    r.set(3, 1 << 3); // slave zoom
+    r.set(23, 1); // denominator
+    r.set(24, -1); // numerator 65535
+    r.set(14, -1); // 0xFFFF: forever
+    r.start(2);
+    assert!(r.cam.is_running());
+    r.run(200, 1000);
+    assert!(!r.cam.is_running(), "the engine stopped the cam");
+    assert!(r.flag(3), "bit 3: something is error, E-cam stopped");
+    assert!(!r.flag(9), "not a completed cycle");
+    assert!(!r.flag(0), "not re-armed");
+    assert!(
+        r.errors
+            .iter()
+            .any(|e| e.code == 6781 && e.message.contains("overflow")),
+        "{:?}",
+        r.errors
+    );
+    // The fault is reported once, not every scan after.
+    let reported = r.errors.len();
+    r.run(50, 0);
+    assert_eq!(r.errors.len(), reported);
+    // A new start clears it.
+    r.set(5, 0);
+    r.run(10, 0);
+    r.set_table(GOOD);
+    r.set(3, 0);
+    r.start(2);
+    assert!(!r.flag(3));
+}

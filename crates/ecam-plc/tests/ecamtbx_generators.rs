@@ -201,6 +201,45 @@ fn k2_parameter_errors() {
 }
 
 #[test]
+fn k2_key_point_resolution_error_names_the_key_point() {
+    // A key point's resolution above 512 used to leave S0+1 at 0.
+    let mut dev = Devices::new();
+    key_point_block(&mut dev, 100, K2_CASE);
+    ecamtbx::execute(&mut dev, P, 2, T, R).unwrap();
+    let before = table(&dev);
+    dev.set_word(P + 8 + 6 * 3 + 5, 513).unwrap(); // resolution of key point 4
+    let err = ecamtbx::execute(&mut dev, P, 2, T, R).unwrap_err();
+    assert_eq!(err.code, 6781);
+    assert!(err.message.contains("key point 4"), "{}", err.message);
+    assert_eq!(dev.word(P + 1).unwrap(), 4, "S0+1: the key point at fault");
+    assert_eq!(dev.word(R).unwrap(), -6781);
+    assert_eq!(table(&dev), before, "the previous table is kept");
+}
+
+#[test]
+fn a_result_register_inside_the_table_is_refused_and_the_old_table_kept() {
+    // D2 = D1 + 50 (point 2's slave): the result used to overwrite the table
+    // it had just written.
+    let mut dev = Devices::new();
+    key_point_block(&mut dev, 100, K2_CASE);
+    ecamtbx::execute(&mut dev, P, 2, T, R).unwrap();
+    let before = table(&dev);
+    let inside = T + 50;
+    let err = ecamtbx::execute(&mut dev, P, 2, T, inside).unwrap_err();
+    assert_eq!(err.code, 6781);
+    assert!(err.message.contains("inside the table"), "{}", err.message);
+    assert_eq!(
+        table(&dev),
+        before,
+        "old table intact, D2 not written into it"
+    );
+    // Just past the new table's last word is fine.
+    let after = T + 40 + 4 * 100;
+    ecamtbx::execute(&mut dev, P, 2, T, after).unwrap();
+    assert_eq!(dev.word(after).unwrap(), 100);
+}
+
+#[test]
 fn bad_parameters_give_negative_results() {
     let mut dev = Devices::new();
     assert_eq!(

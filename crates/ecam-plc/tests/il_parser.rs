@@ -184,3 +184,40 @@ fn branches_after_mpp_may_open_blocks() {
     let src = "LD X0\nMPS\nAND X1\nOUT Y1\nMPP\nLD X2\nOR X3\nANB\nOUT Y2\nLD X4\nOUT Y3\n";
     assert!(parse(src, "t.il").is_ok());
 }
+
+#[test]
+fn an_mps_never_popped_is_refused_at_its_line() {
+    // Accepted silently before: the branch point was left open to END.
+    assert_eq!(
+        error("LD X0\nMPS\nAND X1\nOUT Y0\nMRD\nOUT Y1\nEND\n"),
+        "prog.il:2: MPS is never closed: expected an MPP for its last branch"
+    );
+    assert!(
+        error("LD X0\nMPS\nOUT Y0\nMPS\nOUT Y1\nMPP\nOUT Y2\n")
+            .starts_with("prog.il:2: MPS is never closed")
+    );
+}
+
+#[test]
+fn a_16_bit_counter_refuses_a_negative_set_value() {
+    // K-1 made the contact of C5 on before the first count.
+    assert!(
+        error("LD X0\nOUT C5 K-1\n")
+            .starts_with("prog.il:2: OUT C5 operand 2: set value -1 is out of range")
+    );
+    assert!(error("LD X0\nOUT C5 HFFFF\n").contains("out of range for a 16-bit counter"));
+    // 32-bit counters count both ways: a negative set value is fine.
+    assert!(parse("LD X0\nOUT C200 K-1\n", "t.il").is_ok());
+    assert!(parse("LD X0\nOUT C5 K0\n", "t.il").is_ok());
+}
+
+#[test]
+fn a_utf8_byte_order_mark_and_crlf_line_ends_are_accepted() {
+    // "unknown instruction `\u{feff}LD`" before.
+    let program = parse("\u{feff}LD M8000\r\nMOV K5 D0\r\nEND\r\n", "t.il").unwrap();
+    assert_eq!(program.statements.len(), 2);
+    assert!(matches!(
+        program.statements[0].instruction,
+        Instruction::Load(..)
+    ));
+}

@@ -228,6 +228,26 @@ fn special_relays_and_operation_errors() {
 }
 
 #[test]
+fn m8067_is_set_when_the_instruction_fails_so_later_rungs_see_it() {
+    // Set only at the end of the scan before: the rung after the failing
+    // PLSY missed it, and a program's RST M8067 later in the scan was undone.
+    let mut p = plc("LD X0\nPLSY D0 K10 Y0\nLD M8067\nOUT Y7\nLD X1\nRST M8067\n");
+    p.devices_mut().set_word(0, -1).unwrap();
+    set(&mut p, "X0", true);
+    p.scan();
+    assert!(bit(&p, "Y7"), "the same scan sees M8067");
+    set(&mut p, "X0", false);
+    set(&mut p, "X1", true);
+    p.scan();
+    assert_eq!(p.devices().m(8067), Ok(false), "the program's reset holds");
+    assert_eq!(
+        p.devices().word(8067),
+        Ok(6705),
+        "D8067 keeps the last code"
+    );
+}
+
+#[test]
 fn counters_count_coil_edges_and_reset() {
     let mut p = plc(
         "LD X0\nOUT C0 K3\nLD C0\nOUT Y0\nLD X1\nRST C0\nLD X0\nOUT C200 K-2\nLD M8000\nMOV C200 D0\n",
@@ -319,6 +339,16 @@ fn wire_feeds_the_high_speed_counter() {
         !bit(&p, "X0"),
         "a wire feeds the counter, it does not toggle X0"
     );
+}
+
+#[test]
+fn the_same_wire_twice_counts_each_pulse_once() {
+    // `--wire Y1:X0 --wire Y1:X0` used to double every count.
+    let mut p = plc("LD M8000\nOUT C231 K2147483647\nDPLSY K20000 K500 Y1\n");
+    p.hardware_mut().add_wire(Wire::parse("Y1:X0").unwrap());
+    p.hardware_mut().add_wire(Wire::parse("Y1:X0").unwrap());
+    run(&mut p, Timing::default(), RunLength::Millis(100), |_| {}).unwrap();
+    assert_eq!(p.devices().counter(231), Ok(500));
 }
 
 #[test]

@@ -44,6 +44,17 @@ fn check_i32(what: &'static str, value: i64) -> Result<i64, PmdError> {
         })
 }
 
+/// A position or offset as the processor's 32-bit register holds it.
+///
+/// Document 002: "GetCam ... return[s] a signed 32 bit value", and the
+/// position registers are 32 bits wide. The face keeps positions unwrapped
+/// (an incremental cam may run past 2^31 counts, and a cam input must not
+/// jump there), and reports them the way the device does: wrapped to a
+/// signed 32-bit value, like any 32-bit counter.
+fn register_value(value: i64) -> i64 {
+    i64::from(value as i32)
+}
+
 impl MotionProcessor {
     /// A processor with `count` axes (clamped to 1..=[`MAX_AXES`]).
     pub fn with_axes(count: u8) -> Self {
@@ -271,7 +282,8 @@ impl MotionProcessor {
         a.cam.set(param, value, count)
     }
 
-    /// `GetCam param`.
+    /// `GetCam param`; positions and offsets come back as signed 32-bit
+    /// register values (wrapped, as on the device).
     ///
     /// # Errors
     /// Axis not in cam mode.
@@ -280,7 +292,7 @@ impl MotionProcessor {
         if a.mode != ProfileMode::ElectronicCam {
             return Err(PmdError::NotInCamMode { axis });
         }
-        Ok(a.cam.get(param))
+        Ok(register_value(a.cam.get(param)))
     }
 
     // ----- breakpoints and events -----
@@ -427,20 +439,20 @@ impl MotionProcessor {
 
     // ----- status -----
 
-    /// `GetCommandedPosition`.
+    /// `GetCommandedPosition`, as the 32-bit register shows it (wrapped).
     ///
     /// # Errors
     /// Unknown axis.
     pub fn commanded_position(&self, axis: u8) -> Result<i64, PmdError> {
-        Ok(self.axis(axis)?.commanded)
+        Ok(register_value(self.axis(axis)?.commanded))
     }
 
-    /// `GetActualPosition`.
+    /// `GetActualPosition`, as the 32-bit register shows it (wrapped).
     ///
     /// # Errors
     /// Unknown axis.
     pub fn actual_position(&self, axis: u8) -> Result<i64, PmdError> {
-        Ok(self.axis(axis)?.actual)
+        Ok(register_value(self.axis(axis)?.actual))
     }
 
     /// `GetActivityStatus`: bit 10 in motion; bits 15:13 = 1 while the cam is active.
@@ -604,8 +616,14 @@ impl MotionProcessor {
         a.cam.output_offset = out.output_offset;
         a.cam.input_offset = out.input_offset;
         if !out.active {
+            // A cam the engine had to stop (overflow) did not complete its
+            // motion: flag it as the MotionError it is, not as a normal end.
+            a.event_status |= if cam.fault().is_some() {
+                event_bit::MOTION_ERROR
+            } else {
+                event_bit::MOTION_COMPLETE
+            };
             a.running = None;
-            a.event_status |= event_bit::MOTION_COMPLETE;
         }
     }
 }

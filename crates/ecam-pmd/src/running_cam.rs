@@ -12,7 +12,8 @@
 //! commanded − table does that, so that is the sign used.
 
 use ecam_engine::{
-    AxisConfig, CamAxis, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind, TickInput,
+    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, SlaveAlign, StartMode, StopKind,
+    TickInput,
 };
 
 use crate::BufferCam;
@@ -25,6 +26,7 @@ const CYCLE_US: u32 = 100;
 /// A cam that was started by `StartCam`.
 pub struct RunningCam {
     axis: CamAxis<BufferCam>,
+    fault: Option<EngineError>,
 }
 
 /// What one cycle of a running cam produced.
@@ -66,7 +68,7 @@ impl RunningCam {
         axis.set_slave_position(commanded)
             .map_err(|e| e.to_string())?;
         axis.arm().map_err(|e| e.to_string())?;
-        Ok(Self { axis })
+        Ok(Self { axis, fault: None })
     }
 
     /// Runs one processor cycle with the cam input `input`.
@@ -78,12 +80,21 @@ impl RunningCam {
             dt_us: CYCLE_US,
             output_enabled: true,
         });
+        if out.fault.is_some() {
+            self.fault = out.fault;
+        }
         CamCycle {
             commanded: out.slave,
             output_offset: out.output_offset,
             input_offset: out.input_offset,
             active: out.state.is_active(),
         }
+    }
+
+    /// The runtime fault that stopped this cam (e.g. an output past the
+    /// 64-bit range), if the engine had to stop it.
+    pub fn fault(&self) -> Option<EngineError> {
+        self.fault
     }
 
     /// Abrupt stop: the commanded position stays where it is.

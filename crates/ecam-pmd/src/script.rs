@@ -174,6 +174,22 @@ impl Args<'_> {
         if let Some(&v) = self.symbols.get(word) {
             return Ok(v);
         }
+        // A number too big for any register ("Tick 18446744073709551615") is
+        // still a number: say it is out of range, not that it is unknown.
+        let digits = word.trim_start_matches(['-', '+']);
+        let hex = digits
+            .strip_prefix("0x")
+            .or_else(|| digits.strip_prefix("0X"));
+        let numeric = match hex {
+            Some(h) => !h.is_empty() && h.bytes().all(|b| b.is_ascii_hexdigit()),
+            None => !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()),
+        };
+        if numeric {
+            return Err(self.error(format!(
+                "{}: {word} is out of range: numbers must fit a signed 64-bit value (and the command's own range)",
+                self.cmd
+            )));
+        }
         let known: Vec<&str> = names.iter().map(|(n, _)| *n).collect();
         let hint = if known.is_empty() {
             String::from("give a number (decimal or 0x hex) or a name set by `Define NAME VALUE`")
@@ -413,6 +429,14 @@ mod tests {
         assert!(p.parse_line("Tick -1").is_err());
         assert!(p.parse_line("Update now").is_err());
         assert!(p.parse_line("Define 9x 1").is_err());
+        // Too big for 64 bits: a number out of range, not an unknown name.
+        let e = p.parse_line("Tick 18446744073709551615").unwrap_err();
+        assert!(e.message.contains("out of range"), "{e}");
+        assert!(!e.message.contains("not a number"), "{e}");
+        let e = p
+            .parse_line("WriteBuffer 0 0x1FFFFFFFFFFFFFFFF")
+            .unwrap_err();
+        assert!(e.message.contains("out of range"), "{e}");
     }
 
     #[test]

@@ -369,3 +369,80 @@ GetCam 0
     assert_eq!(errors[0].0, 3);
     assert_eq!(values, [0, 8, 100, 40, 0x0102, 0, 0, 0]);
 }
+
+#[test]
+fn positions_and_offsets_read_back_as_signed_32_bit_registers() {
+    // An incremental cam (stroke 10^9 per table cycle) driven by time runs
+    // past 2^31. GetCam returns "a signed 32 bit value" (document 002) and
+    // the position registers are 32 bits: the readings wrap like the
+    // device's registers, while the motion itself stays continuous.
+    let script = "
+SetBufferLength 0 2
+WriteBuffer 0 0
+WriteBuffer 0 1000000000
+SetProfileMode 8
+Update
+SetCam CamBufferID 0
+SetCam CamCounts 2
+SetCam CamSource 0x0200
+SetEventAction 0 9
+Tick 6
+GetCommandedPosition
+GetActualPosition
+GetCam CamOutputOffset
+Tick 1
+GetCommandedPosition
+";
+    let (values, errors) = run(script);
+    assert!(errors.is_empty(), "{errors:?}");
+    let wrap = |v: i64| i64::from(v as i32);
+    // Started at time 0 (input 0); 6 cycles = 3 table cycles = 3e9 counts.
+    assert_eq!(values[0], wrap(3_000_000_000));
+    assert_eq!(values[1], wrap(3_000_000_000));
+    assert_eq!(values[2], wrap(3_000_000_000), "offset after three wraps");
+    assert_eq!(values[3], wrap(3_500_000_000));
+    for v in values {
+        assert!(
+            i32::try_from(v).is_ok(),
+            "{v} is not a 32-bit register value"
+        );
+    }
+}
+
+#[test]
+fn a_cam_the_engine_must_stop_raises_motion_error_not_motion_complete() {
+    // Axis 1 runs an incremental cam on time (2^32 - 1 counts per 2 cycles);
+    // axis 0 cams on axis 1's commanded position through the same steep
+    // table, so its output leaves the 64-bit range within a few cycles.
+    let script = "
+SetBufferLength 0 2
+WriteBuffer 0 -2147483648
+WriteBuffer 0 2147483647
+Axis 1
+SetProfileMode 8
+Update
+SetCam CamBufferID 0
+SetCam CamCounts 2
+SetCam CamSource 0x0200
+SetEventAction 0 9
+Axis 0
+SetProfileMode 8
+Update
+SetCam CamBufferID 0
+SetCam CamCounts 2
+SetCam CamSource 0x0101
+SetEventAction 0 9
+Tick 10
+GetActivityStatus
+GetEventStatus
+";
+    let (values, errors) = run(script);
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values[0] >> 13, 0, "the cam is no longer active");
+    assert_ne!(
+        values[1] & i64::from(event_bit::MOTION_ERROR),
+        0,
+        "MotionError"
+    );
+    assert_eq!(values[1] & i64::from(event_bit::MOTION_COMPLETE), 0);
+}

@@ -14,6 +14,8 @@
 //! - `input_offset`, `output_offset`: document 002's CamInputOffset and
 //!   CamOutputOffset at the end; `fault`: the engine's runtime fault, if any.
 
+use std::io::Write;
+
 use std::path::PathBuf;
 
 use ecam_engine::{CamAxis, TickInput};
@@ -88,7 +90,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let (Some(plot), Some(rows)) = (&args.plot, plotted) {
         crate::plot::draw(&rows.figure(&args.scenario), plot)?;
     }
-    println!("{}", serde_json::to_string(&summary)?);
+    // A handle, not `println!`: a closed pipe is an error, not a panic.
+    writeln!(
+        std::io::stdout().lock(),
+        "{}",
+        serde_json::to_string(&summary)?
+    )?;
     Ok(())
 }
 
@@ -99,8 +106,18 @@ fn simulate(
     mut record: impl FnMut(&Row, &ecam_engine::TickOutput, bool) -> anyhow::Result<()>,
 ) -> anyhow::Result<Summary> {
     let curve: &dyn ecam_core::CamCurve = scenario.curve.as_ref();
-    let mut axis = CamAxis::new(curve, scenario.config)
-        .map_err(|e| anyhow::anyhow!("the engine refuses the scenario: {e}"))?;
+    let mut axis = CamAxis::new(curve, scenario.config).map_err(|e| {
+        // Name the numbers the engine compared, so the user sees what to change.
+        let turn = match scenario.config.single_turn {
+            Some(t) => format!(", single_turn = {t}"),
+            None => String::new(),
+        };
+        anyhow::anyhow!(
+            "the engine refuses the scenario: {e} (table master {} .. {}{turn})",
+            curve.master_first(),
+            curve.master_last()
+        )
+    })?;
     axis.set_slave_position(scenario.slave_start)
         .map_err(|e| anyhow::anyhow!("cannot set the start slave position: {e}"))?;
     axis.arm()

@@ -4,6 +4,7 @@
 //! - `ecam table show FILE`
 //! - `ecam table plot FILE -o OUT.svg|.png`
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
@@ -139,6 +140,9 @@ struct ShowJson<'a> {
 }
 
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
+    // Written through a handle, not `println!`, so a closed pipe
+    // (`ecam table show t.csv | head -1`) is an error, not a panic.
+    let mut out = std::io::stdout().lock();
     let file = table_file::read(&args.file)?;
     let summary = Summary::of(&file.table);
     let points = file.table.points();
@@ -157,34 +161,38 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
             sync: file.sync,
             summary: &summary,
         };
-        println!("{}", serde_json::to_string(&json)?);
+        writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
     }
-    println!("file:              {}", args.file.display());
+    writeln!(out, "file:              {}", args.file.display())?;
     if let Some(generator) = &file.generator {
-        println!("generator:         {generator}");
+        writeln!(out, "generator:         {generator}")?;
     }
-    println!("points:            {}", points.len());
-    println!("sections:          {}", summary.sections);
-    println!(
+    writeln!(out, "points:            {}", points.len())?;
+    writeln!(out, "sections:          {}", summary.sections)?;
+    writeln!(
+        out,
         "master:            {} .. {} (span {})",
         first.master, last.master, summary.master_span
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "slave:             {} .. {} (stroke {}, range {} .. {})",
         first.slave, last.slave, summary.stroke, summary.slave_min, summary.slave_max
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "peak velocity:     {} pulses/count",
         short(summary.peak_velocity)
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "peak acceleration: {} pulses/count²",
         short(summary.peak_acceleration)
-    );
-    println!("continuity:        {}", summary.continuity);
+    )?;
+    writeln!(out, "continuity:        {}", summary.continuity)?;
     if let Some((lo, hi)) = file.sync {
-        println!("sync zone:         master {lo} .. {hi}");
+        writeln!(out, "sync zone:         master {lo} .. {hi}")?;
     }
     Ok(())
 }

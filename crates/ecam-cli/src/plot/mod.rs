@@ -284,7 +284,15 @@ where
             mesh.x_labels(0).y_labels(0);
         }
         mesh.draw().map_err(err)?;
+        // Anything far outside the axes is pulled in to just beyond them:
+        // the plotting library maps coordinates to pixels in `i32` and
+        // overflows (a panic) on values many spans away; the drawing area
+        // still clips what lies outside.
+        let (x_span, y_span) = (x_hi - x_lo, y_hi - y_lo);
+        let near_x = move |x: f64| x.clamp(x_lo - x_span, x_hi + x_span);
+        let near_y = move |y: f64| y.clamp(y_lo - y_span, y_hi + y_span);
         for &(lo, hi) in &figure.shaded {
+            let (lo, hi) = (near_x(lo), near_x(hi));
             chart
                 .draw_series(std::iter::once(Rectangle::new(
                     [(lo, y_lo), (hi, y_hi)],
@@ -299,7 +307,8 @@ where
                 .iter()
                 .copied()
                 .zip(trace.y.iter().copied())
-                .filter(|(x, y)| x.is_finite() && y.is_finite());
+                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .map(|(x, y)| (near_x(x), near_y(y)));
             let drawn = match trace.style {
                 Style::Line { width } => chart
                     .draw_series(LineSeries::new(points, color.stroke_width(width)))
@@ -380,8 +389,17 @@ fn range_of(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if lo > hi { (0.0, 0.0) } else { (lo, hi) }
 }
 
+/// Largest axis bound drawn. Beyond it the span (and the tick spacing the
+/// plotting library derives from it) overflows to infinity, and the library
+/// then loops forever looking for ticks; points beyond it are clipped.
+const AXIS_LIMIT: f64 = 1e300;
+
 /// Adds 5 % head room, and gives a flat line a visible band.
 fn padded((lo, hi): (f64, f64)) -> (f64, f64) {
+    let (lo, hi) = (
+        lo.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+        hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+    );
     let span = hi - lo;
     let pad = if span > 1e-12 * hi.abs().max(lo.abs()).max(1e-300) {
         span * 0.05
@@ -395,6 +413,15 @@ fn padded((lo, hi): (f64, f64)) -> (f64, f64) {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn huge_values_give_a_finite_axis() {
+        let (lo, hi) = padded(range_of([-1e308, 1e308].into_iter()));
+        assert!(lo.is_finite() && hi.is_finite() && hi > lo);
+        assert!((hi - lo).is_finite());
+        let (lo, hi) = padded((f64::MAX, f64::MAX));
+        assert!(lo.is_finite() && hi.is_finite() && hi > lo);
+    }
 
     #[test]
     fn format_follows_extension() {

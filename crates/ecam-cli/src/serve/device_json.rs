@@ -126,6 +126,17 @@ pub fn parse_sets(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
         }
         views.push(view);
     }
+    // Two keys that reach the same word or bit (`D300` and `d300`, or `DD100`
+    // and `D101`) would leave which value wins to key order: refuse them.
+    let mut written = HashSet::new();
+    for &(slot, _) in batch.writes() {
+        if !written.insert(slot) {
+            return Err(format!(
+                "{} is set more than once in this request (two names reach it); set each device once",
+                slot.device()
+            ));
+        }
+    }
     Ok((batch, views))
 }
 
@@ -185,6 +196,9 @@ mod tests {
             json!({"Q0": 1}),
             json!({}),
             json!([1]),
+            json!({"D300": 5, "d300": 6}),
+            json!({"DD100": 1, "D101": 5}),
+            json!({"X17": 1, "x017": 0}),
         ] {
             assert!(parse_sets(&body).is_err(), "{body}");
         }

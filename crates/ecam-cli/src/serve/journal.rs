@@ -182,6 +182,13 @@ impl Journal {
     /// # Errors
     /// File errors, or a corrupt record (with its file and line).
     pub fn open(dir: &Path) -> Result<(Self, Recovery), JournalError> {
+        if dir.exists() && !dir.is_dir() {
+            // create_dir_all would only say "File exists".
+            return Err(JournalError::Io {
+                path: dir.to_path_buf(),
+                source: io::Error::other("exists but is not a directory: give a directory path"),
+            });
+        }
         fs::create_dir_all(dir).map_err(io_error(dir))?;
         let snapshot_path = dir.join(SNAPSHOT_FILE);
         let journal_path = dir.join(JOURNAL_FILE);
@@ -367,6 +374,17 @@ mod tests {
         assert_eq!(recovery.replayed, 0);
         assert_eq!(again.persisted(), journal.persisted());
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_file_given_as_the_state_directory_says_so() {
+        let path = scratch("not-a-dir");
+        fs::create_dir_all(path.parent().unwrap()).unwrap();
+        let _ = fs::remove_dir_all(&path);
+        fs::write(&path, "").unwrap();
+        let message = Journal::open(&path).err().unwrap().to_string();
+        assert!(message.contains("is not a directory"), "{message}");
+        fs::remove_file(&path).unwrap();
     }
 
     #[test]

@@ -115,7 +115,7 @@ pub(crate) fn sample(
 /// add up to exactly `spare`, so a table gets the resolution asked for
 /// (P7 is the number of points) unless whole-count masters coincide.
 fn ramp_shares(lens: impl Iterator<Item = f64>, total: f64, spare: usize) -> Vec<usize> {
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return lens.map(|_| 0).collect();
     }
     let exact: Vec<f64> = lens.map(|len| spare as f64 * len / total).collect();

@@ -7,6 +7,7 @@ use crate::{CamCurve, Cursor, Kinematics, TableError};
 
 /// One point of a point table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct CamPoint {
     /// Master position, in master counts.
     pub master: i64,
@@ -33,7 +34,9 @@ pub struct PointTable {
 }
 
 /// The unchecked JSON shape of a point table; validated on the way in.
+// Unknown keys are refused: a misspelt key would otherwise vanish silently.
 #[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RawPoints {
     points: Vec<CamPoint>,
 }

@@ -18,7 +18,10 @@ pub const MAX_SEGMENT_RESOLUTION: u16 = 512;
 
 /// One segment: from the previous key point to (`master_end`, `slave_end`)
 /// along `law`.
+// Unknown keys are refused: a misspelt `resolution` would otherwise silently
+// fall back to sharing the total.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Segment {
     /// Master position at the end of the segment (counts).
     pub master_end: i64,
@@ -80,6 +83,7 @@ pub struct SegmentProfile {
 }
 
 #[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RawProfile {
     start: CamPoint,
     segments: Vec<Segment>,

@@ -34,6 +34,7 @@ pub struct UniformTable {
 }
 
 #[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RawUniform {
     values: Vec<i64>,
     cam_counts: i64,

@@ -117,6 +117,12 @@ pub struct Decam {
     pulse_delayed: bool,
     set_latched: u16,
     clear_latched: u16,
+    /// The engine stopped the cam on a runtime fault (e.g. a slave position
+    /// past 64 bits): flag bit 3 ("something is error, E-cam stop running")
+    /// until the next start.
+    runtime_fault: Option<ecam_engine::EngineError>,
+    /// The fault not yet returned to the scan (D8067/M8067).
+    fault_to_report: Option<ecam_engine::EngineError>,
 }
 
 /// What a start fixed until the next stop.
@@ -153,6 +159,8 @@ impl Decam {
             pulse_delayed: false,
             set_latched: 0,
             clear_latched: 0,
+            runtime_fault: None,
+            fault_to_report: None,
         }
     }
 
@@ -197,9 +205,10 @@ impl Decam {
             offsets::TABLE as i16,
         );
         let block = Block::new(devices, base);
+        let operands = self.operands;
         let checked = block
             .start_setup()
-            .and_then(|setup| Ok((setup, block.live()?)));
+            .and_then(|setup| Ok((setup, live_settings(&block, &operands)?)));
         let result = match checked {
             Ok((setup, live)) => {
                 self.setup = Some(setup);
@@ -216,7 +225,13 @@ impl Decam {
         let shown = self.error.as_ref().map_or(0, BlockError::register_value);
         let _ = devices.set_word(self.operands.reg(offsets::ERROR), shown as i16);
         self.write_flags(devices);
-        result
+        match (result, self.fault_to_report.take()) {
+            (Ok(()), Some(fault)) => Err(OperationError::new(
+                fault.code(),
+                format!("DECAM block D{base}: {fault}"),
+            )),
+            (result, _) => result,
+        }
     }
 
     /// One hardware tick of `dt_us` ending at `now_us`.
@@ -239,7 +254,7 @@ impl Decam {
             return;
         }
         let master = self.master.read(devices, dt_us);
-        if let Ok(live) = Block::new(devices, self.operands.block).live() {
+        if let Ok(live) = live_settings(&Block::new(devices, self.operands.block), &self.operands) {
             self.live = Some(live);
         }
         let level = devices.bit(self.operands.start).unwrap_or(false);
@@ -301,6 +316,7 @@ impl Decam {
         let external_start = setup.external_start;
         self.gate.started(mode);
         self.cycle_done = false;
+        self.runtime_fault = None;
         self.set_latched |= flags::INIT_DONE;
         self.clear_latched &= !flags::INIT_DONE;
         self.running = Some(Running {
@@ -458,6 +474,10 @@ impl Decam {
         if out.events.cycle_completed {
             self.set_latched |= flags::CYCLE_COMPLETE;
         }
+        if let Some(fault) = out.fault {
+            self.runtime_fault = Some(fault);
+            self.fault_to_report = Some(fault);
+        }
         self.pulse_delayed = out.pulse_delayed;
         let remaining = match out.state {
             AxisState::Armed | AxisState::Delaying => {
@@ -488,13 +508,16 @@ impl Decam {
             _ => self.sync.release(devices),
         }
         if matches!(out.state, AxisState::Finished | AxisState::Idle) {
+            // A cam the engine had to stop did not finish: no bit 9, no re-arm.
+            let faulted = out.fault.is_some();
             let rearm = running.mode == CamMode::Noncyclic
                 && running.external_start
-                && !running.stop_requested;
+                && !running.stop_requested
+                && !faulted;
             let noncyclic = running.mode == CamMode::Noncyclic;
             self.axis = None;
             hardware.claim_output(output, false);
-            self.cycle_done = true;
+            self.cycle_done = !faulted;
             self.in_sync = false;
             self.sync.release(devices);
             if noncyclic {
@@ -539,6 +562,9 @@ impl Decam {
         if let Some(e) = &self.error {
             value |= e.flag_bits();
         }
+        if self.runtime_fault.is_some() {
+            value |= flags::ERROR;
+        }
         if self.pulse_delayed {
             value |= flags::PULSE_DELAYED;
         }
@@ -558,6 +584,25 @@ impl Decam {
         }
         let _ = devices.set_word(reg, value as i16);
     }
+}
+
+/// Offsets 4 and 8–12, plus the one rule that needs the operands: the sync
+/// terminal must not be the cam's own pulse (D1) or direction (D2) output,
+/// whose level the sync signal would overwrite.
+fn live_settings(block: &Block<'_>, operands: &DecamOperands) -> Result<LiveSettings, BlockError> {
+    let live = block.live()?;
+    if live.sync_enabled {
+        let sync = crate::devices::Device::Y(live.sync_output);
+        if sync == crate::devices::Device::Y(u16::from(operands.pulse_output))
+            || sync == operands.direction
+        {
+            return Err(BlockError::Parameter {
+                offset: offsets::SYNC_OUTPUT,
+                reason: "sync output is the cam's own pulse (D1) or direction (D2) output: use another Y",
+            });
+        }
+    }
+    Ok(live)
 }
 
 fn zoom(ratio: ZoomRatio) -> Zoom {

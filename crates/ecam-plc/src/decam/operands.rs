@@ -91,6 +91,13 @@ impl DecamOperands {
                 "DECAM direction output {direction} must be a Y output"
             )));
         }
+        // One terminal cannot carry both the pulse train and a direction level:
+        // the level written each tick would garble the pulses D8140… count.
+        if direction == Device::Y(u16::from(pulse_output)) {
+            return Err(parameter(format!(
+                "DECAM direction output {direction} is the pulse output D1 itself: use another Y"
+            )));
+        }
         Ok(Self {
             master,
             block,
@@ -160,6 +167,13 @@ mod tests {
                 Device::X(0),
                 0,
                 Device::M(1),
+            ),
+            DecamOperands::new(
+                MasterOperand::Counter(231),
+                0,
+                Device::X(0),
+                2,
+                Device::Y(2),
             ),
         ];
         for result in bad {

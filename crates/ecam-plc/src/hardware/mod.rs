@@ -43,9 +43,12 @@ impl Hardware {
         Self::default()
     }
 
-    /// Connects a pulse output to a counter input.
+    /// Connects a pulse output to a counter input. The same wire given twice
+    /// is still one connection: each pulse is counted once.
     pub fn add_wire(&mut self, wire: Wire) {
-        self.wires.push(wire);
+        if !self.wires.contains(&wire) {
+            self.wires.push(wire);
+        }
     }
 
     /// Keeps the busy flag (M8147..M8150) of `output` on while `busy`, even in

@@ -32,6 +32,9 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
         message,
     };
     let mut statements = Vec::new();
+    // Editors on Windows often save a UTF-8 byte-order mark; it is not part
+    // of the first mnemonic.
+    let source = source.strip_prefix('\u{feff}').unwrap_or(source);
     for line in lines(source) {
         let (mnemonic, operand_tokens) = match line.tokens.split_first() {
             Some(split) => split,
@@ -184,6 +187,15 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             let set_value = source("OUT", 1, set, width)?;
             if matches!(set_value, Source::Counter(_)) {
                 return Err(wrong("OUT", 1, set, "a K/H constant or a D register"));
+            }
+            // FX 16-bit counters count up to a set value of 0-32767; a
+            // negative one would make the contact on from the first scan.
+            if let (Width::Word, Source::Constant(v)) = (width, set_value) {
+                if v < 0 {
+                    return Err(format!(
+                        "OUT C{counter} operand 2: set value {v} is out of range for a 16-bit counter (K0 to K32767)"
+                    ));
+                }
             }
             Ok(Instruction::OutCounter {
                 counter: *counter,

@@ -28,6 +28,8 @@ pub(crate) fn is_output(instruction: &Instruction) -> bool {
 pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
     let mut blocks = 0usize;
     let mut pushed = 0usize;
+    // Lines of the MPS still open, to name the one never closed.
+    let mut open_mps: Vec<usize> = Vec::new();
     let mut after_output = true;
     for statement in statements {
         let line = statement.line;
@@ -65,6 +67,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
                     return Err((line, format!("MPS nested deeper than {MPS_DEPTH} levels")));
                 }
                 pushed += 1;
+                open_mps.push(line);
             }
             Instruction::Read => {
                 if pushed == 0 {
@@ -76,6 +79,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
                     return Err((line, "MPP without a matching MPS before it".into()));
                 }
                 pushed -= 1;
+                open_mps.pop();
             }
             Instruction::Nop => {}
             _ => {
@@ -93,6 +97,14 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
         if !matches!(instruction, Instruction::Nop) {
             after_output = is_output(instruction);
         }
+    }
+    // An MPS whose branch point is never popped leaves the rung unfinished:
+    // the FX programming tools refuse such a circuit, so do we.
+    if let Some(&line) = open_mps.last() {
+        return Err((
+            line,
+            "MPS is never closed: expected an MPP for its last branch".into(),
+        ));
     }
     Ok(())
 }

@@ -140,6 +140,16 @@ impl Interpreter {
                     applied::execute(other, power, memory, machine)
                 }
             };
+            if let Err(error) = &result {
+                // The FX way, at once: an instruction later in this scan can
+                // test M8067 (or reset it) and see this error.
+                let _ = machine
+                    .devices
+                    .set_word(crate::special::D_OPERATION_ERROR, error.code as i16);
+                let _ = machine
+                    .devices
+                    .set_m(crate::special::M_OPERATION_ERROR, true);
+            }
             if let Err(error) = result {
                 errors.push(LineError {
                     line: statement.line,
