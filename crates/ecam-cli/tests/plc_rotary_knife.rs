@@ -1,0 +1,75 @@
+//! A rotary knife built from the manual's parts: the ECAMTBX K100 demo table
+//! run by DECAM as a never-ending noncyclic cam (repeat count HFFFF), so the
+//! knife turns on by one revolution per cut and never jumps back.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::process::Command;
+
+const PROGRAM: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/plc/rotary_knife.il"
+);
+
+/// Feed pulses per cut and knife pulses per revolution of the demo.
+const CUT: i64 = 3183;
+const REVOLUTION: i64 = 1000;
+
+#[test]
+fn the_knife_turns_forward_cut_after_cut_and_the_counter_follows() {
+    let dir = std::env::temp_dir().join(format!("ecam-knife-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let trace = dir.join("trace.csv");
+    let out = Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(["plc", "run", PROGRAM, "--wire", "Y1:X0", "--ms", "2000"])
+        .args(["--dump", "D500", "--dump", "D2001", "--dump", "DD2019"])
+        .arg("--trace")
+        .arg(&trace)
+        .args(["--trace-dev", "DD2019", "--trace-dev", "DD8140"])
+        .args(["--trace-dev", "C231", "--trace-dev", "DD2027"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let dump: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(dump["D500"], 100, "ECAMTBX made the 100-point table");
+    let flags = dump["D2001"].as_i64().unwrap();
+    assert_eq!(flags & 0b1000, 0, "no error flag: {flags:#b}");
+
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let rows: Vec<Vec<i64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(rows.len() > 1900, "one row per 1 ms scan");
+    let mut previous = i64::MIN;
+    let mut revolutions_seen = 0;
+    for row in &rows {
+        let (slave, counter, master, in_cycle) = (row[1], row[2], row[3], row[4]);
+        assert_eq!(
+            slave, counter,
+            "D8140 equals the slave position at t={} us",
+            row[0]
+        );
+        assert!(
+            slave >= previous,
+            "the knife never turns back at t={} us",
+            row[0]
+        );
+        previous = slave;
+        assert!((0..CUT).contains(&in_cycle), "master in cycle {in_cycle}");
+        if master > 0 {
+            revolutions_seen = revolutions_seen.max(slave / REVOLUTION);
+        }
+    }
+    // About 2 s of feed at 10 kHz (the trace's last row is the last scan
+    // before the end): six whole cuts, so six whole knife revolutions.
+    let last = rows.last().unwrap();
+    assert!((19_900..=20_000).contains(&last[3]), "master {}", last[3]);
+    assert_eq!(revolutions_seen, 6);
+    assert!((6 * REVOLUTION..7 * REVOLUTION).contains(&last[1]));
+    std::fs::remove_dir_all(&dir).ok();
+}
