@@ -234,14 +234,17 @@ impl MotionProcessor {
     /// # Errors
     /// [`PmdError::InMotion`] when the mode would switch into or out of cam
     /// mode while the axis moves — unless the same `Update` stops it
-    /// abruptly first; then nothing (not even the stop) happens.
+    /// abruptly first. The mode then stays as it was (the change stays
+    /// pending), but a stop requested with it still takes effect.
     pub fn update(&mut self, axis: u8) -> Result<(), PmdError> {
         let a = self.axis_mut(axis)?;
         let switching = a.pending_mode != a.mode;
         let stops_now = a.pending_stop == StopMode::Abrupt && a.moving.is_none();
-        if switching && a.in_motion() && !stops_now {
-            return Err(PmdError::InMotion { axis });
-        }
+        // A mode change is refused in motion, but a stop requested in the same
+        // Update still takes effect: losing a stop because a mode change was
+        // also pending would leave the cam running against the user's intent.
+        // The refused mode stays pending for a later Update.
+        let refuse_switch = switching && a.in_motion() && !stops_now;
         match core::mem::take(&mut a.pending_stop) {
             StopMode::None => {}
             StopMode::Abrupt => Self::stop_abrupt(a),
@@ -250,6 +253,9 @@ impl MotionProcessor {
                     cam.stop_smooth();
                 }
             }
+        }
+        if refuse_switch {
+            return Err(PmdError::InMotion { axis });
         }
         if switching {
             a.mode = a.pending_mode;

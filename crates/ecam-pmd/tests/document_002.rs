@@ -446,3 +446,51 @@ GetEventStatus
     );
     assert_eq!(values[1] & i64::from(event_bit::MOTION_COMPLETE), 0);
 }
+
+#[test]
+fn a_smooth_stop_is_not_lost_when_a_mode_change_is_also_pending() {
+    use ecam_pmd::ScriptRunner;
+    let mut runner = ScriptRunner::new();
+    let script = "\
+SetBufferStart 1 0
+SetBufferLength 1 3
+WriteBuffer 1 0
+WriteBuffer 1 100
+WriteBuffer 1 200
+Axis 0
+SetProfileMode 8
+Update
+SetCam CamBufferID 1
+SetCam CamCounts 100
+SetCam CamSource 0x0001
+SetEventAction 0 9
+MoveTo 1 50 50
+Tick 50
+SetProfileMode 0
+SetStopMode 2
+Update
+MoveTo 1 150 100
+Tick 100
+GetCommandedPosition
+GetActivityStatus
+";
+    let lines: Vec<String> = runner
+        .run_script(script)
+        .iter()
+        .map(ecam_pmd::Report::to_json)
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("\"cmd\":\"Update\"") && l.contains("error")),
+        "the mode change is refused in motion: {lines:?}"
+    );
+    // The smooth stop still took effect: the cam stopped at the table end
+    // (input 100, output 200) although the master went on to 150.
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("GetCommandedPosition") && l.contains("\"value\":200")),
+        "{lines:?}"
+    );
+}
