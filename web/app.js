@@ -285,13 +285,19 @@ async function draw() {
         headers: { "Content-Type": "application/json" },
         body: JSON.stringify(body),
       });
-      drawAll(
-        table.master,
-        { s: table.slave, v: table.velocity, a: table.acceleration, j: table.jerk },
-        "master (counts)",
-        table.sync,
-        !table.exact_kinematics,
-      );
+      // Prefer the generator's exact design curve (dense samples); a plain
+      // table only has its points.
+      if (table.design) {
+        drawAll(table.design.master, table.design, "master (counts)", table.sync, false);
+      } else {
+        drawAll(
+          table.master,
+          { s: table.slave, v: table.velocity, a: table.acceleration, j: table.jerk },
+          "master (counts)",
+          table.sync,
+          !table.exact_kinematics,
+        );
+      }
       const entries = [["points", table.points]];
       for (const [k, v] of Object.entries(table.summary)) entries.push([k.replace(/_/g, " "), v]);
       if (table.sync) entries.push(["sync zone", table.sync[0] + " .. " + table.sync[1]]);

@@ -2,6 +2,7 @@
 //! tables from the generators of `ecam table gen` (same parameter names as
 //! its TOML `--params` files, same defaults: the documents' cases).
 
+use ecam_core::generator::design_curve::DesignCurve;
 use ecam_core::generator::key_points::{self, CurveType};
 use ecam_core::generator::{rotary_cut, s_curve};
 use ecam_core::table::Summary;
@@ -182,6 +183,21 @@ const fn curve_name(curve: CurveType) -> &'static str {
     }
 }
 
+/// Samples per piece of a design curve: enough for smooth ramps, and a
+/// step at a joint still shows as a vertical edge.
+const DESIGN_SAMPLES_PER_PIECE: usize = 24;
+
+fn design_samples(design: &DesignCurve) -> Value {
+    let samples = design.sample_pieces(DESIGN_SAMPLES_PER_PIECE);
+    json!({
+        "master": samples.iter().map(|(m, _)| *m).collect::<Vec<_>>(),
+        "s": samples.iter().map(|(_, k)| k.s).collect::<Vec<_>>(),
+        "v": samples.iter().map(|(_, k)| k.v).collect::<Vec<_>>(),
+        "a": samples.iter().map(|(_, k)| k.a).collect::<Vec<_>>(),
+        "j": samples.iter().map(|(_, k)| k.j).collect::<Vec<_>>(),
+    })
+}
+
 /// Runs a generator: `{"generator": "rotary-cut", "params": {...}}` →
 /// the table's points, velocity, acceleration and jerk at each point
 /// (`exact_kinematics`: from the exact curve, or else section slopes), the
@@ -222,6 +238,11 @@ pub fn generate_table(body: &Value) -> Result<Value, String> {
         // false: slopes of the table's straight sections, each holding
         // from its point to the next (see `crate::derivatives`).
         "exact_kinematics": exact,
+        // The exact curve the generator designed before rounding it into
+        // the table, sampled densely: a long section of the table (a dwell)
+        // would otherwise draw its end points' accelerations joined by a
+        // slope the motion never has.
+        "design": g.design.as_ref().map(design_samples),
         "sync": g.sync.map(|(lo, hi)| vec![lo, hi]),
         "outputs": outputs,
         "summary": {
@@ -288,6 +309,27 @@ mod tests {
                 assert_eq!(out[key].as_array().unwrap().len(), n, "{name} {key}");
             }
         }
+    }
+
+    #[test]
+    fn a_generated_table_carries_its_dense_design_curve() {
+        let v = generate_table(&json!({"generator": "rotary-cut", "params": {}})).unwrap();
+        let design = &v["design"];
+        let master: Vec<f64> = serde_json::from_value(design["master"].clone()).unwrap();
+        let a: Vec<f64> = serde_json::from_value(design["a"].clone()).unwrap();
+        assert!(master.len() >= 50, "{} samples", master.len());
+        // The default cut dwells between master 600 and 2600: the design's
+        // acceleration there is exactly zero, not a slope between points.
+        for (m, a) in master.iter().zip(&a) {
+            if (700.0..2500.0).contains(m) {
+                assert_eq!(*a, 0.0, "acceleration at master {m}");
+            }
+        }
+        let kp = generate_table(&json!({"generator": "keypoints", "params": {}})).unwrap();
+        assert!(
+            kp["design"].is_null(),
+            "key points are drawn from their exact points"
+        );
     }
 
     #[test]
