@@ -14,6 +14,15 @@
 //!   negated error code (−6781, −6782, −6783), and nothing else is written
 //!   (the previous table stays).
 //!
+//! The K0/K1 and K2 blocks get results written back (S-curve P8–P11 and P13
+//! at `S0 + 10 … S0 + 19`, K2 `S0` and `S0 + 1`). Every parameter is read
+//! and the whole table generated before anything is written, so a table
+//! that covers parameter words read them intact; but a write-back word
+//! inside the new table (`D1 + 38 …` its last point) would corrupt it, and
+//! is refused with 6781. On any failure no word of the previous table
+//! (`D1 + 38 …` as its point count says) is written: not D2, not a
+//! write-back.
+//!
 //! The generators themselves live in [`ecam_core::generator`]; this module
 //! only moves words in and out.
 //!
@@ -87,8 +96,9 @@ struct Failure {
     /// K2 "error parameter position" (`S0 + 1`): the key point number, or
     /// the offset of the header word at fault; 0 when not tied to one.
     position: u16,
-    /// D2 lies inside the table: the result is not written there.
-    result_in_table: bool,
+    /// The words of the table that was to be written (`D1 + 38 …`), when
+    /// the refusal is about them: nothing is written there either.
+    new_table: Option<core::ops::Range<u32>>,
 }
 
 impl Failure {
@@ -97,7 +107,7 @@ impl Failure {
             code: CODE_PARAMETER,
             message: message.into(),
             position,
-            result_in_table: false,
+            new_table: None,
         }
     }
 
@@ -119,7 +129,7 @@ impl Failure {
             code: e.code(),
             message: e.to_string(),
             position,
-            result_in_table: false,
+            new_table: None,
         }
     }
 }
@@ -138,49 +148,77 @@ pub fn execute(
     table: u16,
     result: u16,
 ) -> Result<(), OperationError> {
-    let outcome = match TableKind::from_code(kind) {
+    let kind_of = TableKind::from_code(kind);
+    // The table before this execution, kept whole on any failure.
+    let old_table = table_words(table, old_point_count(devices, table));
+    let outcome = match kind_of {
         None => Err(Failure::parameter(
             0,
             format!("unknown table kind K{kind}: use K0, K1, K2, K100 or K101"),
         )),
         Some(kind) => generated_table(devices, params, kind),
     }
-    .and_then(|points| {
+    .and_then(|generated| {
+        let new_table = table_words(table, generated.points.len());
+        let (first, last) = (new_table.start, new_table.end.saturating_sub(1));
+        let refuse = |message: String| Failure {
+            new_table: Some(new_table.clone()),
+            ..Failure::parameter(0, message)
+        };
         // D2 inside the words the table takes (D1+38 … its last point) would
         // be overwritten by the result, corrupting the table it describes.
-        let first = u32::from(table) + 38;
-        let end = u32::from(table) + 40 + 4 * points.len() as u32;
-        if (first..end).contains(&u32::from(result)) {
-            return Err(Failure {
-                result_in_table: true,
-                ..Failure::parameter(
-                    0,
-                    format!(
-                        "the result register D{result} (D2) lies inside the table D{first}..D{} it would describe: put it elsewhere",
-                        end - 1
-                    ),
-                )
-            });
+        if new_table.contains(&u32::from(result)) {
+            return Err(refuse(format!(
+                "the result register D{result} (D2) lies inside the table D{first}..D{last} it would describe: put it elsewhere"
+            )));
         }
-        write_table(devices, table, &points).map(|()| points.len())
+        // The same for the words written back into the parameter block.
+        if let Some(kind) = kind_of
+            && let Some(&offset) = written_back(kind)
+                .iter()
+                .find(|&&o| new_table.contains(&(u32::from(params) + u32::from(o))))
+        {
+            return Err(refuse(format!(
+                "D{} ({}) lies inside the table D{first}..D{last} and would be overwritten: put S0 or D1 elsewhere",
+                u32::from(params) + u32::from(offset),
+                written_back_name(kind),
+            )));
+        }
+        write_table(devices, table, &generated.points)?;
+        for (offset, value) in generated.write_back {
+            let _ = devices.set_dword(params.saturating_add(offset), value);
+        }
+        Ok(generated.points.len())
     });
     let (value, error) = match outcome {
         Ok(count) => (i16::try_from(count).unwrap_or(i16::MAX), None),
         Err(f) => (-(f.code as i16), Some(f)),
     };
-    // A refused D2 is not written either: it may hold part of the old table.
-    if !error.as_ref().is_some_and(|f| f.result_in_table) {
-        let _ = devices.set_word(result, value);
-    }
-    if TableKind::from_code(kind) == Some(TableKind::SCurve) {
+    // After a failure, no word of the old table (nor of the table refused)
+    // is written: a D2 or write-back there would corrupt the table kept.
+    let protected = |at: u32| {
+        error.as_ref().is_some_and(|f| {
+            old_table.contains(&at) || f.new_table.as_ref().is_some_and(|r| r.contains(&at))
+        })
+    };
+    let mut report = |at: u32, value: i16| {
+        if !protected(at)
+            && let Ok(at) = u16::try_from(at)
+        {
+            let _ = devices.set_word(at, value);
+        }
+    };
+    report(u32::from(result), value);
+    let params_at = |offset: u32| u32::from(params) + offset;
+    if kind_of == Some(TableKind::SCurve) {
         // P13 (NO.19): "results of chart generation".
-        let _ = devices.set_word(params.saturating_add(19), value);
+        report(params_at(19), value);
     }
-    if TableKind::from_code(kind) == Some(TableKind::KeyPoints) {
+    if kind_of == Some(TableKind::KeyPoints) {
         // K2 also reports in its own block: S0 result, S0 + 1 error position.
-        let _ = devices.set_word(params, value);
-        let _ = devices.set_word(
-            params.saturating_add(1),
+        report(params_at(0), value);
+        report(
+            params_at(1),
             error.as_ref().map_or(0, |f| f.position) as i16,
         );
     }
@@ -190,6 +228,55 @@ pub fn execute(
             f.code,
             format!("ECAMTBX K{kind} at D{params}: {}", f.message),
         )),
+    }
+}
+
+/// The words a table of `points` points takes in block `table`:
+/// `D1 + 38` (count), `D1 + 39` and 4 words per point from `D1 + 40`.
+fn table_words(table: u16, points: usize) -> core::ops::Range<u32> {
+    let first = u32::from(table) + u32::from(TABLE_SECTIONS);
+    let points = u32::try_from(points.min(MAX_POINTS)).unwrap_or(0);
+    first..u32::from(table) + u32::from(TABLE_START) + 4 * points
+}
+
+/// The point count of the table already in block `table` (0 when `D1 + 38`
+/// is not a count a table can have).
+fn old_point_count(devices: &Devices, table: u16) -> usize {
+    word(devices, table, TABLE_SECTIONS)
+        .try_into()
+        .unwrap_or(0usize)
+        .min(MAX_POINTS)
+}
+
+/// Offsets in the parameter block that ECAMTBX writes (the results).
+fn written_back(kind: TableKind) -> &'static [u16] {
+    match kind {
+        TableKind::SCurve => &[10, 11, 12, 13, 14, 15, 16, 17, 19],
+        TableKind::KeyPoints => &[0, 1],
+        TableKind::RotaryCut | TableKind::FlyingSaw => &[],
+    }
+}
+
+fn written_back_name(kind: TableKind) -> &'static str {
+    match kind {
+        TableKind::KeyPoints => "K2's result and error position at S0, S0+1",
+        _ => "the S-curve results P8-P11 and P13 at S0+10..S0+19",
+    }
+}
+
+/// A generated table and the 32-bit results to write back into the
+/// parameter block (offset, value), once the table is known to fit.
+struct Generated {
+    points: Vec<CamPoint>,
+    write_back: Vec<(u16, i32)>,
+}
+
+impl From<Vec<CamPoint>> for Generated {
+    fn from(points: Vec<CamPoint>) -> Self {
+        Self {
+            points,
+            write_back: Vec::new(),
+        }
     }
 }
 
@@ -281,8 +368,9 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
 /// K0/K1 S-curve block: `NO.0` P1 pulses (32-bit), `NO.2` P2 top speed
 /// (32-bit Hz), `NO.6` P4 and `NO.7` P5 ramp times (ms), `NO.8` P6
 /// resolution; written back: `NO.10` P8, `NO.12` P9, `NO.14` P10, `NO.16` P11
-/// (32-bit each) and `NO.19` P13 the result.
-fn s_curve_table(devices: &mut Devices, base: u16) -> Result<Vec<CamPoint>, Failure> {
+/// (32-bit each) and `NO.19` P13 the result. Nothing is written here:
+/// P8–P11 are returned for [`execute`] to write once the table is in.
+fn s_curve_table(devices: &Devices, base: u16) -> Result<Generated, Failure> {
     check_block(base, 20)?;
     let unsigned = |offset: u16, name: &str| {
         u16::try_from(word(devices, base, offset)).map_err(|_| {
@@ -300,15 +388,19 @@ fn s_curve_table(devices: &mut Devices, base: u16) -> Result<Vec<CamPoint>, Fail
     };
     let generated = s_curve::generate(&params).map_err(|e| Failure::from_table(&e))?;
     let clamp = |v: i64| i32::try_from(v).unwrap_or(if v < 0 { i32::MIN } else { i32::MAX });
-    for (offset, value) in [
+    let write_back = [
         (10, generated.last_section_master),
         (12, generated.last_section_slave),
         (14, generated.uniform_time),
         (16, generated.max_speed_hz),
-    ] {
-        let _ = devices.set_dword(base + offset, clamp(value));
-    }
-    Ok(generated.table.into_points())
+    ]
+    .into_iter()
+    .map(|(offset, value)| (offset, clamp(value)))
+    .collect();
+    Ok(Generated {
+        points: generated.table.into_points(),
+        write_back,
+    })
 }
 
 /// The K100/K101 block: `NO.0` P1 master length, `NO.2` P2 slave length,
@@ -363,15 +455,12 @@ fn cut_block(devices: &Devices, base: u16) -> Result<CutBlock, Failure> {
     })
 }
 
-fn generated_table(
-    devices: &mut Devices,
-    base: u16,
-    kind: TableKind,
-) -> Result<Vec<CamPoint>, Failure> {
+/// Reads the whole parameter block and generates the table; writes nothing.
+fn generated_table(devices: &Devices, base: u16, kind: TableKind) -> Result<Generated, Failure> {
     let table = |e: TableError| Failure::from_table(&e);
     match kind {
         TableKind::SCurve => s_curve_table(devices, base),
-        TableKind::KeyPoints => key_point_table(devices, base),
+        TableKind::KeyPoints => key_point_table(devices, base).map(Generated::from),
         TableKind::RotaryCut => {
             let b = cut_block(devices, base)?;
             let params = rotary_cut::Params {
@@ -387,7 +476,8 @@ fn generated_table(
             Ok(rotary_cut::generate(&params)
                 .map_err(table)?
                 .table
-                .into_points())
+                .into_points()
+                .into())
         }
         TableKind::FlyingSaw => {
             let b = cut_block(devices, base)?;
@@ -406,7 +496,8 @@ fn generated_table(
             Ok(flying_saw::generate(&params)
                 .map_err(table)?
                 .table
-                .into_points())
+                .into_points()
+                .into())
         }
     }
 }
@@ -418,7 +509,7 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
             code: CODE_SECTION_COUNT,
             message: format!("{} table points; a DECAM table holds 2-512", points.len()),
             position: 0,
-            result_in_table: false,
+            new_table: None,
         });
     }
     let end = u32::from(base) + u32::from(TABLE_START) + 4 * points.len() as u32;
@@ -430,7 +521,7 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
                 points.len()
             ),
             position: 0,
-            result_in_table: false,
+            new_table: None,
         });
     }
     let mut words = Vec::with_capacity(points.len());
@@ -440,7 +531,7 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
                 code: CODE_TABLE,
                 message: format!("table point {i} does not fit 32-bit registers"),
                 position: u16::try_from(i).unwrap_or(u16::MAX),
-                result_in_table: false,
+                new_table: None,
             });
         };
         words.push((m, s));

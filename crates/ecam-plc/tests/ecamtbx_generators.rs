@@ -301,3 +301,92 @@ fn a_generated_table_drives_decam() {
     assert_eq!(dev.dword(T + 27).unwrap(), 1500);
     assert_eq!(dev.dword(8140).unwrap(), 2000);
 }
+
+fn s_curve_block(dev: &mut Devices, base: u16) {
+    // The manual's case: 10000 pulses, 50 kHz, 100/100 ms, resolution 200.
+    dev.set_dword(base, 10_000).unwrap();
+    dev.set_dword(base + 2, 50_000).unwrap();
+    dev.set_word(base + 6, 100).unwrap();
+    dev.set_word(base + 7, 100).unwrap();
+    dev.set_word(base + 8, 200).unwrap();
+}
+
+#[test]
+fn s_curve_results_inside_the_new_table_are_refused_and_the_old_table_kept() {
+    let mut dev = Devices::new();
+    key_point_block(&mut dev, 100, K2_CASE);
+    ecamtbx::execute(&mut dev, P, 2, T, R).unwrap();
+    let before = table(&dev);
+    // The 200-point S-curve takes T+38..T+839; P8 (S0+10) at T+510 is inside.
+    let s0 = T + 500;
+    s_curve_block(&mut dev, s0);
+    let err = ecamtbx::execute(&mut dev, s0, 0, T, R).unwrap_err();
+    assert_eq!(err.code, 6781);
+    assert!(err.message.contains("S0+10"), "{}", err.message);
+    assert_eq!(table(&dev), before, "the old table is untouched");
+    assert_eq!(dev.word(R).unwrap(), -6781);
+    assert_eq!(dev.dword(s0 + 10).unwrap(), 0, "P8 not written");
+    assert_eq!(dev.word(s0 + 19).unwrap(), 0, "P13 not written");
+}
+
+#[test]
+fn a_table_over_the_parameters_it_was_made_from_is_fine() {
+    // S0 = T+830: the new table (up to T+839) covers P1-P7, but P8-P13
+    // (T+840…) lie past it. All parameters are read before the table is
+    // written, so the table is the manual's S-curve and P8-P11 are right.
+    let mut dev = Devices::new();
+    let s0 = T + 830;
+    s_curve_block(&mut dev, s0);
+    ecamtbx::execute(&mut dev, s0, 0, T, R).unwrap();
+    let expected = s_curve::generate(&s_curve::Params::default()).unwrap();
+    assert_eq!(table(&dev), expected.table.points());
+    assert_eq!(dev.word(R).unwrap(), 200);
+    assert_eq!(dev.dword(s0 + 14).unwrap(), 100, "P10");
+    assert_eq!(dev.dword(s0 + 16).unwrap(), 50_000, "P11");
+    assert_eq!(dev.word(s0 + 19).unwrap(), 200, "P13");
+}
+
+#[test]
+fn k2_result_words_inside_the_new_table_are_refused_and_the_old_table_kept() {
+    let mut dev = Devices::new();
+    key_point_block(&mut dev, 20, K2_CASE);
+    ecamtbx::execute(&mut dev, P, 2, T, R).unwrap();
+    let before = table(&dev);
+    assert_eq!(before.len(), 20);
+    // A second block at T+400, outside the 20-point table (T+38..T+119) but
+    // inside the 100 points it asks for (T+38..T+439): its S0/S0+1 would be
+    // written over the new table.
+    let s0 = T + 400;
+    dev.set_word(s0 + 2, 100).unwrap();
+    dev.set_word(s0 + 3, K2_CASE.len() as i16).unwrap();
+    for (i, &(m, s, curve, res)) in K2_CASE.iter().enumerate() {
+        let at = s0 + 8 + 6 * i as u16;
+        dev.set_dword(at, m).unwrap();
+        dev.set_dword(at + 2, s).unwrap();
+        dev.set_word(at + 4, curve).unwrap();
+        dev.set_word(at + 5, res).unwrap();
+    }
+    let err = ecamtbx::execute(&mut dev, s0, 2, T, R).unwrap_err();
+    assert_eq!(err.code, 6781);
+    assert_eq!(table(&dev), before, "the old table is untouched");
+    assert_eq!(dev.word(R).unwrap(), -6781);
+    assert_eq!(dev.word(s0).unwrap(), 0, "S0 not written");
+    assert_eq!(dev.word(s0 + 1).unwrap(), 0, "S0+1 not written");
+    // The same block with D1 moved so the table ends before S0 works.
+    ecamtbx::execute(&mut dev, s0, 2, T - 100, R).unwrap();
+    assert_eq!(dev.word(s0).unwrap(), 100);
+}
+
+#[test]
+fn a_failure_writes_nothing_into_the_old_table() {
+    // D2 inside the old table (not the new one, which is never made): the
+    // negated code is not written there.
+    let mut dev = Devices::new();
+    key_point_block(&mut dev, 100, K2_CASE);
+    ecamtbx::execute(&mut dev, P, 2, T, R).unwrap();
+    let before = table(&dev);
+    dev.set_word(P + 3, 0).unwrap(); // key points number 0: 6781
+    let err = ecamtbx::execute(&mut dev, P, 2, T, T + 60).unwrap_err();
+    assert_eq!(err.code, 6781);
+    assert_eq!(table(&dev), before);
+}

@@ -16,6 +16,10 @@
 //!   position), drives the direction and sync outputs and updates the
 //!   status registers.
 //!
+//! While armed or following, the cam holds its pulse output
+//! ([`crate::hardware::Hardware::claim_output`]); a start while another
+//! instruction holds the output waits until it is free.
+//!
 //! The register map, every ambiguity of the manual and the choice made are
 //! listed in `docs/plc.md`.
 //!
@@ -60,6 +64,8 @@ pub use operands::{DecamOperands, MasterOperand};
 pub use start_gate::{CamMode, GateAction, RESTART_OFF_US, StartGate};
 pub use sync_output::SyncOutput;
 
+use core::sync::atomic::{AtomicU64, Ordering};
+
 use ecam_core::{CamCurve, PointTable};
 use ecam_engine::{
     AxisConfig, AxisState, CamAxis, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind,
@@ -68,12 +74,16 @@ use ecam_engine::{
 
 use self::block::Block;
 use crate::devices::Devices;
-use crate::hardware::{Hardware, record_pulses};
+use crate::hardware::{Hardware, OutputOwner, record_pulses};
 use crate::operation_error::OperationError;
 
 /// Document 003 section 4.2.1: a noncyclic cam re-armed for the next start
 /// signal accepts it no sooner than 5 ms after the previous run ended.
 pub const NONCYCLIC_REARM_US: u64 = 5_000;
+
+/// Numbers the DECAM instances of the process, so that each one has its own
+/// [`OutputOwner`].
+static NEXT_INSTANCE: AtomicU64 = AtomicU64::new(0);
 
 /// First word of each output's pulse counter D8140, D8142, D8150, D8152.
 const PULSE_COUNTERS: [u16; 4] = [8140, 8142, 8150, 8152];
@@ -97,6 +107,8 @@ enum Phase {
 /// One DECAM instruction of a program.
 pub struct Decam {
     operands: DecamOperands,
+    /// This instance's identity towards the pulse output (one driver each).
+    owner: OutputOwner,
     master: MasterReader,
     enabled: bool,
     gate: StartGate,
@@ -143,6 +155,7 @@ impl Decam {
     pub fn new(operands: DecamOperands) -> Self {
         Self {
             operands,
+            owner: OutputOwner::Cam(NEXT_INSTANCE.fetch_add(1, Ordering::Relaxed)),
             master: MasterReader::new(operands.master),
             enabled: false,
             gate: StartGate::new(),
@@ -167,6 +180,12 @@ impl Decam {
     /// The operands.
     pub fn operands(&self) -> &DecamOperands {
         &self.operands
+    }
+
+    /// This instance's identity as the driver of its pulse output: while
+    /// the cam is armed or following, [`Hardware::owner`] of D1 is this.
+    pub fn output_owner(&self) -> OutputOwner {
+        self.owner
     }
 
     /// The block error found by the last [`Decam::execute`], if any.
@@ -298,8 +317,11 @@ impl Decam {
         self.write_flags(devices);
     }
 
-    /// Accepts a mode from the start register when the block is valid and
-    /// the output is not held by its stop flag; otherwise the start waits.
+    /// Accepts a mode from the start register when the block is valid, the
+    /// output is not held by its stop flag and no other instruction drives
+    /// the output (PLSY/DPLSY or another DECAM: the FX allows one driver per
+    /// pulse output); otherwise the start waits and is taken as soon as it
+    /// can be, while the start register still asks for it.
     fn start(
         &mut self,
         mode: CamMode,
@@ -307,7 +329,11 @@ impl Decam {
         hardware: &mut Hardware,
         master: i64,
     ) {
-        if self.error.is_some() || Hardware::output_stopped(devices, self.operands.pulse_output) {
+        let output = self.operands.pulse_output;
+        if self.error.is_some()
+            || Hardware::output_stopped(devices, output)
+            || !hardware.output_free_for(output, self.owner)
+        {
             return;
         }
         let Some(setup) = self.setup.as_ref() else {
@@ -339,10 +365,12 @@ impl Decam {
     }
 
     /// The start condition came: builds the engine axis and arms it. A start
-    /// signal while the block is bad is ignored (the cam does not start from
-    /// a block that fails its checks).
+    /// signal while the block is bad, or while another instruction drives
+    /// the output (an external-start cam does not hold the output while it
+    /// waits for S3), is ignored.
     fn trigger(&mut self, devices: &mut Devices, hardware: &mut Hardware, master: i64) {
-        if self.error.is_some() {
+        if self.error.is_some() || !hardware.output_free_for(self.operands.pulse_output, self.owner)
+        {
             return;
         }
         let (Some(setup), Some(running)) = (self.setup.as_ref(), self.running.as_mut()) else {
@@ -414,7 +442,8 @@ impl Decam {
                 running.last_master = master;
                 self.phase = Phase::Running;
                 self.cycle_done = false;
-                hardware.claim_output(self.operands.pulse_output, true);
+                // Free for this instance: checked on entry.
+                hardware.claim_output(self.operands.pulse_output, self.owner);
             }
             Err(e) => {
                 // The block checks rule out every refusal the engine knows;
@@ -468,7 +497,7 @@ impl Decam {
         let pulses =
             i32::try_from(out.pulses).unwrap_or(if out.pulses < 0 { i32::MIN } else { i32::MAX });
         if pulses != 0 {
-            record_pulses(devices, hardware, output, pulses);
+            record_pulses(devices, hardware, self.owner, output, pulses);
             let _ = devices.set_bit(self.operands.direction, pulses > 0);
         }
         if out.events.cycle_completed {
@@ -516,7 +545,7 @@ impl Decam {
                 && !faulted;
             let noncyclic = running.mode == CamMode::Noncyclic;
             self.axis = None;
-            hardware.claim_output(output, false);
+            hardware.release_output(output, self.owner);
             self.cycle_done = !faulted;
             self.in_sync = false;
             self.sync.release(devices);
@@ -541,7 +570,7 @@ impl Decam {
         if let Some(mut axis) = self.axis.take() {
             axis.disengage();
         }
-        hardware.claim_output(self.operands.pulse_output, false);
+        hardware.release_output(self.operands.pulse_output, self.owner);
         self.sync.release(devices);
         self.in_sync = false;
         self.pulse_delayed = false;

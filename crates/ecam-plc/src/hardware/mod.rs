@@ -3,15 +3,22 @@
 //! high-speed counters, and wires from pulse outputs to counter inputs
 //! (document 003's loopback: "Y1 pulse output terminal is connected with X0").
 //!
+//! Each pulse output has at most one owner ([`OutputOwner`]): the PLSY/DPLSY
+//! or DECAM instruction that drives it. Only the owner's pulses reach the
+//! output ([`record_pulses`]); another instruction waits until the owner
+//! releases it (the FX family's rule).
+//!
 //! Everything here advances in hardware ticks of simulated time; the scan
 //! cycle ([`crate::scan`]) and the simulator ([`crate::sim`]) drive it.
 
 mod counter;
+mod owner;
 mod pulse_output;
 mod pulse_train;
 mod wire;
 
 pub use counter::{Counters, HIGH_SPEED_COUNTERS};
+pub use owner::OutputOwner;
 pub use pulse_output::record_pulses;
 pub use pulse_train::PulseTrain;
 pub use wire::{Wire, WireError};
@@ -25,11 +32,12 @@ pub const PULSE_OUTPUTS: usize = 4;
 /// Pulse outputs, generators, counters and wires of one PLC.
 #[derive(Clone, Debug, Default)]
 pub struct Hardware {
-    /// Busy claimed by an E-cam instance that runs (see [`Hardware::claim_output`]).
-    claimed: [bool; PULSE_OUTPUTS],
+    /// The instruction driving each output (see [`Hardware::claim_output`]).
+    owners: [Option<OutputOwner>; PULSE_OUTPUTS],
     /// Pulses were emitted on the output during the current tick.
     pulsed: [bool; PULSE_OUTPUTS],
-    /// The running PLSY/DPLSY pulse train of each output.
+    /// The running PLSY/DPLSY pulse train of each output; only ever there
+    /// while its PLSY owns the output.
     trains: [Option<PulseTrain>; PULSE_OUTPUTS],
     /// Counter set values, coils and high-speed counter inputs.
     counters: Counters,
@@ -51,13 +59,43 @@ impl Hardware {
         }
     }
 
-    /// Keeps the busy flag (M8147..M8150) of `output` on while `busy`, even in
-    /// ticks without pulses: an E-cam claims its output while the cam runs.
-    /// No effect for `output` > 3.
-    pub fn claim_output(&mut self, output: u8, busy: bool) {
-        if let Some(slot) = self.claimed.get_mut(usize::from(output)) {
-            *slot = busy;
+    /// Makes `owner` the one instruction that drives `output` (0..=3).
+    ///
+    /// Returns true when `owner` now holds the output: it was free, or
+    /// `owner` held it already. False while another instruction holds it
+    /// (the FX rule: the later instruction does not run, it waits and tries
+    /// again) and for `output` > 3. The owner keeps the busy flag
+    /// (M8147..M8150) on, even in ticks without pulses, until it releases.
+    pub fn claim_output(&mut self, output: u8, owner: OutputOwner) -> bool {
+        match self.owners.get_mut(usize::from(output)) {
+            Some(slot @ None) => {
+                *slot = Some(owner);
+                true
+            }
+            Some(Some(held)) => *held == owner,
+            None => false,
         }
+    }
+
+    /// `owner` lets go of `output`; nothing happens if another instruction
+    /// holds it. A PLSY/DPLSY train of `owner` stops.
+    pub fn release_output(&mut self, output: u8, owner: OutputOwner) {
+        let index = usize::from(output);
+        if self.owner(output) == Some(owner) {
+            self.owners[index] = None;
+            self.trains[index] = None;
+        }
+    }
+
+    /// The instruction that holds `output`, if any.
+    pub fn owner(&self, output: u8) -> Option<OutputOwner> {
+        self.owners.get(usize::from(output)).copied().flatten()
+    }
+
+    /// True when `owner` may take `output` now (it is free or already held
+    /// by `owner`); false for `output` > 3.
+    pub fn output_free_for(&self, output: u8, owner: OutputOwner) -> bool {
+        usize::from(output) < PULSE_OUTPUTS && self.owner(output).is_none_or(|o| o == owner)
     }
 
     /// True while the immediate-stop flag of `output` (M8145, M8146, M8152,
@@ -85,51 +123,66 @@ impl Hardware {
             .and_then(Option::as_ref)
     }
 
-    /// Starts (or replaces) the pulse train of `output` (0..=3).
-    pub fn start_pulse_train(&mut self, output: u8, train: PulseTrain) {
+    /// Starts (or replaces) the pulse train of PLSY/DPLSY `owner` on
+    /// `output` (0..=3). Returns false, and starts nothing, while another
+    /// instruction holds the output.
+    pub fn start_pulse_train(&mut self, output: u8, owner: OutputOwner, train: PulseTrain) -> bool {
+        if !self.claim_output(output, owner) {
+            return false;
+        }
         if let Some(slot) = self.trains.get_mut(usize::from(output)) {
             *slot = Some(train);
         }
+        true
     }
 
-    /// Changes the frequency of a running pulse train (PLSY reads S1 every scan).
-    pub fn set_train_frequency(&mut self, output: u8, frequency_hz: u32) {
+    /// Changes the frequency of `owner`'s running pulse train (PLSY reads S1
+    /// every scan).
+    pub fn set_train_frequency(&mut self, output: u8, owner: OutputOwner, frequency_hz: u32) {
+        if self.owner(output) != Some(owner) {
+            return;
+        }
         if let Some(Some(train)) = self.trains.get_mut(usize::from(output)) {
             train.set_frequency(frequency_hz);
         }
     }
 
-    /// Stops the pulse train of `output`.
-    pub fn stop_pulse_train(&mut self, output: u8) {
-        if let Some(slot) = self.trains.get_mut(usize::from(output)) {
-            *slot = None;
-        }
+    /// Stops `owner`'s pulse train on `output` and releases the output; a
+    /// train of another instruction keeps running.
+    pub fn stop_pulse_train(&mut self, output: u8, owner: OutputOwner) {
+        self.release_output(output, owner);
     }
 
     /// Tick step 1: every pulse train emits the pulses due in `dt_us`
     /// (exact: the fractional pulse is carried to the next tick). A train
-    /// whose output is stopped (M8145...) ends at once.
+    /// whose output is stopped (M8145...) ends at once. A train that ends
+    /// releases its output.
     pub fn tick_pulse_trains(&mut self, devices: &mut Devices, dt_us: u32) {
         for output in 0..PULSE_OUTPUTS as u8 {
             let index = usize::from(output);
-            if Self::output_stopped(devices, output) {
-                self.stop_pulse_train(output);
-                continue;
-            }
-            let Some(Some(train)) = self.trains.get_mut(index) else {
+            let Some(owner) = self.owners[index] else {
                 continue;
             };
-            let pulses = train.advance(dt_us);
-            if train.is_finished() {
-                self.trains[index] = None;
+            let Some(train) = self.trains[index].as_mut() else {
+                continue;
+            };
+            if Self::output_stopped(devices, output) {
+                self.release_output(output, owner);
+                continue;
             }
+            let pulses = train.advance(dt_us);
+            let finished = train.is_finished();
             if pulses > 0 {
                 record_pulses(
                     devices,
                     self,
+                    owner,
                     output,
                     i32::try_from(pulses).unwrap_or(i32::MAX),
                 );
+            }
+            if finished {
+                self.release_output(output, owner);
             }
         }
     }
@@ -140,7 +193,7 @@ impl Hardware {
     pub fn end_tick(&mut self, devices: &mut Devices) {
         self.counters.sample_inputs(devices);
         for (index, &m) in M_BUSY.iter().enumerate() {
-            let busy = self.pulsed[index] || self.claimed[index] || self.trains[index].is_some();
+            let busy = self.pulsed[index] || self.owners[index].is_some();
             // M8147.. are in range by construction; nothing to report if not.
             let _ = devices.set_bit(Device::M(m), busy);
             self.pulsed[index] = false;

@@ -4,7 +4,7 @@ use super::operands::{device_error, read_source, write_word};
 use super::{Machine, Memory, runs};
 use crate::devices::Device;
 use crate::devices::DeviceError;
-use crate::hardware::PulseTrain;
+use crate::hardware::{OutputOwner, PulseTrain};
 use crate::il::{ArithOp, FloatSource, Instruction, Source, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
 use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
@@ -15,9 +15,11 @@ const PLSY_MAX_HZ: i32 = 32_767;
 /// "Maximum frequency of E-cam ... 200K").
 const DPLSY_MAX_HZ: i32 = 200_000;
 
-/// Executes a coil or applied instruction with power flow `power`.
+/// Executes a coil or applied instruction (statement `statement` of the
+/// program) with power flow `power`.
 pub(super) fn execute(
     instruction: &Instruction,
+    statement: usize,
     power: bool,
     memory: &mut Memory,
     machine: &mut Machine<'_>,
@@ -189,7 +191,14 @@ pub(super) fn execute(
             frequency,
             count,
             output,
-        } => pulse_output(machine, memory, power, width, (frequency, count), output),
+        } => pulse_output(
+            machine,
+            memory,
+            (OutputOwner::PulseTrain(statement), power),
+            width,
+            (frequency, count),
+            output,
+        ),
         Instruction::Ecamtbx {
             params,
             kind,
@@ -237,10 +246,15 @@ fn reset(machine: &mut Machine<'_>, device: Device) -> Result<(), OperationError
 /// frequency changes while it runs, stops it when the power flow goes off;
 /// a finished train turns M8029 on and is not restarted until the power flow
 /// has been off.
+///
+/// One instruction drives an output at a time (the FX rule): while another
+/// PLSY/DPLSY or a DECAM holds the output, the train does not start; it
+/// starts in the first scan that finds the output free with the power flow
+/// still on. Nothing is flagged meanwhile (as on the FX).
 fn pulse_output(
     machine: &mut Machine<'_>,
     memory: &mut Memory,
-    power: bool,
+    (owner, power): (OutputOwner, bool),
     width: Width,
     (frequency, count): (crate::il::Source, crate::il::Source),
     output: u8,
@@ -249,7 +263,7 @@ fn pulse_output(
     let hardware = &mut *machine.hardware;
     if !power {
         if memory.latched {
-            hardware.stop_pulse_train(output);
+            hardware.stop_pulse_train(output, owner);
             memory.latched = false;
             set_flag(devices, M_EXECUTION_COMPLETE, false)?;
         }
@@ -279,19 +293,18 @@ fn pulse_output(
         None
     };
     if let Some(message) = invalid {
-        hardware.stop_pulse_train(output);
+        hardware.stop_pulse_train(output, owner);
         return Err(OperationError::new(CODE_OPERAND, message));
     }
     let hz = hz.unsigned_abs();
     if !memory.latched {
-        hardware.start_pulse_train(
-            output,
-            PulseTrain::new(hz, u64::from(pulses.unsigned_abs())),
-        );
-        memory.latched = true;
-        set_flag(devices, M_EXECUTION_COMPLETE, false)?;
-    } else if hardware.pulse_train(output).is_some() {
-        hardware.set_train_frequency(output, hz);
+        let train = PulseTrain::new(hz, u64::from(pulses.unsigned_abs()));
+        if hardware.start_pulse_train(output, owner, train) {
+            memory.latched = true;
+            set_flag(devices, M_EXECUTION_COMPLETE, false)?;
+        }
+    } else if hardware.owner(output) == Some(owner) {
+        hardware.set_train_frequency(output, owner, hz);
     } else {
         set_flag(devices, M_EXECUTION_COMPLETE, true)?;
     }

@@ -137,7 +137,7 @@ impl Interpreter {
                 }
                 other => {
                     let power = power_of(&self.blocks);
-                    applied::execute(other, power, memory, machine)
+                    applied::execute(other, index, power, memory, machine)
                 }
             };
             if let Err(error) = &result {

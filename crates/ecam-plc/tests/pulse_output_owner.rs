@@ -1,0 +1,166 @@
+//! One instruction drives a pulse output at a time (the FX rule): a second
+//! DECAM, PLSY or DPLSY on a busy output waits and takes it once released.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use ecam_plc::devices::Device;
+use ecam_plc::il::parse;
+use ecam_plc::scan::Plc;
+
+fn plc(src: &str) -> Plc {
+    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+}
+
+fn set(plc: &mut Plc, device: &str, on: bool) {
+    plc.devices_mut()
+        .set_bit(Device::parse(device).unwrap(), on)
+        .unwrap();
+}
+
+/// `ms` milliseconds: a scan, then ten 100 µs ticks, per millisecond.
+fn run_ms(plc: &mut Plc, ms: u32) {
+    for _ in 0..ms {
+        assert!(plc.scan().is_empty());
+        for _ in 0..10 {
+            plc.hardware_tick(100);
+        }
+    }
+}
+
+fn dword(plc: &Plc, n: u16) -> i32 {
+    plc.devices().dword(n).unwrap()
+}
+
+/// A cyclic cam at `block`: master 0..10000, slave 0..`stroke`, start
+/// register 1.
+fn cyclic_cam(plc: &mut Plc, block: u16, stroke: i32) {
+    let dev = plc.devices_mut();
+    dev.set_word(block + 38, 2).unwrap();
+    dev.set_dword(block + 44, 10_000).unwrap();
+    dev.set_dword(block + 46, stroke).unwrap();
+    dev.set_word(block + 5, 1).unwrap();
+}
+
+/// Flag bit 6: cyclic mode accepted.
+fn cyclic_active(plc: &Plc, block: u16) -> bool {
+    plc.devices().word(block + 1).unwrap() & (1 << 6) != 0
+}
+
+const TWO_CAMS: &str = "LD M0\nDECAM K1 D2000 X0 Y0 Y4\nLD M1\nDECAM K1 D3000 X1 Y0 Y5\n";
+
+#[test]
+fn two_cams_on_y0_only_the_first_moves_it_until_it_lets_go() {
+    let mut p = plc(TWO_CAMS);
+    cyclic_cam(&mut p, 2000, 1000);
+    cyclic_cam(&mut p, 3000, 5000);
+    set(&mut p, "M0", true);
+    set(&mut p, "M1", true);
+    run_ms(&mut p, 50);
+    // K1: one master count per 100 µs, so 500 counts: cam 1 at slave 50.
+    assert_eq!(dword(&p, 2019), 50);
+    assert_eq!(dword(&p, 8140), 50, "Y0 carries cam 1 alone");
+    assert!(cyclic_active(&p, 2000));
+    assert!(!cyclic_active(&p, 3000), "cam 2 waits: no mode accepted");
+    assert_eq!(dword(&p, 3019), 0, "cam 2 has not moved");
+    assert_eq!(p.devices().m(8147), Ok(true));
+    assert_eq!(p.devices().m(8067), Ok(false), "waiting is no error (FX)");
+
+    // Cam 1 loses its power flow: cam 2, still enabled, takes Y0.
+    set(&mut p, "M0", false);
+    run_ms(&mut p, 50);
+    assert_eq!(dword(&p, 2019), 50, "cam 1 holds where it stopped");
+    assert!(cyclic_active(&p, 3000));
+    let slave = dword(&p, 3019);
+    assert_eq!(slave, 500, "cam 2 follows its own master (1000 counts)");
+    assert_eq!(dword(&p, 8140), slave, "Y0 now carries cam 2 alone");
+
+    // Cam 1 enabled again: Y0 is cam 2's, so cam 1 waits in turn.
+    set(&mut p, "M0", true);
+    run_ms(&mut p, 20);
+    assert!(!cyclic_active(&p, 2000));
+    assert_eq!(dword(&p, 2019), 50);
+    assert_eq!(dword(&p, 8140), dword(&p, 3019));
+}
+
+#[test]
+fn a_cam_waits_for_a_running_dplsy_on_its_output() {
+    let mut p = plc("LD M2\nDPLSY K10000 K100 Y0\nLD M0\nDECAM K1 D2000 X0 Y0 Y4\n");
+    cyclic_cam(&mut p, 2000, 1000);
+    set(&mut p, "M0", true);
+    set(&mut p, "M2", true);
+    run_ms(&mut p, 5);
+    assert_eq!(dword(&p, 8140), 50, "the DPLSY alone: 10 pulses/ms");
+    assert!(!cyclic_active(&p, 2000), "the cam waits");
+    run_ms(&mut p, 15);
+    // The 100 pulses ended at 10 ms; the cam took Y0 then and, absolute,
+    // brought it to its table value.
+    assert!(cyclic_active(&p, 2000));
+    assert_eq!(dword(&p, 2019), 20, "master 200 counts");
+    assert_eq!(dword(&p, 8140), 20, "D8140 is the cam's slave");
+    assert_eq!(p.devices().m(8029), Ok(true), "the DPLSY finished");
+}
+
+#[test]
+fn a_dplsy_waits_for_a_running_cam_and_starts_when_it_stops() {
+    let mut p = plc("LD M0\nDECAM K1 D2000 X0 Y0 Y4\nLD M2\nDPLSY K10000 K0 Y0\n");
+    cyclic_cam(&mut p, 2000, 1000);
+    set(&mut p, "M0", true);
+    run_ms(&mut p, 10);
+    set(&mut p, "M2", true);
+    run_ms(&mut p, 10);
+    assert_eq!(dword(&p, 2019), 20);
+    assert_eq!(dword(&p, 8140), 20, "no DPLSY pulse while the cam runs");
+    assert_eq!(p.devices().m(8029), Ok(false));
+
+    // The cam stops (power flow off in this scan, effective in its ticks);
+    // the DPLSY, power flow still on, starts at the next scan.
+    set(&mut p, "M0", false);
+    run_ms(&mut p, 1);
+    let stopped = dword(&p, 8140);
+    assert_eq!(stopped, 20, "the cam stopped in the first tick");
+    run_ms(&mut p, 10);
+    assert_eq!(dword(&p, 8140), stopped + 100, "the DPLSY now drives Y0");
+    assert_eq!(dword(&p, 2019), 20, "the cam stays stopped");
+}
+
+#[test]
+fn two_pulse_trains_on_one_output_do_not_add_up() {
+    let mut p = plc("LD M0\nDPLSY K1000 K0 Y1\nLD M1\nDPLSY K5000 K0 Y1\n");
+    set(&mut p, "M0", true);
+    set(&mut p, "M1", true);
+    run_ms(&mut p, 10);
+    assert_eq!(dword(&p, 8142), 10, "1 kHz only");
+    // The waiting one losing its power flow does not stop the running one.
+    set(&mut p, "M1", false);
+    run_ms(&mut p, 10);
+    assert_eq!(dword(&p, 8142), 20);
+    set(&mut p, "M1", true);
+    set(&mut p, "M0", false);
+    // The first releases Y1 as it executes; the second, later in the same
+    // scan, takes it at once.
+    run_ms(&mut p, 10);
+    assert_eq!(dword(&p, 8142), 20 + 50, "then 5 kHz alone");
+}
+
+#[test]
+fn an_external_start_edge_while_another_holds_the_output_is_ignored() {
+    let mut p = plc("LD M2\nDPLSY K10000 K100 Y0\nLD M0\nDECAM K1 D2000 X0 Y0 Y4\n");
+    cyclic_cam(&mut p, 2000, 1000);
+    p.devices_mut().set_word(2003, 1 << 5).unwrap(); // external start (S3)
+    set(&mut p, "M0", true);
+    run_ms(&mut p, 2);
+    assert_eq!(p.hardware().owner(0), None, "waiting for S3 holds nothing");
+    set(&mut p, "M2", true);
+    run_ms(&mut p, 2);
+    set(&mut p, "X0", true);
+    run_ms(&mut p, 2);
+    assert_eq!(dword(&p, 8140), 40, "the DPLSY alone");
+    assert_eq!(dword(&p, 2019), 0, "the edge was ignored");
+    run_ms(&mut p, 10);
+    assert_eq!(dword(&p, 8140), 100, "no new edge, no start");
+    set(&mut p, "X0", false);
+    run_ms(&mut p, 1);
+    set(&mut p, "X0", true);
+    run_ms(&mut p, 5);
+    assert!(dword(&p, 2019) > 0);
+    assert_eq!(dword(&p, 8140), dword(&p, 2019), "the cam drives Y0 now");
+}
