@@ -6,12 +6,16 @@
 //! `{"generator": "rotary-cut", "sync": {"low": 1425, "high": 1758},
 //!   "points": [{"master": 0, "slave": 0, "velocity": …}, …]}` where
 //! `generator` and `sync` are optional. Only JSON keeps the synchronised zone.
+//!
+//! A JSON file may also be `ecam_core`'s own format (`ecam_core::io`), tagged
+//! by `kind`: besides point tables it stores evenly spaced tables and
+//! segment profiles, which [`read`] returns as they are, exact.
 
 use std::io::Write;
 use std::path::Path;
 
 use anyhow::{Context, bail};
-use ecam_core::{CamPoint, CamTable, Kinematics, PointTable};
+use ecam_core::{CamPoint, CamTable, Kinematics, PointTable, SegmentProfile, UniformTable};
 use serde::{Deserialize, Serialize};
 
 use crate::derivatives;
@@ -38,6 +42,29 @@ impl TableFile {
         match &self.kinematics {
             Some(k) if k.len() == self.table.points().len() => k.clone(),
             _ => derivatives::of_points(self.table.points()),
+        }
+    }
+}
+
+/// A table file of any kind `ecam table show | plot` take.
+#[derive(Debug)]
+pub enum AnyTable {
+    /// A point table with what its file adds: CSV, this module's JSON, or
+    /// `ecam_core`'s `{"kind": "points", ...}`.
+    Points(TableFile),
+    /// `ecam_core`'s evenly spaced table (document 002).
+    Uniform(UniformTable),
+    /// `ecam_core`'s segment profile: key points joined by motion laws.
+    Profile(SegmentProfile),
+}
+
+impl AnyTable {
+    /// The `kind` tag `ecam_core`'s JSON gives this table.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::Points(_) => "points",
+            Self::Uniform(_) => "uniform",
+            Self::Profile(_) => "profile",
         }
     }
 }
@@ -113,17 +140,17 @@ enum PointsKind {
     Points,
 }
 
-/// Reads a CSV or JSON table file.
+/// Reads a CSV or JSON table file, of any kind.
 ///
 /// # Errors
 /// Unreadable file, missing columns, non-integer positions, or a table
 /// `ecam_core` refuses (with its error code and section).
-pub fn read(path: &Path) -> anyhow::Result<TableFile> {
+pub fn read(path: &Path) -> anyhow::Result<AnyTable> {
     let format = FileFormat::of(path)?;
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read table file {}", path.display()))?;
     let parsed = match format {
-        FileFormat::Csv => parse_csv(&text),
+        FileFormat::Csv => parse_csv(&text).map(AnyTable::Points),
         FileFormat::Json => parse_json(&text),
     };
     parsed.with_context(|| format!("in table file {}", path.display()))
@@ -196,10 +223,10 @@ fn parse_position(raw: &str) -> Option<i64> {
     (f.fract() == 0.0 && f.abs() < 9.0e15).then_some(f as i64)
 }
 
-fn parse_json(text: &str) -> anyhow::Result<TableFile> {
+fn parse_json(text: &str) -> anyhow::Result<AnyTable> {
     let json: JsonTable = match serde_json::from_str(text) {
         Ok(json) => json,
-        Err(ours) => return Err(other_kind(text, &ours)),
+        Err(ours) => return other_kind(text, &ours),
     };
     let points = json
         .points
@@ -224,34 +251,31 @@ fn parse_json(text: &str) -> anyhow::Result<TableFile> {
     {
         bail!("sync zone low {} is above high {}", s.low, s.high);
     }
-    Ok(TableFile {
+    Ok(AnyTable::Points(TableFile {
         table: PointTable::new(points)?,
         sync: json.sync.map(|s| (s.low, s.high)),
         generator: json.generator,
         kinematics,
-    })
+    }))
 }
 
-/// Explains why a JSON file without `points` cannot be used: `ecam_core`'s
-/// own JSON also stores evenly spaced tables and segment profiles, which
-/// `ecam simulate` runs but the point-table tools do not.
-fn other_kind(text: &str, ours: &serde_json::Error) -> anyhow::Error {
+/// A JSON file without this module's `points`: `ecam_core`'s own JSON,
+/// which also stores evenly spaced tables and segment profiles.
+fn other_kind(text: &str, ours: &serde_json::Error) -> anyhow::Result<AnyTable> {
     match ecam_core::io::from_json(text) {
-        Ok(table) => {
-            let kind = match table {
-                CamTable::Points(_) => "points",
-                CamTable::Uniform(_) => "uniform",
-                CamTable::Profile(_) => "profile",
-            };
-            anyhow::anyhow!(
-                "this is a {kind:?} table; `ecam table` works on point tables (a scenario's [table] file = ... can run it)"
-            )
-        }
+        Ok(CamTable::Points(table)) => Ok(AnyTable::Points(TableFile {
+            table,
+            sync: None,
+            generator: None,
+            kinematics: None,
+        })),
+        Ok(CamTable::Uniform(table)) => Ok(AnyTable::Uniform(table)),
+        Ok(CamTable::Profile(table)) => Ok(AnyTable::Profile(table)),
         // A `kind` key means the file is meant as `ecam_core`'s own JSON:
         // its validation error (code and section) says what to fix, while
         // ours would only complain about a missing `points` key.
-        Err(core) if has_kind_key(text) => anyhow::anyhow!("{core}"),
-        Err(_) => anyhow::anyhow!("not a table JSON object: {ours}"),
+        Err(core) if has_kind_key(text) => Err(anyhow::anyhow!("{core}")),
+        Err(_) => Err(anyhow::anyhow!("not a table JSON object: {ours}")),
     }
 }
 
@@ -269,16 +293,11 @@ fn has_kind_key(text: &str) -> bool {
 /// # Errors
 /// As [`read`].
 pub fn read_curve(path: &Path) -> anyhow::Result<Box<dyn ecam_core::CamCurve>> {
-    if FileFormat::of(path)? == FileFormat::Json {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read table file {}", path.display()))?;
-        if serde_json::from_str::<JsonTable>(&text).is_err() {
-            let table = ecam_core::io::from_json(&text)
-                .map_err(|e| anyhow::anyhow!("in table file {}: {e}", path.display()))?;
-            return Ok(Box::new(table));
-        }
-    }
-    Ok(Box::new(read(path)?.table))
+    Ok(match read(path)? {
+        AnyTable::Points(file) => Box::new(file.table),
+        AnyTable::Uniform(table) => Box::new(table),
+        AnyTable::Profile(table) => Box::new(table),
+    })
 }
 
 /// Which columns a CSV gets.
@@ -370,6 +389,13 @@ fn to_json(file: &TableFile, columns: Columns) -> anyhow::Result<String> {
 mod tests {
     use super::*;
 
+    fn points(text: &str) -> TableFile {
+        match parse_json(text).unwrap() {
+            AnyTable::Points(file) => file,
+            other => panic!("a {} table", other.kind()),
+        }
+    }
+
     #[test]
     fn a_bad_core_json_table_gets_the_core_error() {
         let e = parse_json(r#"{"kind": "uniform", "values": [0, 1], "cam_counts": 1}"#)
@@ -378,11 +404,6 @@ mod tests {
             .to_string();
         assert!(e.contains("6781"), "{e}");
         assert!(!e.contains("missing field"), "{e}");
-        let e = parse_json(r#"{"kind": "uniform", "values": [0, 1], "cam_counts": 10}"#)
-            .err()
-            .unwrap()
-            .to_string();
-        assert!(e.contains("\"uniform\" table"), "{e}");
         let e = parse_json(r#"{"pts": []}"#).err().unwrap().to_string();
         assert!(e.contains("`pts`"), "{e}");
         // A misspelt key is named, not silently dropped.
@@ -397,7 +418,9 @@ mod tests {
             .to_string();
         assert!(e.contains("low 5 is above high 1"), "{e}");
         // ecam_core's own point JSON still reads.
-        let t = parse_json(r#"{"kind": "points", "points": [{"master": 0, "slave": 0}, {"master": 9, "slave": 1}]}"#).unwrap();
+        let t = points(
+            r#"{"kind": "points", "points": [{"master": 0, "slave": 0}, {"master": 9, "slave": 1}]}"#,
+        );
         assert_eq!(t.table.points().len(), 2);
     }
 
@@ -425,7 +448,7 @@ mod tests {
     #[test]
     fn json_round_trip_keeps_sync() {
         let text = to_json(&sample(), Columns::Minimal).unwrap();
-        let back = parse_json(&text).unwrap();
+        let back = points(&text);
         assert_eq!(back.table, sample().table);
         assert_eq!(back.sync, Some((10, 20)));
         assert_eq!(back.generator.as_deref(), Some("test"));
@@ -444,10 +467,25 @@ mod tests {
     #[test]
     fn core_json_tables_are_understood() {
         let points = r#"{"kind": "points", "points": [{"master": 0, "slave": 0}, {"master": 10, "slave": 5}]}"#;
-        assert_eq!(parse_json(points).unwrap().table.points().len(), 2);
+        assert_eq!(super::tests::points(points).table.points().len(), 2);
         let uniform = r#"{"kind": "uniform", "values": [0, 100, 200], "cam_counts": 100}"#;
-        let err = parse_json(uniform).unwrap_err();
-        assert!(err.to_string().contains("\"uniform\" table"), "{err}");
+        match parse_json(uniform).unwrap() {
+            AnyTable::Uniform(t) => assert_eq!(t.values(), [0, 100, 200]),
+            other => panic!("a {} table", other.kind()),
+        }
+        let profile = ecam_core::io::to_json(&CamTable::Profile(
+            SegmentProfile::new(
+                CamPoint::new(0, 0),
+                vec![ecam_core::Segment::new(
+                    100,
+                    50,
+                    ecam_core::MotionLaw::Cycloid,
+                )],
+            )
+            .unwrap(),
+        ));
+        let t = parse_json(&profile).unwrap();
+        assert_eq!(t.kind(), "profile");
         assert!(parse_json("{}").is_err());
     }
 

@@ -325,6 +325,134 @@ fn show_summarises_a_csv() {
     assert!(text.contains("continuity:        C0"), "{text}");
 }
 
+/// `ecam_core`'s JSON of a profile: a cycloid rise of 1000 over 100 counts,
+/// a dwell of 100, then a constant-velocity rise of 1000 over 100.
+fn profile_json() -> String {
+    use ecam_core::{CamPoint, CamTable, MotionLaw, Segment, SegmentProfile};
+    let profile = SegmentProfile::new(
+        CamPoint::new(0, 0),
+        vec![
+            Segment::new(100, 1000, MotionLaw::Cycloid),
+            Segment::new(200, 1000, MotionLaw::Cycloid),
+            Segment::new(300, 2000, MotionLaw::ConstantVelocity),
+        ],
+    )
+    .unwrap();
+    ecam_core::io::to_json(&CamTable::Profile(profile))
+}
+
+#[test]
+fn show_summarises_uniform_tables_and_profiles_exactly() {
+    let dir = scratch("show-any");
+    // Document 002's example: a straight line, 2 pulses per count.
+    let uniform = dir.join("uniform.json");
+    std::fs::write(
+        &uniform,
+        r#"{"kind":"uniform","values":[0,100,200],"cam_counts":100}"#,
+    )
+    .unwrap();
+    let text = ok(ecam(&["table", "show", s(&uniform)]));
+    assert!(text.contains("kind:              uniform"), "{text}");
+    assert!(text.contains("points:            3"), "{text}");
+    assert!(text.contains("sections:          2"), "{text}");
+    assert!(
+        text.contains("master:            0 .. 100 (span 100)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("0 .. 200 (stroke 200, range 0 .. 200)"),
+        "{text}"
+    );
+    assert!(text.contains("peak velocity:     2 "), "{text}");
+    assert!(text.contains("peak acceleration: 0 "), "{text}");
+    assert!(text.contains("continuity:        C2"), "{text}");
+
+    // 4 values over 10 counts, a value every 3⅓ counts: slopes 3, 6, 9,
+    // each joint 3 pulses/count more over 10/3 counts: 0.9 pulses/count².
+    let fractional = dir.join("fractional.json");
+    std::fs::write(
+        &fractional,
+        r#"{"kind":"uniform","values":[0,10,30,60],"cam_counts":10}"#,
+    )
+    .unwrap();
+    let text = ok(ecam(&["table", "show", s(&fractional)]));
+    assert!(text.contains("a value every 3.333333 counts"), "{text}");
+    assert!(text.contains("sections:          3"), "{text}");
+    assert!(text.contains("(stroke 60, range 0 .. 60)"), "{text}");
+    assert!(text.contains("peak velocity:     9 "), "{text}");
+    assert!(text.contains("peak acceleration: 0.9 "), "{text}");
+    assert!(text.contains("continuity:        C0"), "{text}");
+
+    // The profile's own laws, not a sampled table: cycloid peak velocity
+    // 2·h/β = 20 and acceleration 2π·h/β² = 0.2π; the velocity steps from
+    // 0 to 10 where the constant-velocity segment starts.
+    let profile = dir.join("profile.json");
+    std::fs::write(&profile, profile_json()).unwrap();
+    let text = ok(ecam(&["table", "show", s(&profile)]));
+    assert!(text.contains("kind:              profile"), "{text}");
+    assert!(text.contains("points:            4"), "{text}");
+    assert!(text.contains("sections:          3"), "{text}");
+    assert!(
+        text.contains("0 .. 2000 (stroke 2000, range 0 .. 2000)"),
+        "{text}"
+    );
+    assert!(text.contains("peak velocity:     20 "), "{text}");
+    assert!(text.contains("peak acceleration: 0.628319 "), "{text}");
+    assert!(text.contains("continuity:        C0"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(ecam(&["table", "show", s(&profile), "--json"]))).unwrap();
+    assert_eq!(json["kind"], "profile");
+    assert_eq!(json["points"], 4);
+    assert_eq!(json["stroke"], 2000);
+    assert_eq!(json["master_last"], 300);
+    let peak = json["peak_acceleration"].as_f64().unwrap();
+    assert!((peak - 0.2 * std::f64::consts::PI).abs() < 1e-9, "{peak}");
+    assert!((json["peak_velocity"].as_f64().unwrap() - 20.0).abs() < 1e-9);
+    // Point tables keep their output: no `kind`.
+    let csv = dir.join("t.csv");
+    std::fs::write(&csv, "master,slave\n0,0\n10,5\n").unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(ecam(&["table", "show", s(&csv), "--json"]))).unwrap();
+    assert!(json.get("kind").is_none(), "{json}");
+}
+
+#[test]
+fn plot_draws_uniform_tables_and_profiles() {
+    let dir = scratch("plot-any");
+    let inputs = [
+        (
+            "uniform",
+            r#"{"kind":"uniform","values":[0,100,200],"cam_counts":100}"#.to_string(),
+        ),
+        (
+            "fractional",
+            r#"{"kind":"uniform","values":[0,10,30,60],"cam_counts":10}"#.to_string(),
+        ),
+        ("profile", profile_json()),
+    ];
+    for (name, text) in inputs {
+        let json = dir.join(format!("{name}.json"));
+        std::fs::write(&json, text).unwrap();
+        let png = dir.join(format!("{name}.png"));
+        ok(ecam(&["table", "plot", s(&json), "-o", s(&png)]));
+        let bytes = std::fs::read(&png).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{name}");
+        let svg = dir.join(format!("{name}.svg"));
+        ok(ecam(&[
+            "table",
+            "plot",
+            s(&json),
+            "-o",
+            s(&svg),
+            "--sync",
+            "0:5",
+        ]));
+        let svg = std::fs::read_to_string(&svg).unwrap();
+        assert!(svg.matches("<polyline").count() >= 4, "{name}");
+        assert_eq!(svg.matches("fill=\"#FFDD78\"").count(), 4, "{name}");
+    }
+}
+
 #[test]
 fn plot_writes_png_and_svg_with_the_sync_zone() {
     let dir = scratch("plot");

@@ -3,17 +3,21 @@
 //! - `ecam table gen GENERATOR [params] [-o FILE.csv|.json] [--plot FILE.svg|.png]`
 //! - `ecam table show FILE`
 //! - `ecam table plot FILE -o OUT.svg|.png`
+//!
+//! `show` and `plot` take every table kind `ecam_core` stores: point tables,
+//! evenly spaced tables and segment profiles (the last two in its JSON).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
+use ecam_core::CamCurve;
 use ecam_core::table::Summary;
 use serde::Serialize;
 
 use crate::generate::{self, GenCommand};
 use crate::plot;
-use crate::table_file::{self, Columns, TableFile};
+use crate::table_file::{self, AnyTable, Columns, TableFile};
 
 /// Subcommands of `ecam table`.
 #[derive(clap::Subcommand, Debug)]
@@ -129,6 +133,9 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
 #[derive(Serialize)]
 struct ShowJson<'a> {
     file: String,
+    /// Only for the kinds other than point tables, whose output predates it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    kind: Option<&'static str>,
     points: usize,
     master_first: i64,
     master_last: i64,
@@ -140,10 +147,70 @@ struct ShowJson<'a> {
 }
 
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
+    let table = table_file::read(&args.file)?;
+    let kind = table.kind();
+    match table {
+        AnyTable::Points(file) => show_points(args, &file),
+        AnyTable::Uniform(table) => {
+            let values = table.values().len();
+            // Document 002: N values make N − 1 pieces over CamCounts.
+            let spacing = table.cam_counts() as f64 / (values.saturating_sub(1)).max(1) as f64;
+            let what = format!(
+                "evenly spaced table, a value every {} counts",
+                short(spacing)
+            );
+            show_curve(args, kind, &what, values, &table)
+        }
+        AnyTable::Profile(profile) => {
+            let key_points = profile.segments().len().saturating_add(1);
+            let what = "segment profile, key points joined by motion laws, evaluated exactly";
+            show_curve(args, kind, what, key_points, &profile)
+        }
+    }
+}
+
+/// `show` for an evenly spaced table or a segment profile: its summary is
+/// measured on the curve itself, not on a sampled point table. `points` is
+/// the number of values (key points) the file holds.
+fn show_curve(
+    args: &ShowArgs,
+    kind: &'static str,
+    what: &str,
+    points: usize,
+    curve: &impl CamCurve,
+) -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    let summary = Summary::of(curve);
+    if args.json {
+        let json = ShowJson {
+            file: args.file.display().to_string(),
+            kind: Some(kind),
+            points,
+            master_first: curve.master_first(),
+            master_last: curve.master_last(),
+            slave_first: curve.slave_first(),
+            slave_last: curve.slave_last(),
+            sync: None,
+            summary: &summary,
+        };
+        writeln!(out, "{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    writeln!(out, "file:              {}", args.file.display())?;
+    writeln!(out, "kind:              {kind} ({what})")?;
+    writeln!(out, "points:            {points}")?;
+    write_summary(
+        &mut out,
+        &summary,
+        (curve.master_first(), curve.master_last()),
+        (curve.slave_first(), curve.slave_last()),
+    )
+}
+
+fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
     // Written through a handle, not `println!`, so a closed pipe
     // (`ecam table show t.csv | head -1`) is an error, not a panic.
     let mut out = std::io::stdout().lock();
-    let file = table_file::read(&args.file)?;
     let summary = Summary::of(&file.table);
     let points = file.table.points();
     let (first, last) = match (points.first(), points.last()) {
@@ -153,6 +220,7 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
     if args.json {
         let json = ShowJson {
             file: args.file.display().to_string(),
+            kind: None,
             points: points.len(),
             master_first: first.master,
             master_last: last.master,
@@ -169,16 +237,35 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
         writeln!(out, "generator:         {generator}")?;
     }
     writeln!(out, "points:            {}", points.len())?;
+    write_summary(
+        &mut out,
+        &summary,
+        (first.master, last.master),
+        (first.slave, last.slave),
+    )?;
+    if let Some((lo, hi)) = file.sync {
+        writeln!(out, "sync zone:         master {lo} .. {hi}")?;
+    }
+    Ok(())
+}
+
+/// The lines every table kind shares, from `sections` to `continuity`.
+fn write_summary(
+    out: &mut impl Write,
+    summary: &Summary,
+    (master_first, master_last): (i64, i64),
+    (slave_first, slave_last): (i64, i64),
+) -> anyhow::Result<()> {
     writeln!(out, "sections:          {}", summary.sections)?;
     writeln!(
         out,
-        "master:            {} .. {} (span {})",
-        first.master, last.master, summary.master_span
+        "master:            {master_first} .. {master_last} (span {})",
+        summary.master_span
     )?;
     writeln!(
         out,
-        "slave:             {} .. {} (stroke {}, range {} .. {})",
-        first.slave, last.slave, summary.stroke, summary.slave_min, summary.slave_max
+        "slave:             {slave_first} .. {slave_last} (stroke {}, range {} .. {})",
+        summary.stroke, summary.slave_min, summary.slave_max
     )?;
     writeln!(
         out,
@@ -191,9 +278,6 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
         short(summary.peak_acceleration)
     )?;
     writeln!(out, "continuity:        {}", summary.continuity)?;
-    if let Some((lo, hi)) = file.sync {
-        writeln!(out, "sync zone:         master {lo} .. {hi}")?;
-    }
     Ok(())
 }
 
@@ -206,15 +290,25 @@ fn short(v: f64) -> String {
 
 fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
     plot::Format::of(&args.output)?;
-    let mut file = table_file::read(&args.file)?;
-    if args.sync.is_some() {
-        file.sync = args.sync;
-    }
-    let name = file
-        .generator
-        .clone()
-        .unwrap_or_else(|| display_name(&args.file));
-    plot::draw_chart(&plot::cam_table::chart(&file, None, &name), &args.output)
+    let chart = match table_file::read(&args.file)? {
+        AnyTable::Points(mut file) => {
+            if args.sync.is_some() {
+                file.sync = args.sync;
+            }
+            let name = file
+                .generator
+                .clone()
+                .unwrap_or_else(|| display_name(&args.file));
+            plot::cam_table::chart(&file, None, &name)
+        }
+        AnyTable::Uniform(table) => {
+            plot::cam_table::uniform_chart(&table, args.sync, &display_name(&args.file))
+        }
+        AnyTable::Profile(profile) => {
+            plot::cam_table::profile_chart(&profile, args.sync, &display_name(&args.file))
+        }
+    };
+    plot::draw_chart(&chart, &args.output)
 }
 
 fn display_name(path: &Path) -> String {

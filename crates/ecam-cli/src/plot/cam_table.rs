@@ -12,9 +12,17 @@
 //! - **only the points** (a plain `master,slave` file): the section
 //!   velocities as a staircase, acceleration and jerk estimated from the
 //!   points (see [`crate::derivatives`]); the title says so.
+//!
+//! `ecam_core`'s other table kinds are drawn from the curve itself:
+//! - **a segment profile** ([`profile_chart`]): each segment's motion law,
+//!   sampled densely with both ends, so steps at the joints show as vertical
+//!   edges; the key points dotted;
+//! - **an evenly spaced table** ([`uniform_chart`], document 002): straight
+//!   pieces between values at `k · CamCounts / (N − 1)`, drawn as a plain
+//!   point table is (the spacing may be a fraction of a count).
 
 use ecam_core::generator::design_curve::DesignCurve;
-use ecam_core::{CamPoint, Kinematics};
+use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, SegmentProfile, UniformTable};
 
 use super::{Chart, ChartPanel, Style, Trace};
 use crate::derivatives;
@@ -129,29 +137,55 @@ fn known_panels(points: &[CamPoint], known: &[Kinematics]) -> Vec<ChartPanel> {
 }
 
 fn estimated_panels(points: &[CamPoint]) -> Vec<ChartPanel> {
-    let x = masters(points);
     let k = derivatives::of_points(points);
+    let straight = Straight {
+        x: masters(points),
+        s: slaves(points),
+        v: k.iter().map(|k| k.v).collect(),
+        a: k.iter().map(|k| k.a).collect(),
+        chords: derivatives::over_sections(points, SMOOTHING_SECTIONS),
+    };
+    straight_panels(straight, "points")
+}
+
+/// A curve of straight sections between its points, with the estimates
+/// [`crate::derivatives`] makes of the motion they sample.
+struct Straight {
+    /// Master of each point.
+    x: Vec<f64>,
+    /// Slave of each point.
+    s: Vec<f64>,
+    /// Velocity of the section starting at each point.
+    v: Vec<f64>,
+    /// Acceleration estimated per joint (0 at both ends).
+    a: Vec<f64>,
+    /// `(x, acceleration, jerk)` from chords over several sections.
+    chords: (Vec<f64>, Vec<f64>, Vec<f64>),
+}
+
+fn straight_panels(straight: Straight, dots: &str) -> Vec<ChartPanel> {
+    let Straight {
+        x,
+        s,
+        v,
+        a: joints,
+        chords: (xs, a, j),
+    } = straight;
     // The per-joint estimate is 0 at the ends only for want of a second
     // section: draw the interior joints.
     let inner = 1..x.len().saturating_sub(1);
-    let per_joint: Vec<f64> = k
-        .get(inner.clone())
-        .unwrap_or_default()
-        .iter()
-        .map(|k| k.a)
-        .collect();
+    let per_joint = joints.get(inner.clone()).unwrap_or_default().to_vec();
     let x_inner = x.get(inner).unwrap_or_default().to_vec();
-    let (xs, a, j) = derivatives::over_sections(points, SMOOTHING_SECTIONS);
     let smoothed = format!("over ±{SMOOTHING_SECTIONS} sections");
     vec![
         panel(
             DISPLACEMENT,
             vec![
-                line("table", x.clone(), slaves(points)),
+                line("table", x.clone(), s.clone()),
                 Trace {
-                    name: "points".into(),
+                    name: dots.into(),
                     x: x.clone(),
-                    y: slaves(points),
+                    y: s,
                     style: Style::Markers,
                 },
             ],
@@ -161,7 +195,7 @@ fn estimated_panels(points: &[CamPoint]) -> Vec<ChartPanel> {
             vec![Trace {
                 name: "section velocity".into(),
                 x,
-                y: k.iter().map(|k| k.v).collect(),
+                y: v,
                 style: Style::Steps,
             }],
         ),
@@ -182,6 +216,133 @@ fn estimated_panels(points: &[CamPoint]) -> Vec<ChartPanel> {
             vec![line(&smoothed, xs, j)],
         ),
     ]
+}
+
+fn chart_over(title: String, panels: Vec<ChartPanel>, sync: Option<(i64, i64)>) -> Chart {
+    Chart {
+        title,
+        x_label: "master (counts)".into(),
+        panels,
+        shaded: sync
+            .map(|(lo, hi)| vec![(lo as f64, hi as f64)])
+            .unwrap_or_default(),
+    }
+}
+
+/// The plot of an evenly spaced table (document 002): its straight pieces,
+/// velocity per piece, acceleration and jerk estimated as for a point table,
+/// the values dotted at their (possibly fractional) masters.
+pub fn uniform_chart(table: &UniformTable, sync: Option<(i64, i64)>, name: &str) -> Chart {
+    let values = table.values();
+    let pieces = values.len().saturating_sub(1).max(1) as f64;
+    let counts = table.cam_counts() as f64;
+    let x: Vec<f64> = (0..values.len())
+        .map(|k| k as f64 * counts / pieces)
+        .collect();
+    let s: Vec<f64> = values.iter().map(|&v| v as f64).collect();
+    // Each piece's own slope, from the curve at the piece's middle (at a
+    // value's master rounding could land in the piece before); the last
+    // value repeats the last piece's, as for point tables.
+    let mut cursor = Cursor::new();
+    let mut v: Vec<f64> = x
+        .windows(2)
+        .map(|w| match w {
+            [lo, hi] => table.eval(0.5 * (lo + hi), &mut cursor).v,
+            _ => 0.0,
+        })
+        .collect();
+    if let Some(&last) = v.last() {
+        v.push(last);
+    }
+    let a = derivatives::at_joints(&x, &v);
+    let straight = Straight {
+        chords: uniform_chords(table),
+        x,
+        s,
+        v,
+        a,
+    };
+    let title = format!(
+        "cam table: {name} ({} evenly spaced values over {} counts; acceleration, jerk estimated)",
+        values.len(),
+        table.cam_counts()
+    );
+    chart_over(title, straight_panels(straight, "values"), sync)
+}
+
+/// [`derivatives::over_sections`] of an evenly spaced table. Its masters
+/// `k · CamCounts / (N − 1)` may be fractional, so the chords are taken over
+/// masters scaled by `N − 1` (whole `k · CamCounts`) and scaled back:
+/// x by `1/(N − 1)`, acceleration by `(N − 1)²`, jerk by `(N − 1)³`.
+fn uniform_chords(table: &UniformTable) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let values = table.values();
+    let scale = values.len().saturating_sub(1).max(1) as f64;
+    let scaled: Option<Vec<CamPoint>> = values
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            let k = i64::try_from(k).ok()?;
+            Some(CamPoint::new(k.checked_mul(table.cam_counts())?, v))
+        })
+        .collect();
+    // Beyond i64 (over 2^34 values): no chord estimate rather than a wrong one.
+    let Some(scaled) = scaled else {
+        return Default::default();
+    };
+    let (x, a, j) = derivatives::over_sections(&scaled, SMOOTHING_SECTIONS);
+    (
+        x.into_iter().map(|x| x / scale).collect(),
+        a.into_iter().map(|a| a * scale * scale).collect(),
+        j.into_iter().map(|j| j * scale * scale * scale).collect(),
+    )
+}
+
+/// The plot of a segment profile: each segment's law evaluated exactly at
+/// dense samples, the key points dotted over the displacement.
+pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &str) -> Chart {
+    let segments = profile.segments();
+    let per_segment = (DESIGN_SAMPLES / segments.len().max(1)).clamp(8, DESIGN_SAMPLES);
+    let mut samples: Vec<(f64, Kinematics)> =
+        Vec::with_capacity(segments.len().saturating_mul(per_segment + 1));
+    let mut from = profile.start();
+    for segment in segments {
+        // As `SegmentProfile::eval` does, but with both ends of every
+        // segment: at a joint `eval` gives the next segment's values, and
+        // the left end is what makes a step show as a vertical edge.
+        let span = segment.master_end.saturating_sub(from.master) as f64;
+        let rise = segment.slave_end.saturating_sub(from.slave) as f64;
+        for i in 0..=per_segment {
+            let u = i as f64 / per_segment as f64;
+            let k = segment.law.eval(u).scaled(from.slave as f64, rise, span);
+            samples.push((from.master as f64 + span * u, k));
+        }
+        from = CamPoint::new(segment.master_end, segment.slave_end);
+    }
+    let key_points: Vec<CamPoint> = profile.key_points().collect();
+    let x: Vec<f64> = samples.iter().map(|(m, _)| *m).collect();
+    let of = |f: fn(&Kinematics) -> f64| samples.iter().map(|(_, k)| f(k)).collect::<Vec<_>>();
+    let panels = vec![
+        panel(
+            DISPLACEMENT,
+            vec![
+                line("profile", x.clone(), of(|k| k.s)),
+                Trace {
+                    name: "key points".into(),
+                    x: masters(&key_points),
+                    y: slaves(&key_points),
+                    style: Style::Markers,
+                },
+            ],
+        ),
+        panel(VELOCITY, vec![line("profile", x.clone(), of(|k| k.v))]),
+        panel(ACCELERATION, vec![line("profile", x.clone(), of(|k| k.a))]),
+        panel(JERK, vec![line("profile", x, of(|k| k.j))]),
+    ];
+    let title = format!(
+        "cam table: {name} (lines: its motion laws, exact; dots: its {} key points)",
+        key_points.len()
+    );
+    chart_over(title, panels, sync)
 }
 
 #[cfg(test)]
@@ -223,6 +384,69 @@ mod tests {
         assert_eq!(c.panels[2].traces[0].x, vec![10.0, 40.0]);
         assert!((c.panels[2].traces[0].y[0] - 0.1).abs() < 1e-12);
         assert_eq!(c.panels[2].traces[1].x, vec![10.0, 40.0]);
+    }
+
+    #[test]
+    fn a_uniform_table_is_drawn_as_its_pieces_at_fractional_masters() {
+        // 4 values over 10 counts: a value every 3⅓ counts.
+        let t = UniformTable::new(vec![0, 10, 30, 60], 10).unwrap();
+        let c = uniform_chart(&t, Some((2, 5)), "u.json");
+        assert!(
+            c.title.contains("4 evenly spaced values over 10 counts"),
+            "{}",
+            c.title
+        );
+        assert_eq!(c.shaded, vec![(2.0, 5.0)]);
+        let dots = &c.panels[0].traces[1];
+        assert_eq!(dots.style, Style::Markers);
+        assert_eq!(dots.y, vec![0.0, 10.0, 30.0, 60.0]);
+        assert!((dots.x[1] - 10.0 / 3.0).abs() < 1e-12 && dots.x[3] == 10.0);
+        let v = &c.panels[1].traces[0];
+        assert_eq!(v.style, Style::Steps);
+        for (got, want) in v.y.iter().zip([3.0, 6.0, 9.0, 9.0]) {
+            assert!((got - want).abs() < 1e-12, "{:?}", v.y);
+        }
+        // Slopes rise by 3 per piece of 10/3 counts: 0.9 pulses/count², per
+        // joint and over chords alike (the values sample a parabola).
+        for trace in &c.panels[2].traces {
+            assert_eq!(trace.x.len(), 2);
+            for a in &trace.y {
+                assert!((a - 0.9).abs() < 1e-9, "{}: {:?}", trace.name, trace.y);
+            }
+        }
+    }
+
+    #[test]
+    fn a_profile_is_drawn_from_its_laws_with_steps_at_the_joints() {
+        use ecam_core::{MotionLaw, Segment};
+        let p = SegmentProfile::new(
+            CamPoint::new(0, 0),
+            vec![
+                Segment::new(100, 1000, MotionLaw::Cycloid),
+                Segment::new(200, 1000, MotionLaw::Cycloid),
+                Segment::new(300, 2000, MotionLaw::ConstantVelocity),
+            ],
+        )
+        .unwrap();
+        let c = profile_chart(&p, None, "p.json");
+        assert!(c.title.contains("4 key points"), "{}", c.title);
+        assert!(c.shaded.is_empty());
+        let dots = &c.panels[0].traces[1];
+        assert_eq!(dots.x, vec![0.0, 100.0, 200.0, 300.0]);
+        let v = &c.panels[1].traces[0];
+        assert!(v.x.len() > 1000);
+        // Peak velocity of a cycloid: 2·h/β = 20 at mid-segment.
+        let peak = v.y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        assert!((peak - 20.0).abs() < 1e-9, "{peak}");
+        // At master 200 the velocity steps from 0 to 10: both ends drawn.
+        let at_200: Vec<f64> =
+            v.x.iter()
+                .zip(&v.y)
+                .filter(|(x, _)| **x == 200.0)
+                .map(|(_, v)| *v)
+                .collect();
+        assert_eq!(at_200.len(), 2);
+        assert!(at_200[0].abs() < 1e-9 && (at_200[1] - 10.0).abs() < 1e-9);
     }
 
     #[test]
