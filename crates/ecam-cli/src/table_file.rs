@@ -69,6 +69,13 @@ impl AnyTable {
     }
 }
 
+/// `path`'s extension in lower case (`T.CSV` and `t.csv` are the same format).
+pub fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
 /// File formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FileFormat {
@@ -84,12 +91,7 @@ impl FileFormat {
     /// # Errors
     /// Extensions other than `csv` and `json`.
     pub fn of(path: &Path) -> anyhow::Result<Self> {
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
+        match extension(path).as_deref() {
             Some("csv") => Ok(Self::Csv),
             Some("json") => Ok(Self::Json),
             _ => bail!("table file {} must end in .csv or .json", path.display()),

@@ -1,7 +1,11 @@
 //! `ecam law`: the contract output (names, CSV header, row count, ends) and errors.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::{Command, Output};
+mod common;
+
+use common::ecam;
+
+use std::process::Output;
 
 const LAWS: [&str; 11] = [
     "constant-velocity",
@@ -16,13 +20,6 @@ const LAWS: [&str; 11] = [
     "cubic",
     "s-type",
 ];
-
-fn ecam(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ecam"))
-        .args(args)
-        .output()
-        .expect("run ecam")
-}
 
 fn stdout(out: &Output) -> String {
     assert!(

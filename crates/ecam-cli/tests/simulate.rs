@@ -2,18 +2,15 @@
 //! the numbers of its document, the trace and summary formats, and errors.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
+use common::ecam;
+
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 use serde_json::Value;
-
-fn ecam(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ecam"))
-        .args(args)
-        .output()
-        .expect("run ecam")
-}
 
 fn scenario(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -22,10 +19,7 @@ fn scenario(name: &str) -> PathBuf {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("simulate-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::scratch_dir(&format!("simulate-{name}"))
 }
 
 /// A trace, column by name.

@@ -2,38 +2,16 @@
 //! examples, plots, and errors.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
+use common::{ecam, fails, ok};
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn ecam(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ecam"))
-        .args(args)
-        .output()
-        .expect("run ecam")
-}
-
-fn ok(out: Output) -> String {
-    assert!(
-        out.status.success(),
-        "ecam failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn fails(out: Output) -> String {
-    assert!(!out.status.success(), "ecam should have failed");
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(!err.is_empty());
-    err
-}
-
 /// A fresh scratch folder per test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("table-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::scratch_dir(&format!("table-{name}"))
 }
 
 fn s(p: &Path) -> &str {

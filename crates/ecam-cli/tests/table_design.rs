@@ -3,30 +3,14 @@
 //! derivatives estimated from its points, and says so.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn ecam(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ecam"))
-        .args(args)
-        .output()
-        .expect("run ecam")
-}
+use common::{ecam, ok};
 
-fn ok(out: Output) -> String {
-    assert!(
-        out.status.success(),
-        "ecam failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
+use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("table-design-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::scratch_dir(&format!("table-design-{name}"))
 }
 
 /// Rows of `master,slave,velocity,acceleration,jerk`.

@@ -142,12 +142,7 @@ impl Format {
     /// # Errors
     /// Any extension other than `svg` or `png`.
     pub fn of(path: &Path) -> anyhow::Result<Self> {
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
+        match crate::table_file::extension(path).as_deref() {
             Some("svg") => Ok(Self::Svg),
             Some("png") => Ok(Self::Png),
             _ => bail!("plot file {} must end in .svg or .png", path.display()),
