@@ -5,13 +5,14 @@
 //! back to a default) and turns the file into engine types up front: a bad
 //! scenario fails before the first tick.
 
-use std::num::NonZeroU64;
+use std::num::{NonZeroU32, NonZeroU64};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use ecam_core::CamCurve;
 use ecam_engine::{
-    AxisConfig, Compare, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind, SyncWindow, Zoom,
+    AxisConfig, Compare, Coupling, MasterAlign, MasterFilter, SlaveAlign, StartMode, StopKind,
+    SyncWindow, Zoom,
 };
 use serde::Deserialize;
 
@@ -64,6 +65,18 @@ struct RawCam {
     #[serde(default)]
     max_frequency_hz: i64,
     ramp_in: Option<u64>,
+    #[serde(default)]
+    master_filter: RawMasterFilter,
+    max_interval_us: Option<u32>,
+    max_master_step: Option<u64>,
+}
+
+#[derive(Deserialize, Debug, Default, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+enum RawMasterFilter {
+    #[default]
+    Direct,
+    Interpolate,
 }
 
 #[derive(Deserialize, Debug, Default, Clone, Copy)]
@@ -155,6 +168,7 @@ struct RawSync {
 struct RawMaster {
     #[serde(default)]
     moves: Vec<[f64; 2]>,
+    update_us: Option<u64>,
 }
 
 /// One linear master move: reach `target` after `duration_us`.
@@ -212,6 +226,8 @@ pub struct Scenario {
     pub config: AxisConfig,
     /// Master position at t = 0 (unwrapped counts).
     pub master_start: i64,
+    /// A coarse master: the reading changes only every this many µs.
+    pub master_update_us: Option<NonZeroU64>,
     /// Slave position at t = 0.
     pub slave_start: i64,
     /// Master moves, one after another from `master_start`.
@@ -355,6 +371,27 @@ impl Scenario {
                 }),
                 None => None,
             },
+            master_filter: match (raw.cam.master_filter, raw.cam.max_interval_us) {
+                (RawMasterFilter::Direct, None) => MasterFilter::Direct,
+                (RawMasterFilter::Direct, Some(_)) => {
+                    bail!("[cam] max_interval_us needs master_filter = \"interpolate\"")
+                }
+                (RawMasterFilter::Interpolate, None) => MasterFilter::INTERPOLATE,
+                (RawMasterFilter::Interpolate, Some(us)) => MasterFilter::Interpolate {
+                    max_interval_us: NonZeroU32::new(us)
+                        .context("[cam] max_interval_us must be at least 1")?,
+                },
+            },
+            max_master_step: match raw.cam.max_master_step {
+                Some(step) => Some(
+                    NonZeroU64::new(step).context("[cam] max_master_step must be at least 1")?,
+                ),
+                None => None,
+            },
+        };
+        let master_update_us = match raw.master.update_us {
+            Some(us) => Some(NonZeroU64::new(us).context("[master] update_us must be at least 1")?),
+            None => None,
         };
         Ok(Self {
             tick_us: raw.tick_us,
@@ -363,11 +400,21 @@ impl Scenario {
             curve,
             config,
             master_start: raw.start.master,
+            master_update_us,
             slave_start: raw.start.slave,
             moves,
             start_input,
             stop,
         })
+    }
+
+    /// The master as the axis reads it at `t_us`: a coarse master
+    /// (`[master] update_us`) shows the position of its last update.
+    pub fn master_read_at(&self, t_us: u64) -> i64 {
+        match self.master_update_us {
+            Some(every) => self.master_at(t_us - t_us % every.get()),
+            None => self.master_at(t_us),
+        }
     }
 
     /// Master position (unwrapped) at `t_us`: linear within each move.

@@ -45,7 +45,7 @@ fn axes(n: usize) -> Vec<CamAxis<PointTable>> {
             };
             let mut axis = CamAxis::new(table(), config).unwrap();
             axis.arm().unwrap();
-            axis.tick(&TickInput::at(0, 100));
+            let _ = axis.tick(&TickInput::at(0, 100));
             axis
         })
         .collect()

@@ -18,7 +18,8 @@ use crate::start::{StartStep, StartWatch};
 use crate::stop::CycleEnd;
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, StopKind, SyncWindow, TickInput, TickOutput,
+    AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
+    TickOutput,
 };
 
 /// A slave axis coupled to a master through a cam curve.
@@ -38,6 +39,15 @@ pub struct CamAxis<C> {
     ramp: Option<Ramp>,
     cycle_end: Option<CycleEnd>,
     turn: Option<TurnUnwrap>,
+    tracker: MasterTracker,
+    /// The last unwrapped reading (for the master-step guard).
+    last_reading: Option<i64>,
+    /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
+    pending: Option<C>,
+    /// The table a switch replaced, for the caller to take back
+    /// ([`CamAxis::take_retired_curve`]): dropping it inside `tick` would
+    /// free memory in the control cycle.
+    retired: Option<C>,
     commanded: i64,
     pulse: PulseOutput,
     last_master: Option<i64>,
@@ -66,6 +76,10 @@ impl<C: CamCurve> CamAxis<C> {
             ramp: None,
             cycle_end: None,
             turn: config.single_turn.map(TurnUnwrap::new),
+            tracker: MasterTracker::new(config.master_filter),
+            last_reading: None,
+            pending: None,
+            retired: None,
             commanded: 0,
             pulse: PulseOutput::at(0),
             last_master: None,
@@ -123,6 +137,11 @@ impl<C: CamCurve> CamAxis<C> {
         if config.single_turn != self.config.single_turn {
             self.turn = config.single_turn.map(TurnUnwrap::new);
             self.last_master = None;
+            self.last_reading = None;
+            self.tracker.reset();
+        }
+        if config.master_filter != self.config.master_filter {
+            self.tracker = MasterTracker::new(config.master_filter);
         }
         self.config = config;
         self.geometry = geometry;
@@ -139,6 +158,45 @@ impl<C: CamCurve> CamAxis<C> {
         self.geometry = Geometry::new(&curve, &self.config)?;
         self.cursor = Cursor::new();
         Ok(core::mem::replace(&mut self.curve, curve))
+    }
+
+    /// Hands a new table to the axis. Idle, armed or finished, it replaces
+    /// the table at once. While the cam is engaged it takes over at the next
+    /// seam (cycle boundary) the master crosses, in either direction: the
+    /// new table's cycle starts there and the output continues from the
+    /// slave position at the seam, without a step (velocity is continuous
+    /// when the tables' slopes agree at the seam). A second call before the
+    /// seam replaces the waiting table. After the switch the old table can
+    /// be taken back with [`CamAxis::take_retired_curve`].
+    ///
+    /// # Errors
+    /// As [`CamAxis::new`] for a table that does not fit the configuration,
+    /// and [`EngineError::NoSeam`] for an engaged normal (non-repeating)
+    /// cam; the running cam is left untouched.
+    pub fn queue_curve(&mut self, curve: C) -> Result<(), EngineError> {
+        let geometry = Geometry::new(&curve, &self.config)?;
+        if !self.state.is_engaged() {
+            self.geometry = geometry;
+            self.cursor = Cursor::new();
+            self.pending = None;
+            self.retired = Some(core::mem::replace(&mut self.curve, curve));
+            return Ok(());
+        }
+        if geometry.extent == crate::coupling::Extent::Single {
+            return Err(EngineError::NoSeam);
+        }
+        self.pending = Some(curve);
+        Ok(())
+    }
+
+    /// True while a queued table waits for the next seam.
+    pub fn has_queued_curve(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// The table the last switch or replacement retired, if not yet taken.
+    pub fn take_retired_curve(&mut self) -> Option<C> {
+        self.retired.take()
     }
 
     /// Changes the sync windows; allowed while running (document 003
@@ -223,6 +281,14 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     fn halt(&mut self) {
+        if let Some(curve) = self.pending.take() {
+            // A stop ends the run: the waiting table is the one to restart with.
+            if let Ok(geometry) = Geometry::new(&curve, &self.config) {
+                self.geometry = geometry;
+                self.cursor = Cursor::new();
+                self.retired = Some(core::mem::replace(&mut self.curve, curve));
+            }
+        }
         self.state = AxisState::Idle;
         self.start = None;
         self.engagement = None;
@@ -232,11 +298,18 @@ impl<C: CamCurve> CamAxis<C> {
 
     /// One control cycle. Never allocates, never panics; O(1) while the
     /// master moves continuously (a jump costs one binary search).
+    #[must_use = "the tick's output holds the pulses to emit"]
     pub fn tick(&mut self, input: &TickInput) -> TickOutput {
-        let master = match &mut self.turn {
+        let reading = match &mut self.turn {
             Some(turn) => turn.update(input.master),
             None => input.master,
         };
+        let step = self.last_reading.map_or(0, |last| reading.abs_diff(last));
+        self.last_reading = Some(reading);
+        let estimate = self
+            .tracker
+            .update(reading, input.master_fraction, input.dt_us);
+        let master = estimate.counts;
         let previous = self.last_master.unwrap_or(master);
         self.last_master = Some(master);
         let edge = input.start_input && !self.last_start_input;
@@ -250,6 +323,17 @@ impl<C: CamCurve> CamAxis<C> {
         let mut sample = None;
 
         if !input.output_enabled && self.state.is_active() {
+            self.halt();
+            events.stopped = true;
+        }
+
+        if self.state.is_active()
+            && self
+                .config
+                .max_master_step
+                .is_some_and(|limit| step > limit.get())
+        {
+            fault = Some(EngineError::MasterStep);
             self.halt();
             events.stopped = true;
         }
@@ -272,7 +356,7 @@ impl<C: CamCurve> CamAxis<C> {
         }
 
         if self.state.is_engaged() {
-            match self.follow(master, &mut events) {
+            match self.follow(master, estimate.fraction, &mut events) {
                 Ok(s) => sample = Some(s),
                 Err(e) => {
                     fault = Some(e);
@@ -313,12 +397,11 @@ impl<C: CamCurve> CamAxis<C> {
         Ok(())
     }
 
-    fn follow(&mut self, master: i64, events: &mut Events) -> Result<FollowSample, EngineError> {
-        let Some(engagement) = self.engagement else {
-            return Err(EngineError::Busy);
-        };
-        let geo = self.geometry;
-        let geo = &geo;
+    /// Where the cam stands for `master`: the place (clamped to a one-shot's
+    /// span or to the end of a requested end-of-cycle stop), whether a
+    /// one-shot finished, and whether the stop was reached (and forwards).
+    fn resolve(&self, engagement: &Engagement, master: i64) -> Resolved {
+        let geo = &self.geometry;
         let t = engagement.table_input(geo, master);
         let mut finished = false;
         let t = match engagement.span {
@@ -330,40 +413,136 @@ impl<C: CamCurve> CamAxis<C> {
             None => t,
         };
         let mut place = geo.locate(t);
-        let mut stopped = false;
+        let mut stopped = None;
         if self.state == AxisState::Stopping
             && let Some(end) = self.cycle_end
             && let Some((at, forward)) = end.reached(geo, t)
         {
             place = at;
-            stopped = true;
+            stopped = Some(forward);
             finished = false;
-            events.cycle_completed |= forward;
         }
-        let cam = engagement.sample(geo, &self.curve, &mut self.cursor, place)?;
-        let mut slave = cam.slave;
-        let mut velocity_ratio = cam.velocity_ratio;
-        let mut ramping = false;
-        if let Some(ramp) = self.ramp {
-            match ramp.blend(master, slave) {
-                Some(blended) => {
-                    slave = blended;
-                    velocity_ratio *= ramp.weight(master);
-                    ramping = true;
-                }
-                None => self.ramp = None,
+        Resolved {
+            place,
+            finished,
+            stopped,
+        }
+    }
+
+    /// The commanded slave at `place` for `master`, ramp-in included;
+    /// returns the cam sample, the commanded position, the velocity ratio
+    /// and whether a ramp-in is still blending.
+    fn command_at(
+        &mut self,
+        engagement: &Engagement,
+        place: Place,
+        master: i64,
+    ) -> Result<(Sample, i64, f64, bool), EngineError> {
+        let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        match self
+            .ramp
+            .and_then(|ramp| Some((ramp, ramp.blend(master, cam.slave)?)))
+        {
+            Some((ramp, blended)) => {
+                Ok((cam, blended, cam.velocity_ratio * ramp.weight(master), true))
             }
+            None => Ok((cam, cam.slave, cam.velocity_ratio, false)),
+        }
+    }
+
+    /// Takes a queued table over at the seam between `from` and `to` (cycle
+    /// indices of the last and this tick's place), if one waits.
+    fn switch_at_seam(
+        &mut self,
+        engagement: Engagement,
+        from: Place,
+        to: Place,
+    ) -> Result<Option<Engagement>, EngineError> {
+        if from.k == to.k || self.pending.is_none() {
+            return Ok(None);
+        }
+        let forward = to.k > from.k;
+        // The first boundary crossed: the end of the last cycle going
+        // forwards, its start going backwards.
+        let at_seam = if forward {
+            self.geometry.cycle_end(from.k)
+        } else {
+            Geometry::cycle_start(from.k)
+        };
+        let old = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
+        let Some(curve) = self.pending.take() else {
+            return Ok(None);
+        };
+        let geometry = Geometry::new(&curve, &self.config)?;
+        let mut cursor = Cursor::new();
+        let next = engagement.across_seam(
+            &self.geometry,
+            &geometry,
+            &curve,
+            &mut cursor,
+            from.k,
+            forward,
+            old.slave,
+        )?;
+        self.geometry = geometry;
+        self.cursor = cursor;
+        self.retired = Some(core::mem::replace(&mut self.curve, curve));
+        Ok(Some(next))
+    }
+
+    fn follow(
+        &mut self,
+        master: i64,
+        fraction: u32,
+        events: &mut Events,
+    ) -> Result<FollowSample, EngineError> {
+        let Some(mut engagement) = self.engagement else {
+            return Err(EngineError::Busy);
+        };
+        let mut here = self.resolve(&engagement, master);
+        if here.stopped.is_none()
+            && let Some(last) = self.last_place
+            && let Some(next) = self.switch_at_seam(engagement, last, here.place)?
+        {
+            engagement = next;
+            self.engagement = Some(next);
+            events.table_switched = true;
+            events.cycle_completed = true;
+            here = self.resolve(&engagement, master);
+            // Cycle indices restart with the new table.
+            self.last_place = Some(here.place);
+        }
+        let place = here.place;
+        let (cam, mut slave, velocity_ratio, ramping) =
+            self.command_at(&engagement, place, master)?;
+        if fraction != 0 && here.stopped.is_none() && !here.finished {
+            // Between whole master counts (an exact time base, or a coarse
+            // master's estimate) the command moves along the straight line
+            // to the next count's value: exact at every whole count, and
+            // monotonic in between.
+            let next_master = master.saturating_add(1);
+            let ahead = self.resolve(&engagement, next_master);
+            let (_, next_slave, _, _) = self.command_at(&engagement, ahead.place, next_master)?;
+            let gap = i128::from(next_slave) - i128::from(slave);
+            let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
+            slave =
+                i64::try_from(i128::from(slave) + step).map_err(|_| EngineError::SlaveOverflow)?;
+        }
+        if !ramping {
+            self.ramp = None;
         }
         self.commanded = slave;
         if self.last_place.is_some_and(|p| p.k != place.k) {
             events.cycle_completed = true;
+            events.seam_jump |= self.geometry.jumps_at_seam;
         }
         self.last_place = Some(place);
-        if stopped {
+        if let Some(forward) = here.stopped {
+            events.cycle_completed |= forward;
             events.stopped = true;
             self.halt();
             self.state = AxisState::Finished;
-        } else if finished {
+        } else if here.finished {
             events.finished = true;
             events.cycle_completed = true;
             self.halt();
@@ -373,7 +552,7 @@ impl<C: CamCurve> CamAxis<C> {
             cam,
             velocity_ratio,
             following: !ramping,
-            input_offset: engagement.input_offset(geo),
+            input_offset: engagement.input_offset(&self.geometry),
             cycle: place.k.saturating_sub(engagement.k_engage),
         })
     }
@@ -424,6 +603,15 @@ impl<C: CamCurve> CamAxis<C> {
         self.last = out;
         out
     }
+}
+
+/// Where the cam stands for one master position.
+#[derive(Clone, Copy, Debug)]
+struct Resolved {
+    place: Place,
+    finished: bool,
+    /// The end-of-cycle stop was reached; `true` at the forward end.
+    stopped: Option<bool>,
 }
 
 /// What following the cam produced this tick (kept out of the public output).

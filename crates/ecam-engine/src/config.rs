@@ -5,7 +5,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::{SyncWindow, Zoom};
+use crate::{MasterFilter, SyncWindow, Zoom};
 
 /// The ceiling and default of the pulse output frequency (document 003,
 /// register 6/7: "if frequency > 200K or < 0, the value is 200K").
@@ -162,6 +162,16 @@ pub struct AxisConfig {
     pub sync_windows: [SyncWindow; 4],
     /// Optional smooth engagement (beyond the documents).
     pub ramp_in: Option<RampIn>,
+    /// How master readings become the followed position: as they are, or
+    /// interpolated between the changes of a coarse master (see
+    /// [`MasterFilter`]).
+    pub master_filter: MasterFilter,
+    /// Largest master step per tick (unwrapped, before zoom) accepted while
+    /// the axis is armed or engaged; a larger one stops the cam with
+    /// [`crate::EngineError::MasterStep`]. On a single-turn master a step of
+    /// more than half a turn cannot be told from a step the other way
+    /// round: set this below half a turn to fault instead of reversing.
+    pub max_master_step: Option<NonZeroU64>,
 }
 
 impl Default for AxisConfig {
@@ -177,6 +187,8 @@ impl Default for AxisConfig {
             max_frequency_hz: i64::from(MAX_FREQUENCY_HZ),
             sync_windows: [SyncWindow::OFF; 4],
             ramp_in: None,
+            master_filter: MasterFilter::Direct,
+            max_master_step: None,
         }
     }
 }

@@ -45,6 +45,9 @@ pub(crate) struct Geometry {
     sden: i128,
     /// Slave change added per cycle (0 for a periodic or normal cam).
     stroke: i128,
+    /// The slave jumps at the seam: a repeating table whose first and last
+    /// slave values differ and whose stroke is not accumulated.
+    pub(crate) jumps_at_seam: bool,
     pub(crate) extent: Extent,
 }
 
@@ -84,6 +87,10 @@ impl Geometry {
             }
             Coupling::OneShot { repeats: u16::MAX } => (raw_stroke, Extent::Cyclic),
             Coupling::OneShot { repeats } => (raw_stroke, Extent::Cycles(u32::from(repeats) + 1)),
+            // Document 001: on a single-turn master a normal cam repeats
+            // with the turn (with a table covering the turn it behaves as
+            // the periodic type); elsewhere it has no cycle.
+            Coupling::Normal if config.single_turn.is_some() => (0, Extent::Cyclic),
             Coupling::Normal => (0, Extent::Single),
         };
         let (origin, span) = match extent {
@@ -101,6 +108,7 @@ impl Geometry {
             snum: i128::from(config.slave_zoom.num()),
             sden: i128::from(config.slave_zoom.den()),
             stroke,
+            jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
         })
     }
@@ -157,7 +165,7 @@ impl Geometry {
     }
 
     /// Table input as a float for the curve (the only float in the chain).
-    fn table_x(&self, place: Place) -> f64 {
+    pub(crate) fn table_x(&self, place: Place) -> f64 {
         self.origin as f64 + to_f64(place.r_num) / to_f64(self.mden)
     }
 
@@ -326,6 +334,57 @@ impl Engagement {
     pub(crate) fn table_input(&self, geo: &Geometry, master: i64) -> i128 {
         geo.zoomed_master(master)
             .saturating_add(self.input_offset_num)
+    }
+
+    /// The engagement that carries a running cam onto a new table at the
+    /// seam it just crossed: the boundary of old cycle `k` (its end when
+    /// `forward`, else its start) becomes the start of the new table's
+    /// cycle 0, and the output offset is chosen so that the new table gives
+    /// `slave_at_seam` there: the slave is continuous across the switch.
+    /// A one-shot's remaining travel is rescaled to the new cycle length.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn across_seam<C: CamCurve + ?Sized>(
+        &self,
+        old: &Geometry,
+        new: &Geometry,
+        curve: &C,
+        cursor: &mut Cursor,
+        k: i128,
+        forward: bool,
+        slave_at_seam: i64,
+    ) -> Result<Self, EngineError> {
+        let seam = old.boundary(k, forward);
+        let input_offset_num = self
+            .input_offset_num
+            .checked_add(new.origin_num)
+            .and_then(|v| v.checked_sub(seam))
+            .ok_or(EngineError::SlaveOverflow)?;
+        // Seen from the side the master came from: a periodic table's jump
+        // belongs to the next cycle.
+        let at_seam = if forward {
+            Geometry::cycle_start(0)
+        } else {
+            new.cycle_end(-1)
+        };
+        let (table, _) = table_value(curve, cursor, new.table_x(at_seam))?;
+        let on_table = new.zoomed(at_seam.k, table)?;
+        let output_offset = i128::from(slave_at_seam)
+            .checked_sub(on_table)
+            .ok_or(EngineError::SlaveOverflow)?;
+        let cycles_done =
+            (if forward { k.saturating_add(1) } else { k }).saturating_sub(self.k_engage);
+        let rescale = |t: i128| {
+            let travel = t.saturating_sub(seam).saturating_mul(new.period_num);
+            new.origin_num
+                .saturating_add(div_floor(travel, old.period_num.max(1)).0)
+        };
+        Ok(Self {
+            input_offset_num,
+            shift: 0,
+            output_offset,
+            k_engage: cycles_done.saturating_neg(),
+            span: self.span.map(|(begin, end)| (rescale(begin), rescale(end))),
+        })
     }
 
     /// Document 002 `CamInputOffset`, in table counts (floor).

@@ -23,6 +23,12 @@ pub enum EngineError {
     SlaveOverflow,
     /// The cam curve returned a value that is not a finite number.
     CurveNotFinite,
+    /// The master moved more than [`crate::AxisConfig::max_master_step`] in
+    /// one tick; the cam was stopped where it was.
+    MasterStep,
+    /// A normal (non-repeating) cam has no seam at which a queued table
+    /// could take over.
+    NoSeam,
 }
 
 /// PLC code 6781: parameter error.
@@ -36,7 +42,12 @@ impl EngineError {
     pub const fn code(self) -> u16 {
         match self {
             Self::EmptyCycle | Self::TableOutsideTurn | Self::CurveNotFinite => CODE_TABLE,
-            Self::Busy | Self::BadZoom | Self::BadTurn | Self::SlaveOverflow => CODE_PARAMETER,
+            Self::Busy
+            | Self::BadZoom
+            | Self::BadTurn
+            | Self::SlaveOverflow
+            | Self::MasterStep
+            | Self::NoSeam => CODE_PARAMETER,
         }
     }
 }
@@ -59,6 +70,10 @@ impl fmt::Display for EngineError {
             Self::CurveNotFinite => {
                 "the cam curve returned a value that is not a finite number; the cam was stopped"
             }
+            Self::MasterStep => {
+                "the master moved more than the allowed step in one tick; the cam was stopped"
+            }
+            Self::NoSeam => "a normal cam has no seam: stop it before changing its table",
         };
         write!(f, "{text} (error {})", self.code())
     }

@@ -6,6 +6,10 @@ pub struct TickInput {
     /// Master position in counts, already unwrapped (see [`crate::Unwrap32`],
     /// [`crate::TimeBase`]); for a single-turn master the raw turn position.
     pub master: i64,
+    /// Fraction of a count above `master`, in 1/2^32 of a count: an exact
+    /// time base between its counts ([`crate::TimeBase::fraction`]), or a
+    /// master read from an interpolating encoder. 0 for whole counts.
+    pub master_fraction: u32,
     /// Level of the external start signal (document 003 S3 / function bit 5).
     pub start_input: bool,
     /// Position watched by a [`crate::StartMode::Breakpoint`] start (any axis).
@@ -21,6 +25,7 @@ impl Default for TickInput {
     fn default() -> Self {
         Self {
             master: 0,
+            master_fraction: 0,
             start_input: false,
             watch: 0,
             dt_us: 0,

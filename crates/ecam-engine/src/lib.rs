@@ -56,6 +56,7 @@ mod ramp;
 mod start;
 mod stop;
 mod sync;
+mod tracker;
 mod zoom;
 
 pub use axis::CamAxis;
@@ -68,4 +69,5 @@ pub use master::{TimeBase, Unwrap32};
 pub use output::{AxisState, Events, TickOutput};
 pub use stop::StopKind;
 pub use sync::SyncWindow;
+pub use tracker::{MasterEstimate, MasterFilter, MasterTracker};
 pub use zoom::Zoom;

@@ -83,6 +83,23 @@ impl TimeBase {
     pub const fn position(&self) -> i64 {
         self.position
     }
+
+    /// The part of a count that has elapsed since the last whole count, in
+    /// 1/2^32 of a count ([`crate::TickInput::master_fraction`]): the time
+    /// base is exact time, so a cam on a coarse time base (K10: one count per
+    /// millisecond) is spread over every tick instead of stepping once per
+    /// count.
+    pub fn fraction(&self) -> u32 {
+        // carried_us < period_us, so the quotient is below 2^32.
+        u32::try_from((u128::from(self.carried_us) << 32) / u128::from(self.period_us))
+            .unwrap_or(u32::MAX)
+    }
+
+    /// Starts again at 0 with nothing carried (the cam's engage instant).
+    pub fn restart(&mut self) {
+        self.carried_us = 0;
+        self.position = 0;
+    }
 }
 
 /// Unwraps a single-turn master (document 001): the reading lies in

@@ -49,6 +49,13 @@ pub struct Events {
     /// An immediate or end-of-cycle stop took effect (also after a fault or
     /// an output inhibit).
     pub stopped: bool,
+    /// A periodic cam whose first and last slave values differ crossed its
+    /// seam: the slave jumps by the difference (document 001 Periodic type).
+    /// The jump goes out under the frequency limit, never as one burst.
+    pub seam_jump: bool,
+    /// A table queued with [`crate::CamAxis::queue_curve`] took over at the
+    /// seam just crossed.
+    pub table_switched: bool,
 }
 
 /// Everything an axis reports after a tick.

@@ -173,7 +173,7 @@ fn evenly_spaced_buffer_table_from_ecam_core() {
     };
     let mut a = CamAxis::new(table, config).unwrap();
     a.arm().unwrap();
-    a.tick(&TickInput::at(0, 1_000_000));
+    let _ = a.tick(&TickInput::at(0, 1_000_000));
     assert_eq!(a.tick(&TickInput::at(100, 1_000_000)).slave, 200);
     assert_eq!(a.tick(&TickInput::at(101, 1_000_000)).slave, 202);
 
@@ -181,7 +181,7 @@ fn evenly_spaced_buffer_table_from_ecam_core() {
     let table = UniformTable::new(vec![0, 7, 50, 90], 100).unwrap();
     let mut a = CamAxis::new(table, config).unwrap();
     a.arm().unwrap();
-    a.tick(&TickInput::at(0, 1_000_000));
+    let _ = a.tick(&TickInput::at(0, 1_000_000));
     let out = a.tick(&TickInput::at(100 * 1_000_003, u32::MAX));
     assert_eq!(out.slave, 90 * 1_000_003);
     assert_eq!(out.cycle, 1_000_003);

@@ -125,7 +125,7 @@ fn noncyclic_cam_runs_repeats_plus_one_cycles_after_the_start_signal() {
     assert!(!a.status().initialised);
     // Started again by the next rising edge.
     a.arm().unwrap();
-    a.tick(&with_start(400_000, false));
+    let _ = a.tick(&with_start(400_000, false));
     let out = a.tick(&with_start(400_000, true));
     assert!(out.events.engaged);
     assert_eq!(a.tick(&with_start(450_000, false)).slave, 800);
@@ -134,7 +134,7 @@ fn noncyclic_cam_runs_repeats_plus_one_cycles_after_the_start_signal() {
 #[test]
 fn repeat_count_ffff_runs_like_a_cyclic_cam() {
     let mut a = noncyclic(0xFFFF);
-    a.tick(&with_start(0, true));
+    let _ = a.tick(&with_start(0, true));
     for m in (0..=5_000_000).step_by(50_000) {
         assert_eq!(a.tick(&with_start(m, true)).state, AxisState::Running);
     }
@@ -143,7 +143,7 @@ fn repeat_count_ffff_runs_like_a_cyclic_cam() {
 #[test]
 fn repeat_count_zero_runs_once() {
     let mut a = noncyclic(0);
-    a.tick(&with_start(0, true));
+    let _ = a.tick(&with_start(0, true));
     assert_eq!(a.tick(&with_start(99_999, true)).state, AxisState::Running);
     let out = a.tick(&with_start(100_000, true));
     assert!(out.events.finished);
@@ -165,7 +165,7 @@ fn delay_start_counts_master_pulses_after_the_signal() {
     };
     let mut a = CamAxis::new(table, config).unwrap();
     a.arm().unwrap();
-    a.tick(&with_start(0, false));
+    let _ = a.tick(&with_start(0, false));
     assert_eq!(a.tick(&with_start(1000, true)).state, AxisState::Delaying);
     assert_eq!(a.tick(&with_start(5999, true)).state, AxisState::Delaying);
     // The delay ends at 6000 exactly; 100 counts later the table is at 100.

@@ -133,6 +133,7 @@ fn tick_allocates_nothing() {
         for (i, &master) in masters.iter().enumerate() {
             let input = TickInput {
                 master,
+                master_fraction: 0,
                 start_input: i % 40 > 20,
                 watch: master,
                 dt_us: 100,

@@ -251,6 +251,7 @@ fn any_config() -> impl Strategy<Value = AxisConfig> {
                     ramp_in: ramp
                         .and_then(NonZeroU64::new)
                         .map(|distance| RampIn { distance }),
+                    ..AxisConfig::default()
                 }
             },
         )
@@ -267,6 +268,7 @@ fn any_op() -> impl Strategy<Value = Op> {
         6 => (master, any::<bool>(), any::<i64>(), any::<u32>(), prop::bool::weighted(0.9)).prop_map(
             |(master, start_input, watch, dt_us, output_enabled)| Op::Tick(TickInput {
                 master,
+                master_fraction: 0,
                 start_input,
                 watch,
                 dt_us,

@@ -28,10 +28,10 @@ fn a_start_input_already_high_at_arm_is_not_an_edge() {
         start_input: true,
         ..TickInput::at(m, 1000)
     };
-    a.tick(&high(0));
+    let _ = a.tick(&high(0));
     a.arm().unwrap();
     assert_eq!(a.tick(&high(10)).state, AxisState::Armed);
-    a.tick(&TickInput::at(20, 1000));
+    let _ = a.tick(&TickInput::at(20, 1000));
     assert!(a.tick(&high(30)).events.engaged);
 }
 
@@ -120,7 +120,7 @@ fn relative_start_with_ramp_is_bumpless_and_smooth() {
 fn immediate_stop_cancels_an_armed_start_and_reports_it() {
     let mut a = CamAxis::new(line(), repeat(StartMode::OnRisingEdge)).unwrap();
     a.arm().unwrap();
-    a.tick(&TickInput::at(0, 100));
+    let _ = a.tick(&TickInput::at(0, 100));
     a.stop(StopKind::EndOfCycle);
     let out = a.tick(&TickInput::at(0, 100));
     assert_eq!(out.state, AxisState::Idle);
@@ -136,7 +136,7 @@ fn overflow_is_a_fault_not_a_panic() {
     let table = PointTable::from_pairs(&[(0, 0), (1, i64::MAX / 2)]).unwrap();
     let mut a = CamAxis::new(table, repeat(StartMode::Immediate)).unwrap();
     a.arm().unwrap();
-    a.tick(&TickInput::at(0, 100));
+    let _ = a.tick(&TickInput::at(0, 100));
     let out = a.tick(&TickInput::at(1_000_000, 100));
     assert_eq!(out.fault, Some(ecam_engine::EngineError::SlaveOverflow));
     assert_eq!(out.state, AxisState::Idle);

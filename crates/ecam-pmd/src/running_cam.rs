@@ -75,6 +75,7 @@ impl RunningCam {
     pub fn cycle(&mut self, input: i64) -> CamCycle {
         let out = self.axis.tick(&TickInput {
             master: input,
+            master_fraction: 0,
             start_input: false,
             watch: 0,
             dt_us: CYCLE_US,

@@ -149,7 +149,7 @@ fn simulate(
     // Tick 0 is the state at t = 0; the last tick lands on the duration.
     for k in 0..=ticks {
         let t_us = k.saturating_mul(tick_us).min(scenario.duration_us);
-        let master = scenario.master_at(t_us);
+        let master = scenario.master_read_at(t_us);
         if let Some(stop) = stop_pending {
             if stop.fires(t_us, master) {
                 axis.stop(stop.kind);
@@ -159,6 +159,7 @@ fn simulate(
         let master_input = scenario.master_input(master);
         let input = TickInput {
             master: master_input,
+            master_fraction: 0,
             start_input: scenario.start_input_at(t_us),
             watch: master,
             dt_us: scenario.tick_us,

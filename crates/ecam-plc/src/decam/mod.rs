@@ -487,6 +487,7 @@ impl Decam {
         }
         let out = axis.tick(&TickInput {
             master,
+            master_fraction: 0,
             start_input: false,
             watch: 0,
             dt_us,
