@@ -254,8 +254,10 @@ fn key_point_case_runs_as_a_cam() {
     assert_eq!(int(&d, "D101"), 0, "S0+1: no error");
     assert_eq!(int(&d, "DD2436"), 2000, "last point master");
     assert_eq!(int(&d, "DD2438"), 0, "last point slave");
-    // K1 time base: 150 ms = 1500 counts, key point 2: slave 2000.
-    assert_eq!(int(&d, "DD2027"), 1500);
+    // K1 time base: it reads 0 when the cam starts, on the first 100 µs
+    // hardware tick; 150 ms later it reads 1499 counts, inside the dwell
+    // at key point 2 (slave 2000).
+    assert_eq!(int(&d, "DD2027"), 1499);
     assert_eq!(int(&d, "DD8140"), 2000);
 }
 

@@ -44,6 +44,8 @@ pub struct CamAxis<C> {
     last_reading: Option<i64>,
     /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
     pending: Option<C>,
+    /// What the axis does after the waiting table's first pass.
+    pending_then: AfterPass,
     /// The table a switch replaced, for the caller to take back
     /// ([`CamAxis::take_retired_curve`]): dropping it inside `tick` would
     /// free memory in the control cycle.
@@ -79,6 +81,7 @@ impl<C: CamCurve> CamAxis<C> {
             tracker: MasterTracker::new(config.master_filter),
             last_reading: None,
             pending: None,
+            pending_then: AfterPass::Repeat,
             retired: None,
             commanded: 0,
             pulse: PulseOutput::at(0),
@@ -174,6 +177,18 @@ impl<C: CamCurve> CamAxis<C> {
     /// and [`EngineError::NoSeam`] for an engaged normal (non-repeating)
     /// cam; the running cam is left untouched.
     pub fn queue_curve(&mut self, curve: C) -> Result<(), EngineError> {
+        self.queue_curve_then(curve, AfterPass::Repeat)
+    }
+
+    /// As [`CamAxis::queue_curve`], and says what follows the new table's
+    /// first pass: with [`AfterPass::Finish`] the axis runs the table once
+    /// from the seam and finishes at its end (the PLC's midCAMend table,
+    /// which ends at standstill). Idle or armed, `then` is ignored: the
+    /// configuration's coupling decides.
+    ///
+    /// # Errors
+    /// As [`CamAxis::queue_curve`].
+    pub fn queue_curve_then(&mut self, curve: C, then: AfterPass) -> Result<(), EngineError> {
         let geometry = Geometry::new(&curve, &self.config)?;
         if !self.state.is_engaged() {
             self.geometry = geometry;
@@ -186,6 +201,7 @@ impl<C: CamCurve> CamAxis<C> {
             return Err(EngineError::NoSeam);
         }
         self.pending = Some(curve);
+        self.pending_then = then;
         Ok(())
     }
 
@@ -475,7 +491,7 @@ impl<C: CamCurve> CamAxis<C> {
         };
         let geometry = Geometry::new(&curve, &self.config)?;
         let mut cursor = Cursor::new();
-        let next = engagement.across_seam(
+        let mut next = engagement.across_seam(
             &self.geometry,
             &geometry,
             &curve,
@@ -484,6 +500,9 @@ impl<C: CamCurve> CamAxis<C> {
             forward,
             old.slave,
         )?;
+        if self.pending_then == AfterPass::Finish {
+            next.finish_after_first_pass(&geometry, forward);
+        }
         self.geometry = geometry;
         self.cursor = cursor;
         self.retired = Some(core::mem::replace(&mut self.curve, curve));
@@ -603,6 +622,16 @@ impl<C: CamCurve> CamAxis<C> {
         self.last = out;
         out
     }
+}
+
+/// What an axis does once a table queued at the seam has run its first pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AfterPass {
+    /// Keep repeating it as the coupling says.
+    #[default]
+    Repeat,
+    /// Finish at the end of the pass (the slave holds there).
+    Finish,
 }
 
 /// Where the cam stands for one master position.

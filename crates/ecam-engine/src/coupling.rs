@@ -387,6 +387,17 @@ impl Engagement {
         })
     }
 
+    /// Limits the cam to the new table's first cycle after a seam switch:
+    /// cycle 0 going forwards, cycle −1 going backwards.
+    pub(crate) fn finish_after_first_pass(&mut self, geo: &Geometry, forward: bool) {
+        let start = geo.origin_num;
+        self.span = Some(if forward {
+            (start, start.saturating_add(geo.period_num))
+        } else {
+            (start.saturating_sub(geo.period_num), start)
+        });
+    }
+
     /// Document 002 `CamInputOffset`, in table counts (floor).
     pub(crate) fn input_offset(&self, geo: &Geometry) -> i64 {
         clamp_i64(div_floor(self.input_offset_num, geo.mden).0)

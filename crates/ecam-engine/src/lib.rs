@@ -59,7 +59,7 @@ mod sync;
 mod tracker;
 mod zoom;
 
-pub use axis::CamAxis;
+pub use axis::{AfterPass, CamAxis};
 pub use config::{
     AxisConfig, Compare, Coupling, MAX_FREQUENCY_HZ, MasterAlign, RampIn, SlaveAlign, StartMode,
 };
@@ -69,5 +69,5 @@ pub use master::{TimeBase, Unwrap32};
 pub use output::{AxisState, Events, TickOutput};
 pub use stop::StopKind;
 pub use sync::SyncWindow;
-pub use tracker::{MasterEstimate, MasterFilter, MasterTracker};
+pub use tracker::{MasterFilter, MasterPosition, MasterTracker};
 pub use zoom::Zoom;

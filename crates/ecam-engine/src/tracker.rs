@@ -63,14 +63,14 @@ const INTERVALS: usize = 4;
 
 /// A master position with a fraction of a count.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct MasterEstimate {
+pub struct MasterPosition {
     /// Whole counts (floor).
     pub counts: i64,
     /// Fraction of a count above `counts`, in 1/2^32.
     pub fraction: u32,
 }
 
-impl MasterEstimate {
+impl MasterPosition {
     fn from_fixed(v: i128) -> Self {
         let counts = v >> 32;
         Self {
@@ -135,20 +135,20 @@ impl MasterTracker {
     }
 
     /// The estimate after the last update.
-    pub fn estimate(&self) -> MasterEstimate {
-        MasterEstimate::from_fixed(self.estimate)
+    pub fn estimate(&self) -> MasterPosition {
+        MasterPosition::from_fixed(self.estimate)
     }
 
     /// Takes this tick's reading (`counts` + `fraction`/2^32) after `dt_us`
     /// and returns the position to follow.
-    pub fn update(&mut self, counts: i64, fraction: u32, dt_us: u32) -> MasterEstimate {
-        let reading = MasterEstimate::fixed(counts, fraction);
+    pub fn update(&mut self, counts: i64, fraction: u32, dt_us: u32) -> MasterPosition {
+        let reading = MasterPosition::fixed(counts, fraction);
         let max_interval = match self.filter {
             MasterFilter::Direct => {
                 self.started = true;
                 self.reading = reading;
                 self.estimate = reading;
-                return MasterEstimate::from_fixed(reading);
+                return MasterPosition::from_fixed(reading);
             }
             MasterFilter::Interpolate { max_interval_us } => u64::from(max_interval_us.get()),
         };
@@ -157,7 +157,7 @@ impl MasterTracker {
             self.reading = reading;
             self.estimate = reading;
             self.from = reading;
-            return MasterEstimate::from_fixed(reading);
+            return MasterPosition::from_fixed(reading);
         }
         self.since_change_us = self.since_change_us.saturating_add(u64::from(dt_us));
         if reading != self.reading {
@@ -179,7 +179,7 @@ impl MasterTracker {
                     self.from + d.div_euclid(i128::from(self.window_us))
                 })
         };
-        MasterEstimate::from_fixed(self.estimate)
+        MasterPosition::from_fixed(self.estimate)
     }
 
     fn push_interval(&mut self, interval: u64) {
@@ -248,7 +248,7 @@ mod tests {
         let mut t = MasterTracker::new(MasterFilter::Direct);
         assert_eq!(
             t.update(-3, 1 << 31, 100),
-            MasterEstimate {
+            MasterPosition {
                 counts: -3,
                 fraction: 1 << 31
             }

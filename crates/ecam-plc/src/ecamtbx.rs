@@ -9,7 +9,9 @@
 //!   K101 flying saw.
 //! - `D1` (`table`): a DECAM register block; the table goes to `D1 + 38`
 //!   (point count), `D1 + 39` (= 40) and `D1 + 40…` (master, slave pairs).
-//!   Words `D1 … D1 + 37` are left alone.
+//!   Word `D1 + 31` (reserved in the manual) gets the table's end action:
+//!   1 for a midCAMend table, which the cam runs once and then stops, 0 for
+//!   any other. Words `D1 … D1 + 30` and `D1 + 32 … D1 + 37` are left alone.
 //! - `D2` (`result`): the number of table points on success; on failure the
 //!   negated error code (−6781, −6782, −6783), and nothing else is written
 //!   (the previous table stays).
@@ -52,6 +54,7 @@ use ecam_core::generator::placement::CamPlacement;
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
 use ecam_core::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamPoint, TableError};
 
+use crate::decam::offsets::{TABLE_END, TABLE_END_REPEAT, TABLE_END_STOP};
 use crate::devices::{D_COUNT, Devices};
 use crate::operation_error::OperationError;
 
@@ -167,6 +170,12 @@ pub fn execute(
         };
         // D2 inside the words the table takes (D1+38 … its last point) would
         // be overwritten by the result, corrupting the table it describes.
+        let end_action = u32::from(table) + u32::from(TABLE_END);
+        if end_action == u32::from(result) {
+            return Err(refuse(format!(
+                "the result register D{result} (D2) is the table's end-action word D1 + 31: put it elsewhere"
+            )));
+        }
         if new_table.contains(&u32::from(result)) {
             return Err(refuse(format!(
                 "the result register D{result} (D2) lies inside the table D{first}..D{last} it would describe: put it elsewhere"
@@ -185,6 +194,10 @@ pub fn execute(
             )));
         }
         write_table(devices, table, &generated.points)?;
+        let _ = devices.set_word(
+            table.saturating_add(TABLE_END),
+            (if generated.single_pass { TABLE_END_STOP } else { TABLE_END_REPEAT }) as i16,
+        );
         for (offset, value) in generated.write_back {
             let _ = devices.set_dword(params.saturating_add(offset), value);
         }
@@ -269,6 +282,8 @@ fn written_back_name(kind: TableKind) -> &'static str {
 struct Generated {
     points: Vec<CamPoint>,
     write_back: Vec<(u16, i32)>,
+    /// A midCAMend table: the cam stops when it completes.
+    single_pass: bool,
 }
 
 impl From<Vec<CamPoint>> for Generated {
@@ -276,6 +291,7 @@ impl From<Vec<CamPoint>> for Generated {
         Self {
             points,
             write_back: Vec::new(),
+            single_pass: false,
         }
     }
 }
@@ -400,6 +416,7 @@ fn s_curve_table(devices: &Devices, base: u16) -> Result<Generated, Failure> {
     Ok(Generated {
         points: generated.table.into_points(),
         write_back,
+        single_pass: false,
     })
 }
 
@@ -473,11 +490,13 @@ fn generated_table(devices: &Devices, base: u16, kind: TableKind) -> Result<Gene
                 placement: CamPlacement::from_code(b.cam_word).map_err(table)?,
                 resolution: b.resolution,
             };
-            Ok(rotary_cut::generate(&params)
-                .map_err(table)?
-                .table
-                .into_points()
-                .into())
+            let generated = rotary_cut::generate(&params).map_err(table)?;
+            Ok(Generated {
+                // Document 003: with midCAMend "electronic cam stops
+                // automatically when completed".
+                single_pass: params.placement == CamPlacement::MidCamEnd,
+                ..generated.table.into_points().into()
+            })
         }
         TableKind::FlyingSaw => {
             let b = cut_block(devices, base)?;

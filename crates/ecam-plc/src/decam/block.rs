@@ -59,6 +59,9 @@ pub struct StartSetup {
     pub max_frequency_hz: u32,
     /// The table at offset 38…
     pub table: PointTable,
+    /// Offset 31 (reserved in the manual): 1 when the table is a midCAMend
+    /// table that runs one pass and stops at its end (written by ECAMTBX).
+    pub single_pass: bool,
 }
 
 /// Settings the manual lets a program change while the cam runs (offset 4)
@@ -141,6 +144,16 @@ impl<'a> Block<'a> {
             repeats: self.word(offsets::REPEAT),
             max_frequency_hz: clamp_frequency(self.dword(offsets::MAX_FREQUENCY)),
             table: self.table()?,
+            single_pass: match self.word(offsets::TABLE_END) {
+                offsets::TABLE_END_REPEAT => false,
+                offsets::TABLE_END_STOP => true,
+                _ => {
+                    return Err(BlockError::Parameter {
+                        offset: offsets::TABLE_END,
+                        reason: "table end action must be 0 (repeat) or 1 (stop at the table end, midCAMend)",
+                    });
+                }
+            },
         })
     }
 

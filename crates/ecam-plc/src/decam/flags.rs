@@ -19,6 +19,11 @@ pub const TABLE_ERROR: u16 = 1 << 5;
 pub const CYCLIC: u16 = 1 << 6;
 /// Flag bit 7: noncyclic mode active.
 pub const NONCYCLIC: u16 = 1 << 7;
+/// Flag bit 8 (unused by the manual): the register block has an error
+/// (offset 2 shows which) while the cam runs on; it keeps the last good
+/// table and settings. Bits 3–5 are set only while the error keeps the cam
+/// from running.
+pub const KEPT_LAST_GOOD: u16 = 1 << 8;
 /// Flag bit 9: the cam stopped at the end of a cycle (noncyclic run done, or
 /// stop-after-cycle done); cleared at the next start.
 pub const CURRENT_CYCLE_COMPLETE: u16 = 1 << 9;

@@ -68,8 +68,8 @@ use core::sync::atomic::{AtomicU64, Ordering};
 
 use ecam_core::{CamCurve, PointTable};
 use ecam_engine::{
-    AxisConfig, AxisState, CamAxis, Coupling, MasterAlign, SlaveAlign, StartMode, StopKind,
-    TickInput, Zoom,
+    AfterPass, AxisConfig, AxisState, CamAxis, Coupling, MasterAlign, MasterFilter, MasterPosition,
+    SlaveAlign, StartMode, StopKind, TickInput, Zoom,
 };
 
 use self::block::Block;
@@ -135,6 +135,9 @@ pub struct Decam {
     runtime_fault: Option<ecam_engine::EngineError>,
     /// The fault not yet returned to the scan (D8067/M8067).
     fault_to_report: Option<ecam_engine::EngineError>,
+    /// A table (and its single-pass mark) written while the cam runs,
+    /// waiting for the next seam.
+    queued_table: Option<(PointTable, bool)>,
 }
 
 /// What a start fixed until the next stop.
@@ -148,6 +151,8 @@ struct Running {
     travel: u64,
     last_master: i64,
     start_position: Option<i64>,
+    /// The table in use runs one pass and stops (offset 31, midCAMend).
+    single_pass: bool,
 }
 
 impl Decam {
@@ -174,6 +179,7 @@ impl Decam {
             clear_latched: 0,
             runtime_fault: None,
             fault_to_report: None,
+            queued_table: None,
         }
     }
 
@@ -230,6 +236,7 @@ impl Decam {
             .and_then(|setup| Ok((setup, live_settings(&block, &operands)?)));
         let result = match checked {
             Ok((setup, live)) => {
+                self.queue_changed_table(&setup.table, setup.single_pass);
                 self.setup = Some(setup);
                 self.live = Some(live);
                 self.error = None;
@@ -253,6 +260,33 @@ impl Decam {
         }
     }
 
+    /// A table written while the cam runs takes over at the next seam
+    /// (`docs/plc.md`, "Changing the table while the cam runs"): the engine
+    /// continues the slave from where it stands at the seam, so the output
+    /// never steps.
+    fn queue_changed_table(&mut self, table: &PointTable, single_pass: bool) {
+        let (Some(axis), Some(running)) = (self.axis.as_mut(), self.running.as_mut()) else {
+            return;
+        };
+        let waiting = match &self.queued_table {
+            Some((queued, queued_single)) => (queued, *queued_single),
+            None => (axis.curve(), running.single_pass),
+        };
+        if waiting == (table, single_pass) {
+            return;
+        }
+        let then = if single_pass {
+            AfterPass::Finish
+        } else {
+            AfterPass::Repeat
+        };
+        if axis.queue_curve_then(table.clone(), then).is_ok() {
+            self.queued_table = axis
+                .has_queued_curve()
+                .then(|| (table.clone(), single_pass));
+        }
+    }
+
     /// One hardware tick of `dt_us` ending at `now_us`.
     pub fn hardware_tick(
         &mut self,
@@ -272,7 +306,7 @@ impl Decam {
             self.master.reset();
             return;
         }
-        let master = self.master.read(devices, dt_us);
+        self.master.read(devices, dt_us);
         if let Ok(live) = live_settings(&Block::new(devices, self.operands.block), &self.operands) {
             self.live = Some(live);
         }
@@ -287,7 +321,7 @@ impl Decam {
                 self.stop_now(devices, hardware);
                 self.clear_latched |= flags::INIT_DONE;
             }
-            GateAction::Start(mode) => self.start(mode, devices, hardware, master),
+            GateAction::Start(mode) => self.start(mode, devices, hardware),
         }
         if let Phase::Ready {
             ready_at,
@@ -303,11 +337,11 @@ impl Decam {
                 };
             }
             if edge {
-                self.trigger(devices, hardware, master);
+                self.trigger(devices, hardware);
             }
         }
         if self.phase == Phase::Running {
-            self.run(devices, hardware, master, now_us, dt_us);
+            self.run(devices, hardware, now_us, dt_us);
         } else {
             self.in_sync = false;
             self.pulse_delayed = false;
@@ -322,13 +356,7 @@ impl Decam {
     /// the output (PLSY/DPLSY or another DECAM: the FX allows one driver per
     /// pulse output); otherwise the start waits and is taken as soon as it
     /// can be, while the start register still asks for it.
-    fn start(
-        &mut self,
-        mode: CamMode,
-        devices: &mut Devices,
-        hardware: &mut Hardware,
-        master: i64,
-    ) {
+    fn start(&mut self, mode: CamMode, devices: &mut Devices, hardware: &mut Hardware) {
         let output = self.operands.pulse_output;
         if self.error.is_some()
             || Hardware::output_stopped(devices, output)
@@ -351,8 +379,9 @@ impl Decam {
             stop_requested: false,
             delay: None,
             travel: 0,
-            last_master: master,
+            last_master: self.master.position(),
             start_position: None,
+            single_pass: false,
         });
         if external_start {
             self.phase = Phase::Ready {
@@ -360,7 +389,7 @@ impl Decam {
                 announced: true,
             };
         } else {
-            self.trigger(devices, hardware, master);
+            self.trigger(devices, hardware);
         }
     }
 
@@ -368,7 +397,7 @@ impl Decam {
     /// signal while the block is bad, or while another instruction drives
     /// the output (an external-start cam does not hold the output while it
     /// waits for S3), is ignored.
-    fn trigger(&mut self, devices: &mut Devices, hardware: &mut Hardware, master: i64) {
+    fn trigger(&mut self, devices: &mut Devices, hardware: &mut Hardware) {
         if self.error.is_some() || !hardware.output_free_for(self.operands.pulse_output, self.owner)
         {
             return;
@@ -378,6 +407,8 @@ impl Decam {
         };
         let block = Block::new(devices, self.operands.block);
         let noncyclic = running.mode == CamMode::Noncyclic;
+        // A midCAMend table runs once from its start, whichever the mode.
+        let single_pass = setup.single_pass;
         // Document 003 restricts delay and start position to the noncyclic cam.
         let delay = setup.delay.filter(|_| noncyclic).map(u64::from);
         let start_position = setup.start_position.filter(|_| noncyclic);
@@ -395,7 +426,7 @@ impl Decam {
         let table = setup.table.clone();
         let master_align = if setup.from_current {
             MasterAlign::StartAtUnzoomed(i64::from(block.dword(offsets::MASTER_RAW)))
-        } else if noncyclic {
+        } else if noncyclic || single_pass {
             MasterAlign::StartAt(table.master_first())
         } else {
             MasterAlign::Absolute
@@ -412,13 +443,26 @@ impl Decam {
         } else {
             (SlaveAlign::Absolute, i64::from(output_counter))
         };
+        // A pulse output cannot jump: at a seam the slave goes on from where
+        // it stands (the stroke accumulates), in the cyclic cam as in the
+        // noncyclic one; an out-and-back table has no stroke and repeats
+        // as it is (docs/plc.md, "Seams").
         let config = AxisConfig {
-            coupling: if noncyclic {
+            coupling: if single_pass {
+                Coupling::OneShot { repeats: 0 }
+            } else if noncyclic {
                 Coupling::OneShot {
                     repeats: setup.repeats,
                 }
             } else {
-                Coupling::Periodic
+                Coupling::Repeat { min_stroke: 1 }
+            },
+            // A counter or register master changes in whole counts at its
+            // own rate; the time base is exact time with its fraction.
+            master_filter: if self.master.is_time_base() {
+                MasterFilter::Direct
+            } else {
+                MasterFilter::INTERPOLATE
             },
             start,
             master_align,
@@ -435,11 +479,16 @@ impl Decam {
         });
         match armed {
             Ok(axis) => {
+                // The time base reads 0 at the start instant, so a start
+                // position of 0 fires and a noncyclic cam engages at 0.
+                self.master.restart_time_base();
                 self.axis = Some(axis);
+                self.queued_table = None;
+                running.single_pass = single_pass;
                 running.delay = delay;
                 running.start_position = start_position;
                 running.travel = 0;
-                running.last_master = master;
+                running.last_master = self.master.position();
                 self.phase = Phase::Running;
                 self.cycle_done = false;
                 // Free for this instance: checked on entry.
@@ -458,14 +507,11 @@ impl Decam {
     }
 
     /// One engine tick while armed or following.
-    fn run(
-        &mut self,
-        devices: &mut Devices,
-        hardware: &mut Hardware,
-        master: i64,
-        now_us: u64,
-        dt_us: u32,
-    ) {
+    fn run(&mut self, devices: &mut Devices, hardware: &mut Hardware, now_us: u64, dt_us: u32) {
+        let MasterPosition {
+            counts: master,
+            fraction: master_fraction,
+        } = self.master.current();
         let output = self.operands.pulse_output;
         let (Some(axis), Some(running)) = (self.axis.as_mut(), self.running.as_mut()) else {
             self.phase = Phase::Done;
@@ -487,14 +533,22 @@ impl Decam {
         }
         let out = axis.tick(&TickInput {
             master,
-            master_fraction: 0,
+            master_fraction,
             start_input: false,
             watch: 0,
             dt_us,
             output_enabled: true,
         });
-        let step = master.abs_diff(running.last_master);
-        running.last_master = master;
+        // Offset 13 counts the travel of the master the cam follows (the
+        // tracker's estimate), the same position the start watches.
+        let step = out.master.abs_diff(running.last_master);
+        running.last_master = out.master;
+        if out.events.table_switched {
+            if let Some((_, single_pass)) = self.queued_table.take() {
+                running.single_pass = single_pass;
+            }
+            drop(axis.take_retired_curve());
+        }
         let pulses =
             i32::try_from(out.pulses).unwrap_or(if out.pulses < 0 { i32::MIN } else { i32::MAX });
         if pulses != 0 {
@@ -515,7 +569,7 @@ impl Decam {
                 if let Some(delay) = running.delay {
                     delay.saturating_sub(running.travel)
                 } else {
-                    running.start_position.map_or(0, |p| p.abs_diff(master))
+                    running.start_position.map_or(0, |p| p.abs_diff(out.master))
                 }
             }
             _ => 0,
@@ -589,8 +643,12 @@ impl Decam {
         value &= !self.clear_latched;
         self.set_latched = 0;
         self.clear_latched = 0;
-        if let Some(e) = &self.error {
-            value |= e.flag_bits();
+        match &self.error {
+            // The running cam keeps its last good table and settings: an
+            // immediate stop would be a velocity step (docs/plc.md, "Errors").
+            Some(_) if self.axis.is_some() => value |= flags::KEPT_LAST_GOOD,
+            Some(e) => value |= e.flag_bits(),
+            None => {}
         }
         if self.runtime_fault.is_some() {
             value |= flags::ERROR;

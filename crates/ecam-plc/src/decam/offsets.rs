@@ -56,6 +56,15 @@ pub const MASTER_RAW: u16 = 27;
 pub const MASTER_ZOOM_DEN: u16 = 29;
 /// Master zoom numerator (1–65535).
 pub const MASTER_ZOOM_NUM: u16 = 30;
+/// What happens at the end of the table (reserved in the manual; ecam's
+/// home for the midCAMend rule "the cam stops when the curve completes"):
+/// ECAMTBX writes [`TABLE_END_STOP`] for a midCAMend table and
+/// [`TABLE_END_REPEAT`] for every other.
+pub const TABLE_END: u16 = 31;
+/// Offset 31 value: the table repeats as the mode says.
+pub const TABLE_END_REPEAT: u16 = 0;
+/// Offset 31 value: the table runs one pass and the cam stops at its end.
+pub const TABLE_END_STOP: u16 = 1;
 /// Number of table points ("sections"), 2–512.
 pub const SECTIONS: u16 = 38;
 /// Offset of the table; always 40 (the controller writes it).
