@@ -135,7 +135,10 @@ fn the_running_cam_is_left_unchanged_and_errors_clear_when_corrected() {
     r.run_to(600, 10);
     assert_eq!(last_code(&r), Some(6782));
     assert_eq!(r.reg(2), 2);
-    assert!(r.flag(3) && r.flag(5));
+    // Flags say what happens: the cam runs on with its last good table
+    // (bit 8), so bits 3-5 ("E-cam stop running") stay off.
+    assert!(r.flag(8), "flags {:#b}", r.flags());
+    assert!(!r.flag(3) && !r.flag(4) && !r.flag(5));
     assert!(r.cam.is_running());
     assert_eq!(r.pulses(), 600, "still following the table it started with");
     // Corrected: error register and flags clear; the cam never stopped.
@@ -144,8 +147,22 @@ fn the_running_cam_is_left_unchanged_and_errors_clear_when_corrected() {
     r.run_to(800, 10);
     assert_eq!(r.errors.len(), before);
     assert_eq!(r.reg(2), 0);
-    assert!(!r.flag(3) && !r.flag(5));
+    assert!(!r.flag(3) && !r.flag(5) && !r.flag(8));
     assert_eq!(r.pulses(), 800);
+}
+
+#[test]
+fn a_cam_stopped_with_a_bad_block_shows_the_error_flags() {
+    let mut r = Rig::new(GOOD);
+    r.start(1);
+    r.run_to(300, 10);
+    r.set_d(48, 100);
+    r.run_to(400, 10);
+    assert!(r.flag(8) && !r.flag(3));
+    r.set(5, 0);
+    r.run(2, 0);
+    assert!(!r.cam.is_running());
+    assert!(r.flag(3) && r.flag(5) && !r.flag(8), "flags {:#b}", r.flags());
 }
 
 #[test]
@@ -162,18 +179,27 @@ fn a_start_waits_for_the_block_to_be_corrected() {
 }
 
 #[test]
-fn a_corrected_table_is_taken_at_the_next_start() {
+fn a_table_changed_while_running_takes_over_at_the_next_seam() {
     let mut r = Rig::new(GOOD);
     r.start(1);
     r.run_to(100, 10);
     r.set_table(&[(0, 0), (1000, 2000)]);
-    r.run_to(200, 10);
-    assert_eq!(r.pulses(), 200, "the running cam keeps its table");
+    r.run_to(990, 10);
+    assert_eq!(r.pulses(), 990, "the running cam keeps its table to the seam");
+    r.run_to(1000, 10);
+    assert_eq!(r.pulses(), 1000, "no step at the seam");
+    r.run_to(1100, 10);
+    assert_eq!(r.pulses(), 1200, "the new table from the seam on");
     r.set(5, 0);
     r.run(2, 0);
     r.set(5, 1);
-    r.run(20, 0);
-    assert_eq!(r.pulses(), 400, "restarted with the new table (absolute)");
+    // 1000 pulses owed at 20 per tick (200 kHz).
+    r.run(60, 0);
+    assert_eq!(
+        r.pulses(),
+        2200,
+        "restarted with the new table (absolute): its value at master 100 is 200"
+    );
 }
 
 #[test]

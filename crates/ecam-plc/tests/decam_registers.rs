@@ -422,7 +422,8 @@ fn time_base_master_sets_bit_11() {
     let mut r = Rig::with_master(LINE, MasterOperand::TimeBase(1));
     r.start(1);
     assert!(r.flag(11));
-    r.run(499, 0);
+    // The time base read 0 on the start tick: 500 ticks of 100 µs later, 500.
+    r.run(500, 0);
     assert_eq!(r.reg_d(27), 500);
     assert_eq!(r.pulses(), 50);
 }
@@ -470,19 +471,39 @@ fn pulse_counter_equals_slave_position() {
 }
 
 #[test]
-fn offsets_31_to_37_are_reserved_and_left_alone() {
+fn offsets_32_to_37_are_reserved_and_left_alone() {
     let mut r = Rig::new(ONE_TO_ONE);
-    for offset in 31..=37 {
+    for offset in 32..=37 {
         r.set(offset, 1000 + offset as i16);
     }
     r.set(39, 7); // the table offset is always 40: the instruction rewrites it
     r.start(1);
     r.run_to(500, 10);
-    for offset in 31..=37 {
+    for offset in 32..=37 {
         assert_eq!(r.reg(offset), 1000 + offset as i16);
     }
     assert_eq!(r.reg(39), 40);
     assert_eq!(r.pulses(), 500);
+}
+
+#[test]
+fn offset_31_is_the_table_end_action() {
+    // 1: the table runs one pass (midCAMend) and the cam stops at its end,
+    // even as a cyclic cam.
+    let mut r = Rig::new(ONE_TO_ONE);
+    r.set(31, 1);
+    r.start(1);
+    r.run_to(1500, 10);
+    r.run(5, 0);
+    assert_eq!(r.pulses(), 1000, "stopped at the table end");
+    assert!(!r.cam.is_running());
+    assert!(r.flag(9), "current cycle complete");
+    // Anything but 0 or 1 is a parameter error naming the offset.
+    let mut r = Rig::new(ONE_TO_ONE);
+    r.set(31, 2);
+    r.start(1);
+    assert_eq!(r.errors.last().map(|e| e.code), Some(6781));
+    assert!(!r.cam.is_running());
 }
 
 #[test]

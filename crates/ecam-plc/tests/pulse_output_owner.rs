@@ -70,7 +70,8 @@ fn two_cams_on_y0_only_the_first_moves_it_until_it_lets_go() {
     assert_eq!(dword(&p, 2019), 50, "cam 1 holds where it stopped");
     assert!(cyclic_active(&p, 3000));
     let slave = dword(&p, 3019);
-    assert_eq!(slave, 500, "cam 2 follows its own master (1000 counts)");
+    // Its time base read 0 when it took Y0: 50 ms later, 500 counts.
+    assert_eq!(slave, 250, "cam 2 follows its own master (500 counts)");
     assert_eq!(dword(&p, 8140), slave, "Y0 now carries cam 2 alone");
 
     // Cam 1 enabled again: Y0 is cam 2's, so cam 1 waits in turn.
@@ -91,11 +92,12 @@ fn a_cam_waits_for_a_running_dplsy_on_its_output() {
     assert_eq!(dword(&p, 8140), 50, "the DPLSY alone: 10 pulses/ms");
     assert!(!cyclic_active(&p, 2000), "the cam waits");
     run_ms(&mut p, 15);
-    // The 100 pulses ended at 10 ms; the cam took Y0 then and, absolute,
-    // brought it to its table value.
+    // The 100 pulses ended at 10 ms; the cam took Y0 then (its time base
+    // reading 0 from that instant) and, absolute, brought it to its table
+    // value.
     assert!(cyclic_active(&p, 2000));
-    assert_eq!(dword(&p, 2019), 20, "master 200 counts");
-    assert_eq!(dword(&p, 8140), 20, "D8140 is the cam's slave");
+    assert_eq!(dword(&p, 2019), 10, "master 100 counts");
+    assert_eq!(dword(&p, 8140), 10, "D8140 is the cam's slave");
     assert_eq!(p.devices().m(8029), Ok(true), "the DPLSY finished");
 }
 
