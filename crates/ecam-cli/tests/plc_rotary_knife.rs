@@ -1,6 +1,6 @@
 //! A rotary knife built from the manual's parts: the ECAMTBX K100 demo table
-//! run by DECAM as a never-ending noncyclic cam (repeat count HFFFF), so the
-//! knife turns on by one revolution per cut and never jumps back.
+//! run by DECAM as the manual's cyclic cam, so the knife turns on by one
+//! revolution per cut, never jumps back and its direction output never flips.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::process::Command;
@@ -26,6 +26,7 @@ fn the_knife_turns_forward_cut_after_cut_and_the_counter_follows() {
         .arg(&trace)
         .args(["--trace-dev", "DD2019", "--trace-dev", "DD8140"])
         .args(["--trace-dev", "C231", "--trace-dev", "DD2027"])
+        .args(["--trace-dev", "Y4", "--trace-dev", "D2001"])
         .output()
         .unwrap();
     assert!(
@@ -47,8 +48,27 @@ fn the_knife_turns_forward_cut_after_cut_and_the_counter_follows() {
     assert!(rows.len() > 1900, "one row per 1 ms scan");
     let mut previous = i64::MIN;
     let mut revolutions_seen = 0;
+    let (mut cuts, mut last_in_cycle) = (0i64, 0i64);
     for row in &rows {
         let (slave, counter, master, in_cycle) = (row[1], row[2], row[3], row[4]);
+        let (direction, flags) = (row[5], row[6]);
+        if master > 0 {
+            assert_eq!(flags & (1 << 6), 1 << 6, "cyclic mode at t={} us", row[0]);
+        }
+        if counter > 0 {
+            assert_eq!(direction, 1, "direction output stays forward at t={} us", row[0]);
+        }
+        // Each seam passed adds exactly one revolution: within the cut the
+        // knife stands between the revolutions done and the next one.
+        if in_cycle < last_in_cycle {
+            cuts += 1;
+        }
+        last_in_cycle = in_cycle;
+        assert!(
+            (cuts * REVOLUTION..=(cuts + 1) * REVOLUTION).contains(&counter),
+            "counter {counter} after {cuts} cuts at t={} us",
+            row[0]
+        );
         assert_eq!(
             slave, counter,
             "D8140 equals the slave position at t={} us",
@@ -70,6 +90,7 @@ fn the_knife_turns_forward_cut_after_cut_and_the_counter_follows() {
     let last = rows.last().unwrap();
     assert!((19_900..=20_000).contains(&last[3]), "master {}", last[3]);
     assert_eq!(revolutions_seen, 6);
+    assert_eq!(cuts, 6);
     assert!((6 * REVOLUTION..7 * REVOLUTION).contains(&last[1]));
     std::fs::remove_dir_all(&dir).ok();
 }
