@@ -56,7 +56,11 @@ fn the_knife_turns_forward_cut_after_cut_and_the_counter_follows() {
             assert_eq!(flags & (1 << 6), 1 << 6, "cyclic mode at t={} us", row[0]);
         }
         if counter > 0 {
-            assert_eq!(direction, 1, "direction output stays forward at t={} us", row[0]);
+            assert_eq!(
+                direction, 1,
+                "direction output stays forward at t={} us",
+                row[0]
+            );
         }
         // Each seam passed adds exactly one revolution: within the cut the
         // knife stands between the revolutions done and the next one.

@@ -162,7 +162,11 @@ fn a_cam_stopped_with_a_bad_block_shows_the_error_flags() {
     r.set(5, 0);
     r.run(2, 0);
     assert!(!r.cam.is_running());
-    assert!(r.flag(3) && r.flag(5) && !r.flag(8), "flags {:#b}", r.flags());
+    assert!(
+        r.flag(3) && r.flag(5) && !r.flag(8),
+        "flags {:#b}",
+        r.flags()
+    );
 }
 
 #[test]
@@ -185,7 +189,11 @@ fn a_table_changed_while_running_takes_over_at_the_next_seam() {
     r.run_to(100, 10);
     r.set_table(&[(0, 0), (1000, 2000)]);
     r.run_to(990, 10);
-    assert_eq!(r.pulses(), 990, "the running cam keeps its table to the seam");
+    assert_eq!(
+        r.pulses(),
+        990,
+        "the running cam keeps its table to the seam"
+    );
     r.run_to(1000, 10);
     assert_eq!(r.pulses(), 1000, "no step at the seam");
     r.run_to(1100, 10);
