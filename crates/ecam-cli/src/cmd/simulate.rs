@@ -57,6 +57,12 @@ struct Summary {
     time_s: f64,
     input_offset: i64,
     output_offset: i64,
+    /// Seams where a periodic table's slave jumped (spread under the ceiling).
+    seam_jumps: u64,
+    /// Most pulses in one tick (the drive's peak frequency × tick).
+    max_pulses_per_tick: u64,
+    /// Times the emitted direction turned round.
+    direction_changes: u64,
     fault: Option<String>,
 }
 
@@ -144,8 +150,12 @@ fn simulate(
         time_s: 0.0,
         input_offset: 0,
         output_offset: 0,
+        seam_jumps: 0,
+        max_pulses_per_tick: 0,
+        direction_changes: 0,
         fault: None,
     };
+    let mut last_direction = 0i64;
     // Tick 0 is the state at t = 0; the last tick lands on the duration.
     for k in 0..=ticks {
         let t_us = k.saturating_mul(tick_us).min(scenario.duration_us);
@@ -187,6 +197,18 @@ fn simulate(
                 .saturating_add(out.pulses.unsigned_abs());
         }
         summary.max_backlog = summary.max_backlog.max(out.backlog.unsigned_abs());
+        summary.max_pulses_per_tick = summary
+            .max_pulses_per_tick
+            .max(out.pulses.unsigned_abs());
+        if out.pulses != 0 {
+            if last_direction != 0 && out.pulses.signum() != last_direction {
+                summary.direction_changes += 1;
+            }
+            last_direction = out.pulses.signum();
+        }
+        if out.events.seam_jump {
+            summary.seam_jumps += 1;
+        }
         if out.in_sync {
             summary.sync_ticks += 1;
         }
