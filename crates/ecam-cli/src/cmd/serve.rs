@@ -206,8 +206,8 @@ fn report_restore(
     let overridden = shared.read(|devices| retain::overridden(restored, devices));
     for o in overridden.iter().take(NAMES_SHOWN) {
         eprintln!(
-            "ecam serve: state {dir}: {} restored as {}, but the first scan set it to {} \
-             (the program or the hardware writes it at start)",
+            "ecam serve: state {dir}: {} restored as {}, but it is {} after the first scan \
+             period (the program or the hardware sets it at start)",
             o.slot.device(),
             o.restored,
             o.now
@@ -215,7 +215,7 @@ fn report_restore(
     }
     if overridden.len() > NAMES_SHOWN {
         eprintln!(
-            "ecam serve: state {dir}: and {} more restored values the first scan changed",
+            "ecam serve: state {dir}: and {} more restored values the first scan period changed",
             overridden.len() - NAMES_SHOWN
         );
     }
@@ -237,7 +237,7 @@ fn report_restore(
     }
     if !overridden.is_empty() {
         summary.push_str(&format!(
-            ", {} changed by the first scan (listed above)",
+            ", {} changed by the first scan period (listed above)",
             overridden.len()
         ));
     }
