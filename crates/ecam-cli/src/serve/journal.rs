@@ -14,7 +14,8 @@
 //! last journal line without its newline is a write that was cut off before
 //! it was acknowledged: it is dropped. Any other unreadable line stops the
 //! server with the file and line, rather than guess. The same compaction
-//! runs while serving once the journal holds [`COMPACT_AFTER`] records.
+//! runs while serving once the journal holds [`COMPACT_AFTER`] records or
+//! [`COMPACT_AFTER_BYTES`] bytes.
 //!
 //! What is kept (see [`super::retain`] for the rules): the last value
 //! *written from outside* to each ordinary D, M and X device, and the
@@ -40,6 +41,9 @@ pub const JOURNAL_FILE: &str = "journal.log";
 pub const SNAPSHOT_FILE: &str = "snapshot.txt";
 /// Journal records after which the journal is compacted into the snapshot.
 pub const COMPACT_AFTER: usize = 4096;
+/// Journal size after which it is compacted whatever its record count: a
+/// save of latched values can be one long line every second.
+pub const COMPACT_AFTER_BYTES: u64 = 8 << 20;
 
 const SNAPSHOT_HEADER: &str =
     "# ecam serve snapshot: the last kept value of each D, M, X and C device\n";
@@ -117,6 +121,7 @@ pub struct Journal {
     len: u64,
     records: usize,
     compact_after: usize,
+    compact_after_bytes: u64,
     broken: bool,
     persisted: BTreeMap<Slot, i32>,
 }
@@ -240,6 +245,7 @@ impl Journal {
                 len: 0,
                 records: 0,
                 compact_after: COMPACT_AFTER,
+                compact_after_bytes: COMPACT_AFTER_BYTES,
                 broken: false,
                 persisted,
             },
@@ -310,7 +316,7 @@ impl Journal {
         for &(slot, value) in batch.writes() {
             self.persisted.insert(slot, value);
         }
-        if self.records >= self.compact_after {
+        if self.records >= self.compact_after || self.len >= self.compact_after_bytes {
             // The record is already durable, so this write stands whatever
             // happens here; a failed compaction is retried on the next one.
             if let Err(err) = self.compact() {
@@ -465,6 +471,24 @@ mod tests {
         assert_eq!(expected.get(&Slot::D(9)), Some(&59));
         assert_eq!(expected.get(&Slot::D(10)), Some(&10));
         assert_eq!(expected.get(&Slot::D(49)), Some(&49));
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_long_journal_is_compacted_by_size() {
+        let dir = scratch("compact-bytes");
+        let (mut journal, _) = Journal::open(&dir).unwrap();
+        journal.compact_after_bytes = 100;
+        let mut batch = WriteBatch::new();
+        for n in 200..240 {
+            batch.word(n, 12345);
+        }
+        journal.append(&batch).unwrap();
+        assert_eq!(journal.records(), 0);
+        assert_eq!(fs::read_to_string(dir.join(JOURNAL_FILE)).unwrap(), "");
+        drop(journal);
+        let (journal, _) = Journal::open(&dir).unwrap();
+        assert_eq!(journal.persisted().len(), 40);
         fs::remove_dir_all(&dir).unwrap();
     }
 
