@@ -26,6 +26,16 @@ struct Server {
 
 impl Server {
     fn start(state: &Path, extra: &[&str]) -> Self {
+        Self::start_with_stderr(state, extra, Stdio::null())
+    }
+
+    /// Starts with stderr going to the file `log` (truncated first).
+    fn start_logged(state: &Path, extra: &[&str], log: &Path) -> Self {
+        let file = std::fs::File::create(log).unwrap();
+        Self::start_with_stderr(state, extra, Stdio::from(file))
+    }
+
+    fn start_with_stderr(state: &Path, extra: &[&str], stderr: Stdio) -> Self {
         let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
             .args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"])
             .arg("--state")
@@ -33,7 +43,7 @@ impl Server {
             .args(extra)
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
-            .stderr(Stdio::null())
+            .stderr(stderr)
             .spawn()
             .unwrap();
         let stdout = child.stdout.take().unwrap();
@@ -73,6 +83,19 @@ impl Server {
     fn kill_9(mut self) {
         self.child.kill().unwrap();
         self.child.wait().unwrap();
+    }
+
+    /// SIGTERM (a clean stop) and wait for the process to end.
+    #[cfg(unix)]
+    fn terminate(mut self) {
+        let pid = self.child.id().to_string();
+        let sent = Command::new("kill").args(["-TERM", &pid]).status().unwrap();
+        assert!(sent.success());
+        let start = Instant::now();
+        while self.child.try_wait().unwrap().is_none() {
+            assert!(start.elapsed() < STEP, "ecam serve did not stop on SIGTERM");
+            std::thread::sleep(Duration::from_millis(20));
+        }
     }
 
     fn is_running(&mut self) -> bool {
@@ -583,4 +606,209 @@ fn http_api_and_designer_page() {
         Some(r#"{"generator": "s-curve", "params": {"max_speed": 0}}"#),
     );
     assert_eq!(status, 400, "{body}");
+}
+
+/// The example of document 003, section 4.1.3: a cyclic cam on Y0, its
+/// master the pulses of Y1 wired back into X0.
+fn decam_cyclic() -> Vec<String> {
+    let il = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plc/decam_cyclic.il");
+    ["--program", il.to_str().unwrap(), "--wire", "Y1:X0"]
+        .map(String::from)
+        .to_vec()
+}
+
+/// Waits until `log` holds a line containing `needle`; returns the log.
+fn log_line(log: &Path, needle: &str) -> String {
+    let start = Instant::now();
+    loop {
+        let text = std::fs::read_to_string(log).unwrap_or_default();
+        if text.lines().any(|l| l.contains(needle)) {
+            return text;
+        }
+        assert!(
+            start.elapsed() < STEP,
+            "no line with {needle:?} on stderr:\n{text}"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Y0's output-pulse counter DD8140, which the cam drives.
+async fn y0_pulses(ctx: &mut Context) -> i32 {
+    let words = ctx.read_holding_registers(8140, 2).await.unwrap().unwrap();
+    (u32::from(words[0]) | u32::from(words[1]) << 16) as i32
+}
+
+/// Waits until the cam has moved Y0 by more than 100 pulses.
+async fn cam_moves(ctx: &mut Context) {
+    let from = y0_pulses(ctx).await;
+    eventually(async || (y0_pulses(ctx).await - from).abs() > 100).await;
+}
+
+#[tokio::test]
+async fn writes_to_special_devices_act_live_but_are_not_restored() {
+    let dir = state_dir("special");
+    let log = dir.with_extension("log");
+    let args = decam_cyclic();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let server = Server::start(&dir, &args);
+    {
+        let mut ctx = server.client().await;
+        cam_moves(&mut ctx).await;
+        // M8145: immediate stop of Y0's pulses. It acts at once ...
+        ctx.write_single_coil(8145, true).await.unwrap().unwrap();
+        ctx.write_single_register(8067, 6705)
+            .await
+            .unwrap()
+            .unwrap();
+        // ... alongside ordinary writes: D100/M10 not latched, D300/M600 latched.
+        ctx.write_single_register(100, 42).await.unwrap().unwrap();
+        ctx.write_single_register(300, 77).await.unwrap().unwrap();
+        ctx.write_multiple_coils(10, &[true])
+            .await
+            .unwrap()
+            .unwrap();
+        ctx.write_single_coil(600, true).await.unwrap().unwrap();
+        // One request across the boundary: D7999 is kept, D8000 is not.
+        ctx.write_multiple_registers(7999, &[5, 6])
+            .await
+            .unwrap()
+            .unwrap();
+        tokio::time::sleep(Duration::from_millis(100)).await;
+        let stopped = y0_pulses(&mut ctx).await;
+        tokio::time::sleep(Duration::from_millis(300)).await;
+        assert_eq!(y0_pulses(&mut ctx).await, stopped, "M8145 stops Y0 live");
+        assert_eq!(
+            ctx.read_holding_registers(8067, 1).await.unwrap().unwrap(),
+            [6705]
+        );
+    }
+    server.kill_9();
+
+    let server = Server::start_logged(&dir, &args, &log);
+    let stderr = log_line(&log, "values restored");
+    let mut ctx = server.client().await;
+    assert_eq!(
+        ctx.read_coils(8145, 1).await.unwrap().unwrap()[..1],
+        [false],
+        "M8145 restored: {stderr}"
+    );
+    assert_eq!(
+        ctx.read_holding_registers(8067, 1).await.unwrap().unwrap(),
+        [0]
+    );
+    assert_eq!(
+        server.get_json("/api/devices?names=D100,D300,M10,M600,D7999,D8000"),
+        json!({"D100": 42, "D300": 77, "M10": 1, "M600": 1, "D7999": 5, "D8000": 0})
+    );
+    cam_moves(&mut ctx).await;
+    assert!(!stderr.contains("skipped"), "{stderr}");
+}
+
+#[tokio::test]
+async fn special_devices_in_an_old_state_directory_are_skipped_and_named() {
+    let dir = state_dir("special-old");
+    let log = dir.with_extension("log");
+    std::fs::create_dir_all(&dir).unwrap();
+    // What an older version kept after `M8145 = 1` and `D8067 = 6705`.
+    std::fs::write(
+        dir.join("snapshot.txt"),
+        "# ecam serve snapshot\nD100 42;D8067 6705;M8145 1\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("journal.log"), "M600 1\n").unwrap();
+    let args = decam_cyclic();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let server = Server::start_logged(&dir, &args, &log);
+    let stderr = log_line(&log, "values restored");
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.contains("not restoring D8067, M8145") && l.contains("special")),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("2 values restored") && stderr.contains("2 skipped"),
+        "{stderr}"
+    );
+    let mut ctx = server.client().await;
+    assert_eq!(
+        server.get_json("/api/devices?names=D100,M600,M8145,D8067"),
+        json!({"D100": 42, "M600": 1, "M8145": 0, "D8067": 0})
+    );
+    cam_moves(&mut ctx).await;
+    // Dropped by the compaction at start.
+    let snapshot = std::fs::read_to_string(dir.join("snapshot.txt")).unwrap();
+    assert!(
+        !snapshot.contains("M8145") && !snapshot.contains("D8067"),
+        "{snapshot}"
+    );
+}
+
+#[cfg(unix)]
+#[tokio::test]
+async fn latched_values_the_program_wrote_survive_a_restart() {
+    // While M0 is on the program writes D300 (latched), D50 (not latched),
+    // sets M700 (latched) and counts C100 (latched) and C10 (not) up; each
+    // rising edge of M1 adds one to D301 (latched).
+    let il = program(
+        "serve-latched.il",
+        "LD M0\nMOV K1234 D300\nMOV K1234 D50\nSET M700\n\
+         LD M8013\nAND M0\nOUT C100 K1000\nLD M8013\nAND M0\nOUT C10 K1000\n\
+         LDP M1\nINC D301\nEND\n",
+    );
+    let args = ["--program", il.to_str().unwrap()];
+    let dir = state_dir("latched");
+    let log = dir.with_extension("log");
+    let server = Server::start(&dir, &args);
+    let mut ctx = server.client().await;
+    ctx.write_single_coil(0, true).await.unwrap().unwrap();
+    eventually(async || {
+        server.get_json("/api/devices?names=C100")["C100"]
+            .as_i64()
+            .unwrap()
+            >= 1
+    })
+    .await;
+    ctx.write_single_coil(0, false).await.unwrap().unwrap();
+    let counted = server.get_json("/api/devices?names=C100,C10");
+    // Two saves later (one may have been under way), the final values are
+    // on disk: then a crash loses nothing.
+    let saves = server.get_json("/api/status")["state"]["latched_saves"]
+        .as_u64()
+        .unwrap();
+    eventually(async || {
+        server.get_json("/api/status")["state"]["latched_saves"]
+            .as_u64()
+            .unwrap()
+            > saves + 1
+    })
+    .await;
+    drop(ctx);
+    server.kill_9();
+
+    let server = Server::start(&dir, &args);
+    assert_eq!(
+        server.get_json("/api/devices?names=M0,D300,D50,M700,C100,C10"),
+        json!({"M0": 0, "D300": 1234, "D50": 0, "M700": 1,
+               "C100": counted["C100"], "C10": 0})
+    );
+    // A clean stop saves the program's last latched values: D301, counted
+    // up just before SIGTERM (M1 is restored off, so no edge recounts it).
+    let stopped_log = dir.with_extension("stop.log");
+    server.kill_9();
+    let server = Server::start_logged(&dir, &args, &stopped_log);
+    let mut ctx = server.client().await;
+    ctx.write_single_coil(1, true).await.unwrap().unwrap();
+    eventually(async || server.get_json("/api/devices?names=D301")["D301"] == 1).await;
+    ctx.write_single_coil(1, false).await.unwrap().unwrap();
+    drop(ctx);
+    server.terminate();
+    log_line(&stopped_log, "latched values saved");
+    let server = Server::start_logged(&dir, &args, &log);
+    log_line(&log, "values restored");
+    assert_eq!(
+        server.get_json("/api/devices?names=D300,M700,D301,M1"),
+        json!({"D300": 1234, "M700": 1, "D301": 1, "M1": 0})
+    );
 }

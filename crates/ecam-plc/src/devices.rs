@@ -90,6 +90,57 @@ impl Device {
     }
 }
 
+/// What a device holds through a power cycle of the PLC: the FX3U's
+/// default latched (battery-backed) ranges, which the LX3V follows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Retention {
+    /// The PLC's own special device (D8000–D8511, M8000–M8511): set up
+    /// afresh by the PLC at power-up, never kept.
+    Special,
+    /// Kept through power loss: M500–M7679, D200–D7999, and the values of
+    /// counters C100–C199 and C220–C255.
+    Latched,
+    /// Cleared at power-up: M0–M499, M7680–M7999 (past the FX3U's M range),
+    /// D0–D199, C0–C99, C200–C219, and the I/O images X and Y.
+    Cleared,
+}
+
+/// First special D and M device (D8000, M8000).
+pub const SPECIAL_FIRST: u16 = 8000;
+/// Latched data registers: D200–D7999 (FX3U default).
+pub const D_LATCHED: core::ops::Range<u16> = 200..SPECIAL_FIRST;
+/// Latched auxiliary relays: M500–M7679 (FX3U default; the FX3U has no
+/// M7680–M7999).
+pub const M_LATCHED: core::ops::Range<u16> = 500..7680;
+/// Latched counters: C100–C199 (16-bit) and C220–C255 (32-bit, including
+/// the high-speed counters), FX3U default.
+pub const C_LATCHED: [core::ops::Range<u16>; 2] = [100..200, 220..C_COUNT];
+
+impl Device {
+    /// What this device holds through a power cycle (see [`Retention`]).
+    ///
+    /// ```
+    /// use ecam_plc::devices::{Device, Retention};
+    /// assert_eq!(Device::D(100).retention(), Retention::Cleared);
+    /// assert_eq!(Device::D(2000).retention(), Retention::Latched);
+    /// assert_eq!(Device::M(8145).retention(), Retention::Special);
+    /// ```
+    pub fn retention(self) -> Retention {
+        let latched = match self {
+            Self::D(n) | Self::M(n) if n >= SPECIAL_FIRST => return Retention::Special,
+            Self::D(n) => D_LATCHED.contains(&n),
+            Self::M(n) => M_LATCHED.contains(&n),
+            Self::C(n) => C_LATCHED.iter().any(|r| r.contains(&n)),
+            Self::X(_) | Self::Y(_) => false,
+        };
+        if latched {
+            Retention::Latched
+        } else {
+            Retention::Cleared
+        }
+    }
+}
+
 impl fmt::Display for Device {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -342,6 +393,41 @@ mod tests {
         let mut dev = Devices::new();
         dev.set_float(106, 1.6667).unwrap();
         assert_eq!(dev.float(106), Ok(1.6667));
+    }
+
+    #[test]
+    fn retention_follows_the_fx3u_defaults() {
+        use Retention::{Cleared, Latched, Special};
+        for (device, expected) in [
+            (Device::D(0), Cleared),
+            (Device::D(199), Cleared),
+            (Device::D(200), Latched),
+            (Device::D(7999), Latched),
+            (Device::D(8000), Special),
+            (Device::D(8140), Special),
+            (Device::D(8511), Special),
+            (Device::M(0), Cleared),
+            (Device::M(499), Cleared),
+            (Device::M(500), Latched),
+            (Device::M(7679), Latched),
+            (Device::M(7680), Cleared),
+            (Device::M(7999), Cleared),
+            (Device::M(8000), Special),
+            (Device::M(8145), Special),
+            (Device::M(8511), Special),
+            (Device::C(99), Cleared),
+            (Device::C(100), Latched),
+            (Device::C(199), Latched),
+            (Device::C(200), Cleared),
+            (Device::C(219), Cleared),
+            (Device::C(220), Latched),
+            (Device::C(231), Latched),
+            (Device::C(255), Latched),
+            (Device::X(0), Cleared),
+            (Device::Y(7), Cleared),
+        ] {
+            assert_eq!(device.retention(), expected, "{device}");
+        }
     }
 
     #[test]

@@ -17,9 +17,11 @@ use tokio::net::TcpListener;
 
 use crate::serve::clock;
 use crate::serve::http;
-use crate::serve::journal::Journal;
+use crate::serve::journal::{Journal, Recovery};
 use crate::serve::modbus;
+use crate::serve::retain::{self, LatchedImage};
 use crate::serve::state::{ServeInfo, Shared};
+use crate::serve::write::Slot;
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
 pub const DEFAULT_MODBUS: &str = "127.0.0.1:5020";
@@ -35,8 +37,9 @@ pub struct Args {
     /// HTTP address to listen on (API and designer page).
     #[arg(long, value_name = "ADDR", default_value = DEFAULT_HTTP)]
     pub http: String,
-    /// Keep every value written from outside in this directory, durably
-    /// (created if missing); without it nothing survives a restart.
+    /// Keep every value written from outside (except to special devices
+    /// D/M8000-8511) and the latched devices' values in this directory,
+    /// durably (created if missing); without it nothing survives a restart.
     #[arg(long, value_name = "DIR")]
     pub state: Option<PathBuf>,
     /// Instruction-list program to run; without one the PLC runs an empty
@@ -76,27 +79,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         plc.hardware_mut()
             .add_wire(Wire::parse(wire).context("--wire")?);
     }
-    let journal = match &args.state {
+    let (journal, restored) = match &args.state {
         Some(dir) => {
             let (journal, recovery) =
                 Journal::open(dir).with_context(|| format!("state directory {}", dir.display()))?;
             journal.restore_into(plc.devices_mut());
-            eprintln!(
-                "ecam serve: state {}: {} values restored ({} journal records replayed{})",
-                dir.display(),
-                journal.persisted().len(),
-                recovery.replayed,
-                if recovery.torn_tail {
-                    ", an unacknowledged torn last record dropped"
-                } else {
-                    ""
-                }
-            );
-            Some(journal)
+            let restored = journal.persisted().clone();
+            (Some(journal), Some((dir.clone(), recovery, restored)))
         }
         None => {
             eprintln!("ecam serve: no --state DIR: writes are not kept across restarts");
-            None
+            (None, None)
         }
     };
     let timing = Timing {
@@ -131,6 +124,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         eprintln!("ecam serve: designer page at http://{}/", info.http);
         let shared = Arc::new(Shared::new(plc, journal, info));
+        // The first scan runs before any client is served, so whatever it
+        // changes of the restored values is the program's (or hardware's) doing.
+        clock::run_period(&shared);
+        if let Some((dir, recovery, restored)) = &restored {
+            report_restore(&shared, dir, recovery, restored);
+        }
         let stop = Arc::new(AtomicBool::new(false));
         let scan_loop = {
             let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
@@ -138,6 +137,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .name("plc-scan".into())
                 .spawn(move || clock::run(&shared, &stop))
                 .context("cannot start the scan loop")?
+        };
+        let saver = match &restored {
+            Some(_) => {
+                let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
+                let saver = std::thread::Builder::new()
+                    .name("latched-save".into())
+                    .spawn(move || retain::save_periodically(&shared, &stop))
+                    .context("cannot start the latched-value saver")?;
+                Some(saver)
+            }
+            None => None,
         };
         let served = tokio::select! {
             () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),
@@ -148,8 +158,90 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         };
         stop.store(true, Ordering::Relaxed);
         let _ = scan_loop.join();
+        if let Some(saver) = saver {
+            let _ = saver.join();
+            // The scan loop has stopped: this image is the PLC's last state.
+            match shared.save_latched(&mut LatchedImage::new()) {
+                Ok(saved) => eprintln!("ecam serve: stopped; {saved} latched values saved"),
+                Err(err) => eprintln!("ecam serve: stopped; cannot save latched values: {err}"),
+            }
+        }
         served
     })
+}
+
+/// Longest list of device names one stderr line gives.
+const NAMES_SHOWN: usize = 32;
+
+/// `M8145, D8140, … and 3 more`.
+fn names(slots: impl ExactSizeIterator<Item = Slot>) -> String {
+    let total = slots.len();
+    let mut text: Vec<String> = slots
+        .take(NAMES_SHOWN)
+        .map(|s| s.device().to_string())
+        .collect();
+    if total > NAMES_SHOWN {
+        text.push(format!("and {} more", total - NAMES_SHOWN));
+    }
+    text.join(", ")
+}
+
+/// Says on stderr what the state directory gave back: special devices
+/// skipped, restored values the first scan changed, and the counts.
+fn report_restore(
+    shared: &Shared,
+    dir: &std::path::Path,
+    recovery: &Recovery,
+    restored: &std::collections::BTreeMap<Slot, i32>,
+) {
+    let dir = dir.display();
+    let skipped = &recovery.skipped_special;
+    if !skipped.is_empty() {
+        eprintln!(
+            "ecam serve: state {dir}: not restoring {}: special devices are the PLC's own, \
+             set up afresh at start (these records, kept by an older version, are now dropped)",
+            names(skipped.iter().copied())
+        );
+    }
+    let overridden = shared.read(|devices| retain::overridden(restored, devices));
+    for o in overridden.iter().take(NAMES_SHOWN) {
+        eprintln!(
+            "ecam serve: state {dir}: {} restored as {}, but it is {} after the first scan \
+             period (the program or the hardware sets it at start)",
+            o.slot.device(),
+            o.restored,
+            o.now
+        );
+    }
+    if overridden.len() > NAMES_SHOWN {
+        eprintln!(
+            "ecam serve: state {dir}: and {} more restored values the first scan period changed",
+            overridden.len() - NAMES_SHOWN
+        );
+    }
+    let mut summary = format!(
+        "ecam serve: state {dir}: {} values restored ({} journal records replayed{})",
+        restored.len(),
+        recovery.replayed,
+        if recovery.torn_tail {
+            ", an unacknowledged torn last record dropped"
+        } else {
+            ""
+        }
+    );
+    if !skipped.is_empty() {
+        summary.push_str(&format!(
+            ", {} skipped (special devices, never restored)",
+            skipped.len()
+        ));
+    }
+    if !overridden.is_empty() {
+        summary.push_str(&format!(
+            ", {} changed by the first scan period (listed above)",
+            overridden.len()
+        ));
+    }
+    eprintln!("{summary}");
 }
 
 /// Ctrl-C, or SIGTERM on Unix. Nothing needs flushing: every acknowledged

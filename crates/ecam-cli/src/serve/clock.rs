@@ -8,7 +8,6 @@
 //! — a burst of scans would make timers and pulse outputs jump — but skips
 //! it, and counts the time skipped in `GET /api/status`.
 
-use std::collections::HashSet;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -55,10 +54,8 @@ impl Drop for Scanning<'_> {
 pub fn run(shared: &Shared, stop: &AtomicBool) {
     shared.stats.scanning.store(true, Ordering::Relaxed);
     let _scanning = Scanning(&shared.stats.scanning);
-    let timing = shared.info.timing;
     let mut origin = Instant::now();
     let start_us = shared.with_plc(|plc| plc.now_us());
-    let mut reported = HashSet::new();
     while !stop.load(Ordering::Relaxed) {
         let simulated =
             Duration::from_micros(shared.with_plc(|plc| plc.now_us()).saturating_sub(start_us));
@@ -77,25 +74,31 @@ pub fn run(shared: &Shared, stop: &AtomicBool) {
                 let behind = origin.elapsed().saturating_sub(simulated);
                 let us = u64::try_from(behind.as_micros()).unwrap_or(u64::MAX);
                 shared.stats.lag_us.store(us, Ordering::Relaxed);
-                let result =
-                    shared.with_plc(|plc| sim::run(plc, timing, RunLength::Scans(1), |_| {}));
-                // The timing was checked non-zero at start, so `run` cannot fail.
-                let errors = result.unwrap_or_default();
-                for e in errors {
-                    shared
-                        .stats
-                        .operation_errors
-                        .fetch_add(1, Ordering::Relaxed);
-                    let file = shared.info.program.as_deref().unwrap_or("program");
-                    let text = format!("{file}:{}: {} (D8067={})", e.line, e.error, e.error.code);
-                    // Like `ecam plc run`: each distinct error once on stderr.
-                    if reported.insert((e.line, e.error.code)) {
-                        eprintln!("ecam serve: warning: {text}");
-                    }
-                    *lock(&shared.stats.last_operation_error) = Some(text);
-                }
+                run_period(shared);
             }
         }
+    }
+}
+
+/// Runs one scan period now (one scan, then the hardware ticks covering
+/// the scan period) and reports the operation errors it raised.
+pub fn run_period(shared: &Shared) {
+    let timing = shared.info.timing;
+    let result = shared.with_plc(|plc| sim::run(plc, timing, RunLength::Scans(1), |_| {}));
+    // The timing was checked non-zero at start, so `run` cannot fail.
+    let errors = result.unwrap_or_default();
+    for e in errors {
+        shared
+            .stats
+            .operation_errors
+            .fetch_add(1, Ordering::Relaxed);
+        let file = shared.info.program.as_deref().unwrap_or("program");
+        let text = format!("{file}:{}: {} (D8067={})", e.line, e.error, e.error.code);
+        // Like `ecam plc run`: each distinct error once on stderr.
+        if lock(&shared.stats.reported_errors).insert((e.line, e.error.code)) {
+            eprintln!("ecam serve: warning: {text}");
+        }
+        *lock(&shared.stats.last_operation_error) = Some(text);
     }
 }
 

@@ -14,19 +14,25 @@
 //! last journal line without its newline is a write that was cut off before
 //! it was acknowledged: it is dropped. Any other unreadable line stops the
 //! server with the file and line, rather than guess. The same compaction
-//! runs while serving once the journal holds [`COMPACT_AFTER`] records.
+//! runs while serving once the journal holds [`COMPACT_AFTER`] records or
+//! [`COMPACT_AFTER_BYTES`] bytes.
 //!
-//! What is kept is the last value *written from outside* to each D, M and X
-//! device, not the whole memory: values the program computes are its own and
-//! are recomputed after a restart, as on a PLC without battery backup.
+//! What is kept (see [`super::retain`] for the rules): the last value
+//! *written from outside* to each ordinary D, M and X device, and the
+//! latched devices' values the program itself wrote, saved periodically.
+//! Special devices (D8000–D8511, M8000–M8511) are never kept: a write to
+//! them takes effect but is not journalled, and records for them in state
+//! files written by older versions are skipped on open and dropped by the
+//! compaction that follows.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
 
 use ecam_plc::devices::Devices;
 
+use super::retain;
 use super::write::{Slot, WriteBatch};
 
 /// Journal file name inside the state directory.
@@ -35,9 +41,12 @@ pub const JOURNAL_FILE: &str = "journal.log";
 pub const SNAPSHOT_FILE: &str = "snapshot.txt";
 /// Journal records after which the journal is compacted into the snapshot.
 pub const COMPACT_AFTER: usize = 4096;
+/// Journal size after which it is compacted whatever its record count: a
+/// save of latched values can be one long line every second.
+pub const COMPACT_AFTER_BYTES: u64 = 8 << 20;
 
 const SNAPSHOT_HEADER: &str =
-    "# ecam serve snapshot: last value written from outside to each D, M and X device\n";
+    "# ecam serve snapshot: the last kept value of each D, M, X and C device\n";
 
 /// Why the state directory cannot be used.
 #[derive(Debug)]
@@ -99,6 +108,9 @@ pub struct Recovery {
     pub replayed: usize,
     /// Whether a torn last record was dropped.
     pub torn_tail: bool,
+    /// Special devices whose records were skipped (written by an older
+    /// version, which journalled them).
+    pub skipped_special: BTreeSet<Slot>,
 }
 
 /// The open journal of a state directory and the values it keeps.
@@ -109,16 +121,19 @@ pub struct Journal {
     len: u64,
     records: usize,
     compact_after: usize,
+    compact_after_bytes: u64,
     broken: bool,
-    persisted: BTreeMap<Slot, i16>,
+    persisted: BTreeMap<Slot, i32>,
 }
 
-/// Applies every line of `text` (from `path`) to `values`; returns the
-/// records read and whether a torn last line was dropped.
+/// Applies every line of `text` (from `path`) to `values`, leaving out the
+/// devices that are not kept (added to `skipped`); returns the records read
+/// and whether a torn last line was dropped.
 fn replay(
     text: &str,
     path: &Path,
-    values: &mut BTreeMap<Slot, i16>,
+    values: &mut BTreeMap<Slot, i32>,
+    skipped: &mut BTreeSet<Slot>,
     allow_torn_tail: bool,
 ) -> Result<(usize, bool), JournalError> {
     let complete = text.ends_with('\n') || text.is_empty();
@@ -143,7 +158,11 @@ fn replay(
             message: err.to_string(),
         })?;
         for &(slot, value) in batch.writes() {
-            values.insert(slot, value);
+            if retain::is_kept(slot) {
+                values.insert(slot, value);
+            } else {
+                skipped.insert(slot);
+            }
         }
         records += 1;
     }
@@ -193,10 +212,23 @@ impl Journal {
         let snapshot_path = dir.join(SNAPSHOT_FILE);
         let journal_path = dir.join(JOURNAL_FILE);
         let mut persisted = BTreeMap::new();
+        let mut skipped_special = BTreeSet::new();
         let snapshot = read_optional(&snapshot_path)?;
-        replay(&snapshot, &snapshot_path, &mut persisted, false)?;
+        replay(
+            &snapshot,
+            &snapshot_path,
+            &mut persisted,
+            &mut skipped_special,
+            false,
+        )?;
         let journal = read_optional(&journal_path)?;
-        let (replayed, torn_tail) = replay(&journal, &journal_path, &mut persisted, true)?;
+        let (replayed, torn_tail) = replay(
+            &journal,
+            &journal_path,
+            &mut persisted,
+            &mut skipped_special,
+            true,
+        )?;
 
         write_snapshot(dir, &persisted)?;
         let file = File::create(&journal_path).map_err(io_error(&journal_path))?;
@@ -213,18 +245,20 @@ impl Journal {
                 len: 0,
                 records: 0,
                 compact_after: COMPACT_AFTER,
+                compact_after_bytes: COMPACT_AFTER_BYTES,
                 broken: false,
                 persisted,
             },
             Recovery {
                 replayed,
                 torn_tail,
+                skipped_special,
             },
         ))
     }
 
-    /// The last value written to each kept device.
-    pub fn persisted(&self) -> &BTreeMap<Slot, i16> {
+    /// The last value kept for each device: what a restart restores.
+    pub fn persisted(&self) -> &BTreeMap<Slot, i32> {
         &self.persisted
     }
 
@@ -237,16 +271,14 @@ impl Journal {
     pub fn restore_into(&self, devices: &mut Devices) {
         let mut batch = WriteBatch::new();
         for (&slot, &value) in &self.persisted {
-            match slot {
-                Slot::D(n) => batch.word(n, value as u16),
-                _ => batch.bit(slot.device(), value != 0),
-            };
+            batch.slot(slot, value);
         }
         batch.apply(devices);
     }
 
-    /// Appends `batch` as one record and syncs it to disk. When this returns
-    /// `Ok`, the write survives a crash.
+    /// Appends `batch`, without the devices that are not kept (special
+    /// devices), as one record and syncs it to disk. When this returns `Ok`,
+    /// the write survives a crash.
     ///
     /// # Errors
     /// The file could not be written or synced; the record is then cut off
@@ -256,6 +288,8 @@ impl Journal {
         if self.broken {
             return Err(JournalError::Broken);
         }
+        let kept = retain::kept(batch);
+        let batch = kept.as_ref().unwrap_or(batch);
         if batch.is_empty() {
             return Ok(());
         }
@@ -282,7 +316,7 @@ impl Journal {
         for &(slot, value) in batch.writes() {
             self.persisted.insert(slot, value);
         }
-        if self.records >= self.compact_after {
+        if self.records >= self.compact_after || self.len >= self.compact_after_bytes {
             // The record is already durable, so this write stands whatever
             // happens here; a failed compaction is retried on the next one.
             if let Err(err) = self.compact() {
@@ -310,18 +344,15 @@ impl Journal {
 
 /// Writes `values` as the new snapshot: temporary file, sync, rename, sync
 /// the directory.
-fn write_snapshot(dir: &Path, values: &BTreeMap<Slot, i16>) -> Result<(), JournalError> {
+fn write_snapshot(dir: &Path, values: &BTreeMap<Slot, i32>) -> Result<(), JournalError> {
     let tmp = dir.join(format!("{SNAPSHOT_FILE}.tmp"));
     let mut text = String::from(SNAPSHOT_HEADER);
-    let entries: Vec<(Slot, i16)> = values.iter().map(|(&s, &v)| (s, v)).collect();
+    let entries: Vec<(Slot, i32)> = values.iter().map(|(&s, &v)| (s, v)).collect();
     // 32 values a line keeps the file readable.
     for chunk in entries.chunks(32) {
         let mut batch = WriteBatch::new();
         for &(slot, value) in chunk {
-            match slot {
-                Slot::D(n) => batch.word(n, value as u16),
-                _ => batch.bit(slot.device(), value != 0),
-            };
+            batch.slot(slot, value);
         }
         text.push_str(&batch.to_line());
         text.push('\n');
@@ -397,7 +428,8 @@ mod tests {
             recovery,
             Recovery {
                 replayed: 2,
-                torn_tail: true
+                torn_tail: true,
+                skipped_special: BTreeSet::new(),
             }
         );
         assert_eq!(journal.persisted().get(&Slot::D(2)), Some(&2));
@@ -439,6 +471,82 @@ mod tests {
         assert_eq!(expected.get(&Slot::D(9)), Some(&59));
         assert_eq!(expected.get(&Slot::D(10)), Some(&10));
         assert_eq!(expected.get(&Slot::D(49)), Some(&49));
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_long_journal_is_compacted_by_size() {
+        let dir = scratch("compact-bytes");
+        let (mut journal, _) = Journal::open(&dir).unwrap();
+        journal.compact_after_bytes = 100;
+        let mut batch = WriteBatch::new();
+        for n in 200..240 {
+            batch.word(n, 12345);
+        }
+        journal.append(&batch).unwrap();
+        assert_eq!(journal.records(), 0);
+        assert_eq!(fs::read_to_string(dir.join(JOURNAL_FILE)).unwrap(), "");
+        drop(journal);
+        let (journal, _) = Journal::open(&dir).unwrap();
+        assert_eq!(journal.persisted().len(), 40);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn special_devices_from_old_state_files_are_skipped_and_dropped() {
+        let dir = scratch("special");
+        fs::create_dir_all(&dir).unwrap();
+        // As an older version wrote them: M8145 (stop Y0) and D8140 kept.
+        fs::write(
+            dir.join(SNAPSHOT_FILE),
+            "# old\nD100 5;D7998 1 2 3 4;M8145 1\n",
+        )
+        .unwrap();
+        fs::write(dir.join(JOURNAL_FILE), "D8140 9;M499 1 1\n").unwrap();
+        let (journal, recovery) = Journal::open(&dir).unwrap();
+        assert_eq!(
+            recovery.skipped_special,
+            BTreeSet::from([Slot::D(8000), Slot::D(8001), Slot::D(8140), Slot::M(8145)])
+        );
+        assert_eq!(recovery.replayed, 1);
+        let kept: Vec<Slot> = journal.persisted().keys().copied().collect();
+        assert_eq!(
+            kept,
+            [
+                Slot::D(100),
+                Slot::D(7998),
+                Slot::D(7999),
+                Slot::M(499),
+                Slot::M(500)
+            ]
+        );
+        let mut devices = Devices::new();
+        journal.restore_into(&mut devices);
+        assert_eq!(devices.m(8145), Ok(false));
+        assert_eq!(devices.word(8140), Ok(0));
+        // The compaction at open dropped them: a second open skips nothing.
+        drop(journal);
+        let (_, recovery) = Journal::open(&dir).unwrap();
+        assert!(recovery.skipped_special.is_empty());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn writes_to_special_devices_are_not_journalled() {
+        let dir = scratch("special-append");
+        let (mut journal, _) = Journal::open(&dir).unwrap();
+        let mut stop = WriteBatch::new();
+        stop.bit(Device::M(8145), true);
+        journal.append(&stop).unwrap();
+        assert_eq!(journal.records(), 0);
+        let mut mixed = WriteBatch::new();
+        mixed.word(7999, 1).word(8000, 2).bit(Device::M(8146), true);
+        journal.append(&mixed).unwrap();
+        assert_eq!(journal.records(), 1);
+        assert_eq!(
+            fs::read_to_string(dir.join(JOURNAL_FILE)).unwrap(),
+            "D7999 1\n"
+        );
         fs::remove_dir_all(&dir).unwrap();
     }
 }

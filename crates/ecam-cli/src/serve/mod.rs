@@ -5,6 +5,7 @@
 //! - [`modbus`]: the Modbus TCP listener (MBAP framing, one task per client),
 //! - [`write`](mod@write): a batch of device writes, and its one-line text form,
 //! - [`journal`]: durable writes (append-only journal + snapshot),
+//! - [`retain`]: which devices `--state` keeps, and the latched image,
 //! - [`state`]: the PLC shared by the scan loop and the servers,
 //! - [`clock`]: the scan loop, paced by the wall clock,
 //! - [`device_json`], [`design`], [`http`]: the HTTP API and the designer page.
@@ -17,5 +18,6 @@ pub mod journal;
 pub mod map;
 pub mod modbus;
 pub mod pdu;
+pub mod retain;
 pub mod state;
 pub mod write;

@@ -6,6 +6,7 @@
 //! taken first and held until the write is applied, so the journal's order
 //! is the order writes reach device memory.
 
+use std::collections::HashSet;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -17,6 +18,7 @@ use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
 use super::journal::{Journal, JournalError};
+use super::retain::LatchedImage;
 use super::write::WriteBatch;
 
 /// How the server was started (for `GET /api/status`).
@@ -55,6 +57,11 @@ pub struct Stats {
     pub modbus_garbage: AtomicU64,
     /// The last operation error (`file:line: message`).
     pub last_operation_error: Mutex<Option<String>>,
+    /// Operation errors already on stderr, by line and code (each once).
+    pub reported_errors: Mutex<HashSet<(usize, u16)>>,
+    /// Latched-value saves done (each compares the latched devices with
+    /// what is kept and journals the differences, if any).
+    pub latched_saves: AtomicU64,
 }
 
 /// Locks `mutex`, carrying on after a panic elsewhere: device memory is
@@ -109,6 +116,26 @@ impl Shared {
         Ok(())
     }
 
+    /// Saves the latched devices' values that differ from what a restart
+    /// would restore, as one journal record (see [`super::retain`]); returns
+    /// how many were saved. The journal's lock is held throughout, so no
+    /// client write falls between the copy and the record; the PLC's only
+    /// for the copy into `image`.
+    ///
+    /// # Errors
+    /// The record could not be written; it is tried again next time.
+    pub fn save_latched(&self, image: &mut LatchedImage) -> Result<usize, JournalError> {
+        let mut journal = lock(&self.journal);
+        let Some(journal) = journal.as_mut() else {
+            return Ok(0);
+        };
+        image.capture(lock(&self.plc).devices());
+        let changes = image.changes(journal.persisted());
+        journal.append(&changes)?;
+        self.stats.latched_saves.fetch_add(1, Ordering::Relaxed);
+        Ok(changes.writes().len())
+    }
+
     /// The body of `GET /api/status`.
     pub fn status(&self) -> Value {
         let (scans, now_us, operation_error) = self.with_plc(|plc| {
@@ -149,6 +176,7 @@ impl Shared {
                 "dir": self.info.state_dir.as_ref().map(|d| d.display().to_string()),
                 "kept_values": kept,
                 "journal_records": records,
+                "latched_saves": load(&s.latched_saves),
             },
         })
     }

@@ -2,18 +2,21 @@
 //! form (the record of the journal and the snapshot).
 //!
 //! Only D words and M/X bits are written from outside: Y outputs belong to
-//! the program and counters to the hardware. A line holds runs of
-//! consecutive devices, separated by `;`, each run the first device's name
-//! and its values: `D100 5 -3 7;M0 1 0;X17 1` (X/Y names in octal, words as
-//! signed 16-bit values, bits 0/1). One request is one line, so a batch is
-//! restored whole or not at all.
+//! the program and counters to the hardware. Counter values appear only in
+//! records of latched values the program itself wrote (see
+//! [`super::retain`]). A line holds runs of consecutive devices, separated
+//! by `;`, each run the first device's name and its values:
+//! `D100 5 -3 7;M0 1 0;X17 1;C231 70000` (X/Y names in octal, words as
+//! signed 16-bit values, bits 0/1, counters as their signed value). One
+//! request is one line, so a batch is restored whole or not at all.
 
 use core::fmt;
 use std::fmt::Write as _;
 
-use ecam_plc::devices::{Device, Devices};
+use ecam_plc::devices::{C_32BIT_FIRST, Device, Devices};
 
-/// One device whose written value is kept: a data register or a writable bit.
+/// One device whose value can be kept: a data register, a writable bit, or
+/// a counter's value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Slot {
     /// `Dn`.
@@ -22,17 +25,20 @@ pub enum Slot {
     M(u16),
     /// `Xn` (index, not octal name).
     X(u16),
+    /// `Cn`, the counter's current value.
+    C(u16),
 }
 
 impl Slot {
-    /// The slot for `device`, if it is a D, M or X that exists.
+    /// The slot for `device`, if it is a D, M, X or C that exists.
     pub fn of(device: Device) -> Option<Self> {
         let device = device.check().ok()?;
         match device {
             Device::D(n) => Some(Self::D(n)),
             Device::M(n) => Some(Self::M(n)),
             Device::X(n) => Some(Self::X(n)),
-            Device::Y(_) | Device::C(_) => None,
+            Device::C(n) => Some(Self::C(n)),
+            Device::Y(_) => None,
         }
     }
 
@@ -42,6 +48,7 @@ impl Slot {
             Self::D(n) => Device::D(n),
             Self::M(n) => Device::M(n),
             Self::X(n) => Device::X(n),
+            Self::C(n) => Device::C(n),
         }
     }
 
@@ -52,18 +59,32 @@ impl Slot {
             Self::D(n) => Device::D(step(n)?),
             Self::M(n) => Device::M(step(n)?),
             Self::X(n) => Device::X(step(n)?),
+            Self::C(n) => Device::C(step(n)?),
         })
     }
 
     const fn is_bit(self) -> bool {
-        !matches!(self, Self::D(_))
+        matches!(self, Self::M(_) | Self::X(_))
+    }
+
+    /// Whether `value` can be held by this slot: a 16-bit pattern for D
+    /// (read back signed), 0/1 for bits, the counter's range for C.
+    fn holds(self, value: i64) -> Option<i32> {
+        let value = match self {
+            Self::D(_) if (-32768..=65535).contains(&value) => i32::from(value as u16 as i16),
+            Self::M(_) | Self::X(_) if value == 0 || value == 1 => value as i32,
+            Self::C(n) if n < C_32BIT_FIRST => i32::from(i16::try_from(value).ok()?),
+            Self::C(_) => i32::try_from(value).ok()?,
+            _ => return None,
+        };
+        Some(value)
     }
 }
 
 /// Values written by one request, in request order.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct WriteBatch {
-    writes: Vec<(Slot, i16)>,
+    writes: Vec<(Slot, i32)>,
 }
 
 /// A journal or snapshot line that cannot be read.
@@ -86,7 +107,22 @@ impl WriteBatch {
 
     /// Adds `Dn = value` (raw 16-bit pattern).
     pub fn word(&mut self, n: u16, value: u16) -> &mut Self {
-        self.writes.push((Slot::D(n), value as i16));
+        self.writes.push((Slot::D(n), i32::from(value as i16)));
+        self
+    }
+
+    /// Adds `slot = value` as [`Journal`](super::journal::Journal) keeps it
+    /// (`value` as [`Self::writes`] gives it back; a counter value outside
+    /// the counter's range, or a bit other than 0/1, is stored as the
+    /// device would hold it).
+    pub fn slot(&mut self, slot: Slot, value: i32) -> &mut Self {
+        let value = match slot {
+            Slot::D(_) => i32::from(value as i16),
+            Slot::M(_) | Slot::X(_) => i32::from(value != 0),
+            Slot::C(n) if n < C_32BIT_FIRST => i32::from(value as i16),
+            Slot::C(_) => value,
+        };
+        self.writes.push((slot, value));
         self
     }
 
@@ -94,7 +130,7 @@ impl WriteBatch {
     /// check writability first, as [`super::map::writable_coils`] does).
     pub fn bit(&mut self, device: Device, on: bool) -> &mut Self {
         if let Some(slot) = Slot::of(device).filter(|s| s.is_bit()) {
-            self.writes.push((slot, i16::from(on)));
+            self.writes.push((slot, i32::from(on)));
         }
         self
     }
@@ -105,7 +141,7 @@ impl WriteBatch {
     }
 
     /// The writes, in order.
-    pub fn writes(&self) -> &[(Slot, i16)] {
+    pub fn writes(&self) -> &[(Slot, i32)] {
         &self.writes
     }
 
@@ -114,8 +150,9 @@ impl WriteBatch {
         for &(slot, value) in &self.writes {
             // Slots only hold devices that exist, so these cannot fail.
             let _ = match slot {
-                Slot::D(n) => devices.set_word(n, value),
+                Slot::D(n) => devices.set_word(n, value as i16),
                 Slot::M(_) | Slot::X(_) => devices.set_bit(slot.device(), value != 0),
+                Slot::C(n) => devices.set_counter(n, value),
             };
         }
     }
@@ -140,8 +177,9 @@ impl WriteBatch {
     /// Reads a line written by [`Self::to_line`].
     ///
     /// # Errors
-    /// A device that is not D, M or X, a run past the device's end, a word
-    /// outside -32768..=65535 or a bit other than 0/1.
+    /// A device that is not D, M, X or C, a run past the device's end, a
+    /// word outside -32768..=65535, a bit other than 0/1 or a counter value
+    /// outside the counter's range.
     pub fn parse_line(line: &str) -> Result<Self, LineError> {
         let mut batch = Self::new();
         for run in line.split(';') {
@@ -152,25 +190,18 @@ impl WriteBatch {
             let mut slot = Device::parse(name)
                 .ok()
                 .and_then(Slot::of)
-                .ok_or_else(|| LineError(format!("`{name}` is not a D, M or X device")))?;
+                .ok_or_else(|| LineError(format!("`{name}` is not a D, M, X or C device")))?;
             let mut values = fields.peekable();
             if values.peek().is_none() {
                 return Err(LineError(format!("`{name}` has no value")));
             }
             while let Some(text) = values.next() {
-                let value: i32 = text
+                let value: i64 = text
                     .parse()
                     .map_err(|_| LineError(format!("`{text}` is not a number")))?;
-                let value = match slot {
-                    Slot::D(_) if (-32768..=65535).contains(&value) => value as u16 as i16,
-                    Slot::M(_) | Slot::X(_) if value == 0 || value == 1 => value as i16,
-                    _ => {
-                        return Err(LineError(format!(
-                            "`{text}` is not a value for {}",
-                            slot.device()
-                        )));
-                    }
-                };
+                let value = slot.holds(value).ok_or_else(|| {
+                    LineError(format!("`{text}` is not a value for {}", slot.device()))
+                })?;
                 batch.writes.push((slot, value));
                 if values.peek().is_some() {
                     slot = slot.next().ok_or_else(|| {
@@ -211,7 +242,9 @@ mod tests {
             "",
             "D100",
             "Y7 1",
-            "C231 5",
+            "C256 5",
+            "C100 40000",
+            "C231 2147483648",
             "M0 2",
             "D0 70000",
             "D8511 1 2",
@@ -220,6 +253,21 @@ mod tests {
         ] {
             assert!(WriteBatch::parse_line(line).is_err(), "{line:?}");
         }
+    }
+
+    #[test]
+    fn counters_keep_their_width() {
+        let mut batch = WriteBatch::new();
+        batch.slot(Slot::C(199), 40000).slot(Slot::C(200), 70000);
+        assert_eq!(batch.to_line(), "C199 -25536 70000");
+        assert_eq!(
+            WriteBatch::parse_line("C199 -25536 70000"),
+            Ok(batch.clone())
+        );
+        let mut devices = Devices::new();
+        batch.apply(&mut devices);
+        assert_eq!(devices.counter(199), Ok(-25536));
+        assert_eq!(devices.counter(200), Ok(70000));
     }
 
     #[test]
@@ -237,19 +285,17 @@ mod tests {
             (0u16..8512).prop_map(Slot::D),
             (0u16..8512).prop_map(Slot::M),
             (0u16..256).prop_map(Slot::X),
+            (0u16..256).prop_map(Slot::C),
         ]
     }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(500))]
         #[test]
-        fn every_batch_survives_its_line(writes in prop::collection::vec((slot(), any::<i16>()), 1..40)) {
+        fn every_batch_survives_its_line(writes in prop::collection::vec((slot(), any::<i32>()), 1..40)) {
             let mut batch = WriteBatch::new();
             for (slot, value) in writes {
-                match slot {
-                    Slot::D(n) => batch.word(n, value as u16),
-                    _ => batch.bit(slot.device(), value & 1 == 1),
-                };
+                batch.slot(slot, value);
             }
             prop_assert_eq!(WriteBatch::parse_line(&batch.to_line()), Ok(batch));
         }
