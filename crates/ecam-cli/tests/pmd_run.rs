@@ -178,3 +178,14 @@ fn abrupt_and_smooth_stops() {
     // Backwards smooth stop at master 190: 460 − 200 = 260. Motion complete.
     assert_eq!(values(&lines), [400, 0, 460, 260, 1]);
 }
+
+#[test]
+fn smooth_stops_on_a_table_end_stop_there_at_once() {
+    let lines = run_file(&examples().join("boundary_stops.pmd"), &[]);
+    // Forwards onto the table end: inactive at once, held at 200 while the
+    // master goes on (no second table, which would end at 400).
+    // Backwards onto the table start, master resting: inactive at once,
+    // held at 200, motion complete, and SetCam accepted again.
+    assert!(lines.iter().all(|l| l.get("error").is_none()), "{lines:?}");
+    assert_eq!(values(&lines), [0, 200, 0, 200, 1, 50]);
+}

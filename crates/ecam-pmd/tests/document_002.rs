@@ -494,3 +494,99 @@ GetActivityStatus
         "{lines:?}"
     );
 }
+
+#[test]
+fn a_smooth_stop_on_the_table_end_going_forwards_stops_there_at_once() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 100 100
+Tick 100
+SetStopMode Smooth
+Update
+GetActivityStatus
+GetEventStatus
+MoveTo 1 250 150
+Tick 150
+GetCommandedPosition
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    // On the table end (input 100, output 200): inactive at once, motion
+    // complete, and no second table as the master goes on to 250.
+    assert_eq!(values[0], 0);
+    assert_ne!(values[1] & i64::from(event_bit::MOTION_COMPLETE), 0);
+    assert_eq!(values[2], 200);
+}
+
+#[test]
+fn a_smooth_stop_on_the_table_start_going_backwards_stops_there_at_once() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 60 60
+Tick 60
+MoveTo 1 0 60
+Tick 60
+SetStopMode Smooth
+Update
+GetActivityStatus
+Tick 10
+GetCommandedPosition
+GetEventStatus
+SetCam CamCounts 50
+GetCam CamCounts
+"
+    );
+    let (values, errors) = run(&script);
+    // The master rests on the table start: the stop must not wait for it
+    // to pass the start, and the cam's parameters are free again.
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values[0], 0);
+    assert_eq!(values[1], 0);
+    assert_ne!(values[2] & i64::from(event_bit::MOTION_COMPLETE), 0);
+    assert_eq!(values[3], 50);
+}
+
+#[test]
+fn a_smooth_stop_on_a_table_end_lets_the_same_update_change_the_mode() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 200 200
+Tick 200
+SetProfileMode Trapezoidal
+SetStopMode Smooth
+Update
+GetProfileMode
+GetCommandedPosition
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [0, 400]);
+}
+
+#[test]
+fn a_smooth_stop_breakpoint_on_the_table_end_runs_no_extra_table() {
+    // Breakpoint 1 on axis 0: smooth stop (3) when the time reaches 105
+    // (trigger 7), i.e. 0x730. The master reached the table end (input
+    // 100) at time 100 and rests there when it fires.
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+SetBreakpointValue 1 105
+SetBreakpoint 1 0x730
+MoveTo 1 100 100
+Tick 110
+GetActivityStatus
+MoveTo 1 250 150
+Tick 150
+GetCommandedPosition
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [0, 200]);
+}
