@@ -189,3 +189,13 @@ fn smooth_stops_on_a_table_end_stop_there_at_once() {
     assert!(lines.iter().all(|l| l.get("error").is_none()), "{lines:?}");
     assert_eq!(values(&lines), [0, 200, 0, 200, 1, 50]);
 }
+
+#[test]
+fn stops_hold_a_simulated_move_and_the_cam_on_it() {
+    let lines = run_file(&examples().join("master_stops.pmd"), &[]);
+    assert!(lines.iter().all(|l| l.get("error").is_none()), "{lines:?}");
+    // Abrupt stop of the master at 30: it rests (activity 0), the cam on
+    // it stays active (0x2400) holding 60. Smooth stop at 115: held, cam
+    // 230. Breakpoint abrupt stop at 150 (breakpoint 0 event only): cam 300.
+    assert_eq!(values(&lines), [30, 0, 60, 0x2400, 115, 230, 150, 4, 300]);
+}

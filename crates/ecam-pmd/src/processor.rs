@@ -259,16 +259,29 @@ impl MotionProcessor {
         Ok(())
     }
 
+    /// An abrupt stop holds the axis where it is: a cam's commanded
+    /// position, or a simulated move's position (document 002: "the
+    /// commanded position [stays] at whatever value it has when the stop is
+    /// processed").
     fn stop_abrupt(a: &mut Axis) {
+        a.moving = None;
         if a.running.take().is_some() {
             a.event_status |= event_bit::MOTION_COMPLETE;
         }
     }
 
-    /// A smooth stop on the input exactly at an end of the table takes
-    /// effect at once: the cam is released now, so the axis is at rest for
-    /// the rest of this `Update` (a pending mode change) and later commands.
+    /// A cam stops at the next end of its table; a smooth stop on the input
+    /// exactly at an end of the table takes effect at once: the cam is
+    /// released now, so the axis is at rest for the rest of this `Update`
+    /// (a pending mode change) and later commands.
+    ///
+    /// A simulated move stops at once too. A smooth stop decelerates with
+    /// the profile's deceleration, and a `MoveTo` has none: its velocity
+    /// steps at its start and its end, so its own deceleration is a step
+    /// and the stop is where it is now. Letting it run on to its target
+    /// instead would ignore the stop.
     fn stop_smooth(a: &mut Axis) {
+        a.moving = None;
         if let Some(cam) = a.running.as_mut() {
             cam.stop_smooth();
             if !cam.active() {

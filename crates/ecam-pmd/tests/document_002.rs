@@ -590,3 +590,97 @@ GetCommandedPosition
     assert!(errors.is_empty(), "{errors:?}");
     assert_eq!(values, [0, 200]);
 }
+
+#[test]
+fn an_abrupt_stop_holds_a_simulated_move_where_it_is() {
+    let (values, errors) = run("
+Axis 1
+MoveTo 1 100 100
+Tick 40
+GetActivityStatus
+SetStopMode Abrupt
+Update
+GetActivityStatus
+Tick 60
+GetActualPosition
+GetCommandedPosition
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values[0], i64::from(ecam_pmd::activity_bit::IN_MOTION));
+    assert_eq!(values[1..], [0, 40, 40]);
+}
+
+#[test]
+fn a_breakpoint_abrupt_stop_holds_a_simulated_move() {
+    // Breakpoint 0 of axis 1: abrupt stop (2) when axis 1's actual position
+    // is at least 40 (trigger 1), i.e. 0x121. The move steps before the
+    // breakpoints, so it holds the position that fired it.
+    let (values, errors) = run("
+Axis 1
+SetBreakpointValue 0 40
+SetBreakpoint 0 0x121
+MoveTo 1 100 100
+Tick 100
+GetActualPosition
+GetEventStatus
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    // A simulated move is not a cam: no MotionComplete, as when it arrives.
+    assert_eq!(values, [40, i64::from(event_bit::BREAKPOINT_0)]);
+}
+
+#[test]
+fn a_smooth_stop_of_a_simulated_move_also_holds_at_once() {
+    let (values, errors) = run("
+Axis 1
+MoveTo 1 -100 50
+Tick 10
+SetStopMode Smooth
+Update
+Tick 50
+GetActualPosition
+GetActivityStatus
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [-20, 0]);
+}
+
+#[test]
+fn stopping_the_cam_master_holds_the_cam_output() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 100 100
+Tick 30
+Axis 1
+SetStopMode Abrupt
+Update
+Tick 70
+Axis 0
+GetCommandedPosition
+GetActivityStatus
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    // The master stopped at 30: the cam (still active) holds 2 × 30.
+    assert_eq!(values[0], 60);
+    assert_eq!(values[1] >> 13, 1);
+}
+
+#[test]
+fn an_abrupt_stop_of_a_simulated_move_lets_the_same_update_change_the_mode() {
+    let (values, errors) = run("
+Axis 1
+MoveTo 1 100 100
+Tick 10
+SetProfileMode ElectronicCam
+SetStopMode Abrupt
+Update
+GetProfileMode
+Tick 10
+GetActualPosition
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [8, 10]);
+}
