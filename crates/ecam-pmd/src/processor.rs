@@ -234,9 +234,9 @@ impl MotionProcessor {
     /// # Errors
     /// [`PmdError::InMotion`] when the mode would switch into or out of cam
     /// mode while the axis still moves after this `Update`'s stop (an
-    /// abrupt stop, or a smooth one on an end of the table, brings it to
-    /// rest first). The mode then stays as it was (the change stays
-    /// pending), but the stop still takes effect.
+    /// abrupt stop, a smooth one on an end of the table, or any stop of a
+    /// simulated move brings it to rest first). The mode then stays as it
+    /// was (the change stays pending), but the stop still takes effect.
     pub fn update(&mut self, axis: u8) -> Result<(), PmdError> {
         let a = self.axis_mut(axis)?;
         let switching = a.pending_mode != a.mode;
