@@ -178,3 +178,24 @@ fn abrupt_and_smooth_stops() {
     // Backwards smooth stop at master 190: 460 − 200 = 260. Motion complete.
     assert_eq!(values(&lines), [400, 0, 460, 260, 1]);
 }
+
+#[test]
+fn smooth_stops_on_a_table_end_stop_there_at_once() {
+    let lines = run_file(&examples().join("boundary_stops.pmd"), &[]);
+    // Forwards onto the table end: inactive at once, held at 200 while the
+    // master goes on (no second table, which would end at 400).
+    // Backwards onto the table start, master resting: inactive at once,
+    // held at 200, motion complete, and SetCam accepted again.
+    assert!(lines.iter().all(|l| l.get("error").is_none()), "{lines:?}");
+    assert_eq!(values(&lines), [0, 200, 0, 200, 1, 50]);
+}
+
+#[test]
+fn stops_hold_a_simulated_move_and_the_cam_on_it() {
+    let lines = run_file(&examples().join("master_stops.pmd"), &[]);
+    assert!(lines.iter().all(|l| l.get("error").is_none()), "{lines:?}");
+    // Abrupt stop of the master at 30: it rests (activity 0), the cam on
+    // it stays active (0x2400) holding 60. Smooth stop at 115: held, cam
+    // 230. Breakpoint abrupt stop at 150 (breakpoint 0 event only): cam 300.
+    assert_eq!(values(&lines), [30, 0, 60, 0x2400, 115, 230, 150, 4, 300]);
+}

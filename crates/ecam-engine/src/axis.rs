@@ -15,7 +15,7 @@ use crate::master::TurnUnwrap;
 use crate::pulse::PulseOutput;
 use crate::ramp::Ramp;
 use crate::start::{StartStep, StartWatch};
-use crate::stop::CycleEnd;
+use crate::stop::{CycleEnd, StopAt};
 use crate::sync::active_windows;
 use crate::{
     AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
@@ -55,7 +55,8 @@ pub struct CamAxis<C> {
     last_master: Option<i64>,
     last_start_input: bool,
     last_place: Option<Place>,
-    stop_pending_event: bool,
+    /// Events of a stop that took effect between ticks, reported by the next tick.
+    pending_events: Events,
     last: TickOutput,
 }
 
@@ -88,7 +89,7 @@ impl<C: CamCurve> CamAxis<C> {
             last_master: None,
             last_start_input: false,
             last_place: None,
-            stop_pending_event: false,
+            pending_events: Events::default(),
             last: TickOutput {
                 direction_forward: true,
                 ..TickOutput::default()
@@ -273,19 +274,38 @@ impl<C: CamCurve> CamAxis<C> {
 
     /// Stops the cam. [`StopKind::Immediate`] holds the slave where it is
     /// and goes idle; [`StopKind::EndOfCycle`] keeps following to the end of
-    /// the current cycle (either direction). Either cancels a pending start.
+    /// the current cycle (either direction), or, requested while the master
+    /// is exactly on a cycle end, finishes there at once. Either cancels a
+    /// pending start. The next tick reports what a stop here did.
     pub fn stop(&mut self, kind: StopKind) {
         match (self.state, kind) {
             (AxisState::Running, StopKind::EndOfCycle) => {
-                if let Some(place) = self.last_place {
-                    self.cycle_end = Some(CycleEnd::of(&self.geometry, place));
-                    self.state = AxisState::Stopping;
+                // Engaging records the place, so a running axis always has
+                // one; without it there is no cycle to finish, and the stop
+                // must still happen rather than be lost.
+                let at = self.last_place.map_or(
+                    StopAt::Here {
+                        completes_cycle: false,
+                    },
+                    |place| CycleEnd::of(&self.geometry, place),
+                );
+                match at {
+                    StopAt::Ahead(end) => {
+                        self.cycle_end = Some(end);
+                        self.state = AxisState::Stopping;
+                    }
+                    StopAt::Here { completes_cycle } => {
+                        self.halt();
+                        self.state = AxisState::Finished;
+                        self.pending_events.stopped = true;
+                        self.pending_events.cycle_completed |= completes_cycle;
+                    }
                 }
             }
             (AxisState::Stopping, StopKind::EndOfCycle) => {}
             (state, _) if state.is_active() => {
                 self.halt();
-                self.stop_pending_event = true;
+                self.pending_events.stopped = true;
             }
             _ => {}
         }
@@ -331,10 +351,7 @@ impl<C: CamCurve> CamAxis<C> {
         let edge = input.start_input && !self.last_start_input;
         self.last_start_input = input.start_input;
 
-        let mut events = Events {
-            stopped: core::mem::take(&mut self.stop_pending_event),
-            ..Events::default()
-        };
+        let mut events = core::mem::take(&mut self.pending_events);
         let mut fault = None;
         let mut sample = None;
 

@@ -54,9 +54,10 @@ pub enum StopMode {
     /// 0: no stop pending.
     #[default]
     None,
-    /// 1: abrupt: a cam holds its commanded position at the `Update`.
+    /// 1: abrupt: a cam or a simulated move holds its position at the `Update`.
     Abrupt,
-    /// 2: smooth: a cam stops at the next end of its table.
+    /// 2: smooth: a cam stops at the next end of its table (at once when
+    /// on one); a simulated move, which has no deceleration, at once.
     Smooth,
 }
 
@@ -101,7 +102,9 @@ pub mod activity_bit {
     pub const CAM_ACTIVE: u16 = 1 << 13;
 }
 
-/// A simulated linear move (`MoveTo`).
+/// A simulated linear move (`MoveTo`): constant velocity from the command
+/// on, with no acceleration or deceleration. Abrupt and smooth stops both
+/// end it where it is (see `docs/pmd.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LinearMove {
     /// Position at the command.

@@ -43,9 +43,10 @@ pub enum Action {
     None,
     /// 1: `Update` the axis (profile mode, stop mode).
     Update,
-    /// 2: abrupt stop: a cam holds its commanded position at once.
+    /// 2: abrupt stop: a cam or a simulated move holds its position at once.
     AbruptStop,
-    /// 3: smooth stop: a cam stops at the next end of its table, either direction.
+    /// 3: smooth stop: a cam stops at the next end of its table, either
+    /// direction; a simulated move (no deceleration) at once.
     SmoothStop,
     /// 9: `StartCam` (document 002).
     StartCam,

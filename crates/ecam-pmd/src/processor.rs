@@ -233,28 +233,23 @@ impl MotionProcessor {
     ///
     /// # Errors
     /// [`PmdError::InMotion`] when the mode would switch into or out of cam
-    /// mode while the axis moves — unless the same `Update` stops it
-    /// abruptly first. The mode then stays as it was (the change stays
-    /// pending), but a stop requested with it still takes effect.
+    /// mode while the axis still moves after this `Update`'s stop (an
+    /// abrupt stop, a smooth one on an end of the table, or any stop of a
+    /// simulated move brings it to rest first). The mode then stays as it
+    /// was (the change stays pending), but the stop still takes effect.
     pub fn update(&mut self, axis: u8) -> Result<(), PmdError> {
         let a = self.axis_mut(axis)?;
         let switching = a.pending_mode != a.mode;
-        let stops_now = a.pending_stop == StopMode::Abrupt && a.moving.is_none();
-        // A mode change is refused in motion, but a stop requested in the same
-        // Update still takes effect: losing a stop because a mode change was
-        // also pending would leave the cam running against the user's intent.
-        // The refused mode stays pending for a later Update.
-        let refuse_switch = switching && a.in_motion() && !stops_now;
+        // The stop comes first and always takes effect: losing a stop because
+        // a mode change was also pending would leave the axis moving against
+        // the user's intent. The mode change is then judged on the axis as the
+        // stop left it; refused in motion, it stays pending for a later Update.
         match core::mem::take(&mut a.pending_stop) {
             StopMode::None => {}
             StopMode::Abrupt => Self::stop_abrupt(a),
-            StopMode::Smooth => {
-                if let Some(cam) = a.running.as_mut() {
-                    cam.stop_smooth();
-                }
-            }
+            StopMode::Smooth => Self::stop_smooth(a),
         }
-        if refuse_switch {
+        if switching && a.in_motion() {
             return Err(PmdError::InMotion { axis });
         }
         if switching {
@@ -264,9 +259,35 @@ impl MotionProcessor {
         Ok(())
     }
 
+    /// An abrupt stop holds the axis where it is: a cam's commanded
+    /// position, or a simulated move's position (document 002: "the
+    /// commanded position [stays] at whatever value it has when the stop is
+    /// processed").
     fn stop_abrupt(a: &mut Axis) {
+        a.moving = None;
         if a.running.take().is_some() {
             a.event_status |= event_bit::MOTION_COMPLETE;
+        }
+    }
+
+    /// A cam stops at the next end of its table; a smooth stop on the input
+    /// exactly at an end of the table takes effect at once: the cam is
+    /// released now, so the axis is at rest for the rest of this `Update`
+    /// (a pending mode change) and later commands.
+    ///
+    /// A simulated move stops at once too. A smooth stop decelerates with
+    /// the profile's deceleration, and a `MoveTo` has none: its velocity
+    /// steps at its start and its end, so its own deceleration is a step
+    /// and the stop is where it is now. Letting it run on to its target
+    /// instead would ignore the stop.
+    fn stop_smooth(a: &mut Axis) {
+        a.moving = None;
+        if let Some(cam) = a.running.as_mut() {
+            cam.stop_smooth();
+            if !cam.active() {
+                a.running = None;
+                a.event_status |= event_bit::MOTION_COMPLETE;
+            }
         }
     }
 
@@ -396,8 +417,8 @@ impl MotionProcessor {
                 }
             }
             Action::SmoothStop => {
-                if let Some(cam) = self.axis_mut(axis).ok().and_then(|a| a.running.as_mut()) {
-                    cam.stop_smooth();
+                if let Ok(a) = self.axis_mut(axis) {
+                    Self::stop_smooth(a);
                 }
             }
             Action::StartCam => self.start_cam(axis),

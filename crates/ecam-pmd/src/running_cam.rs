@@ -103,8 +103,16 @@ impl RunningCam {
         self.axis.stop(StopKind::Immediate);
     }
 
-    /// Smooth stop: at the next end of the table, in either direction.
+    /// Smooth stop: at the next end of the table, in either direction; at
+    /// once when the input is exactly on an end of the table (see
+    /// [`RunningCam::active`]).
     pub fn stop_smooth(&mut self) {
         self.axis.stop(StopKind::EndOfCycle);
+    }
+
+    /// Whether the cam is still active: false once a stop took effect,
+    /// even before the next [`RunningCam::cycle`] reports it.
+    pub fn active(&self) -> bool {
+        self.axis.state().is_active()
     }
 }

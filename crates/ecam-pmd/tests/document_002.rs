@@ -494,3 +494,193 @@ GetActivityStatus
         "{lines:?}"
     );
 }
+
+#[test]
+fn a_smooth_stop_on_the_table_end_going_forwards_stops_there_at_once() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 100 100
+Tick 100
+SetStopMode Smooth
+Update
+GetActivityStatus
+GetEventStatus
+MoveTo 1 250 150
+Tick 150
+GetCommandedPosition
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    // On the table end (input 100, output 200): inactive at once, motion
+    // complete, and no second table as the master goes on to 250.
+    assert_eq!(values[0], 0);
+    assert_ne!(values[1] & i64::from(event_bit::MOTION_COMPLETE), 0);
+    assert_eq!(values[2], 200);
+}
+
+#[test]
+fn a_smooth_stop_on_the_table_start_going_backwards_stops_there_at_once() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 60 60
+Tick 60
+MoveTo 1 0 60
+Tick 60
+SetStopMode Smooth
+Update
+GetActivityStatus
+Tick 10
+GetCommandedPosition
+GetEventStatus
+SetCam CamCounts 50
+GetCam CamCounts
+"
+    );
+    let (values, errors) = run(&script);
+    // The master rests on the table start: the stop must not wait for it
+    // to pass the start, and the cam's parameters are free again.
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values[0], 0);
+    assert_eq!(values[1], 0);
+    assert_ne!(values[2] & i64::from(event_bit::MOTION_COMPLETE), 0);
+    assert_eq!(values[3], 50);
+}
+
+#[test]
+fn a_smooth_stop_on_a_table_end_lets_the_same_update_change_the_mode() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 200 200
+Tick 200
+SetProfileMode Trapezoidal
+SetStopMode Smooth
+Update
+GetProfileMode
+GetCommandedPosition
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [0, 400]);
+}
+
+#[test]
+fn a_smooth_stop_breakpoint_on_the_table_end_runs_no_extra_table() {
+    // Breakpoint 1 on axis 0: smooth stop (3) when the time reaches 105
+    // (trigger 7), i.e. 0x730. The master reached the table end (input
+    // 100) at time 100 and rests there when it fires.
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+SetBreakpointValue 1 105
+SetBreakpoint 1 0x730
+MoveTo 1 100 100
+Tick 110
+GetActivityStatus
+MoveTo 1 250 150
+Tick 150
+GetCommandedPosition
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [0, 200]);
+}
+
+#[test]
+fn an_abrupt_stop_holds_a_simulated_move_where_it_is() {
+    let (values, errors) = run("
+Axis 1
+MoveTo 1 100 100
+Tick 40
+GetActivityStatus
+SetStopMode Abrupt
+Update
+GetActivityStatus
+Tick 60
+GetActualPosition
+GetCommandedPosition
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values[0], i64::from(ecam_pmd::activity_bit::IN_MOTION));
+    assert_eq!(values[1..], [0, 40, 40]);
+}
+
+#[test]
+fn a_breakpoint_abrupt_stop_holds_a_simulated_move() {
+    // Breakpoint 0 of axis 1: abrupt stop (2) when axis 1's actual position
+    // is at least 40 (trigger 1), i.e. 0x121. The move steps before the
+    // breakpoints, so it holds the position that fired it.
+    let (values, errors) = run("
+Axis 1
+SetBreakpointValue 0 40
+SetBreakpoint 0 0x121
+MoveTo 1 100 100
+Tick 100
+GetActualPosition
+GetEventStatus
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    // A simulated move is not a cam: no MotionComplete, as when it arrives.
+    assert_eq!(values, [40, i64::from(event_bit::BREAKPOINT_0)]);
+}
+
+#[test]
+fn a_smooth_stop_of_a_simulated_move_also_holds_at_once() {
+    let (values, errors) = run("
+Axis 1
+MoveTo 1 -100 50
+Tick 10
+SetStopMode Smooth
+Update
+Tick 50
+GetActualPosition
+GetActivityStatus
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [-20, 0]);
+}
+
+#[test]
+fn stopping_the_cam_master_holds_the_cam_output() {
+    let script = format!(
+        "{THREE_ENTRY_CAM}
+SetEventAction 0 9
+MoveTo 1 100 100
+Tick 30
+Axis 1
+SetStopMode Abrupt
+Update
+Tick 70
+Axis 0
+GetCommandedPosition
+GetActivityStatus
+"
+    );
+    let (values, errors) = run(&script);
+    assert!(errors.is_empty(), "{errors:?}");
+    // The master stopped at 30: the cam (still active) holds 2 × 30.
+    assert_eq!(values[0], 60);
+    assert_eq!(values[1] >> 13, 1);
+}
+
+#[test]
+fn an_abrupt_stop_of_a_simulated_move_lets_the_same_update_change_the_mode() {
+    let (values, errors) = run("
+Axis 1
+MoveTo 1 100 100
+Tick 10
+SetProfileMode ElectronicCam
+SetStopMode Abrupt
+Update
+GetProfileMode
+Tick 10
+GetActualPosition
+");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert_eq!(values, [8, 10]);
+}
