@@ -197,9 +197,7 @@ fn simulate(
                 .saturating_add(out.pulses.unsigned_abs());
         }
         summary.max_backlog = summary.max_backlog.max(out.backlog.unsigned_abs());
-        summary.max_pulses_per_tick = summary
-            .max_pulses_per_tick
-            .max(out.pulses.unsigned_abs());
+        summary.max_pulses_per_tick = summary.max_pulses_per_tick.max(out.pulses.unsigned_abs());
         if out.pulses != 0 {
             if last_direction != 0 && out.pulses.signum() != last_direction {
                 summary.direction_changes += 1;

@@ -153,6 +153,8 @@ struct Running {
     start_position: Option<i64>,
     /// The table in use runs one pass and stops (offset 31, midCAMend).
     single_pass: bool,
+    /// The master the cam engaged at.
+    engaged_at: Option<i64>,
 }
 
 impl Decam {
@@ -382,6 +384,7 @@ impl Decam {
             last_master: self.master.position(),
             start_position: None,
             single_pass: false,
+            engaged_at: None,
         });
         if external_start {
             self.phase = Phase::Ready {
@@ -485,6 +488,7 @@ impl Decam {
                 self.axis = Some(axis);
                 self.queued_table = None;
                 running.single_pass = single_pass;
+                running.engaged_at = None;
                 running.delay = delay;
                 running.start_position = start_position;
                 running.travel = 0;
@@ -524,9 +528,15 @@ impl Decam {
             return;
         }
         let live = self.live;
+        // Bit 1 set before the start means "run this cycle, then stop": the
+        // request waits until the master has left the place the cam engaged
+        // at, where the engine would take it as a stop on the table end.
         if live.is_some_and(|l| l.stop_after_cycle)
             && !running.stop_requested
             && axis.status().state == AxisState::Running
+            && running
+                .engaged_at
+                .is_some_and(|at| at != axis.status().master)
         {
             axis.stop(StopKind::EndOfCycle);
             running.stop_requested = true;
@@ -541,6 +551,9 @@ impl Decam {
         });
         // Offset 13 counts the travel of the master the cam follows (the
         // tracker's estimate), the same position the start watches.
+        if out.events.engaged {
+            running.engaged_at = Some(out.master);
+        }
         let step = out.master.abs_diff(running.last_master);
         running.last_master = out.master;
         if out.events.table_switched {
