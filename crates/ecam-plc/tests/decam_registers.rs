@@ -386,6 +386,21 @@ fn offset_4_bit_1_stops_at_the_end_of_the_cycle() {
 }
 
 #[test]
+fn offset_4_bit_1_set_before_the_start_runs_one_cycle() {
+    // Noncyclic, engaging on the table start: the stop is not "on the table
+    // end" there; the cam runs its cycle and stops at its end.
+    let mut r = Rig::new(LINE);
+    r.set(4, 0b10);
+    r.start(2);
+    r.run(5, 0);
+    assert!(r.cam.is_running(), "still waiting to run its cycle");
+    r.run_to(1500, 10);
+    assert_eq!(r.pulses(), 100, "one whole cycle, held at its end");
+    assert!(!r.cam.is_running());
+    assert!(r.flag(9));
+}
+
+#[test]
 fn m8145_stops_the_output_immediately() {
     let mut r = Rig::new(ONE_TO_ONE);
     r.start(1);
