@@ -108,17 +108,19 @@ fn a_counter_fed_at_1_khz_cruises_without_bursts() {
 fn a_start_at_master_0_on_a_time_base_fires() {
     let dir = scratch_dir("safe-start0");
     // Noncyclic (2), function bit 1: start at master position 0 (D2017).
+    // K1: one count per 100 µs tick, so a time base that read 1 on its
+    // first tick would already have passed 0.
     let extra = "MOV K2 D2003\nDMOV K0 D2017";
     let (dump, _) = plc_run(
         &dir,
-        &line_cam("K10", 1000, 2, extra),
-        &["--ms", "100"],
+        &line_cam("K1", 1000, 2, extra),
+        &["--ms", "50"],
         &["DD8140", "D2013", "D2001"],
         &["DD8140"],
     );
     assert_eq!(dump["D2013"], 0, "no counts left to wait");
     let slave = dump["DD8140"].as_i64().unwrap();
-    assert!((98..=100).contains(&slave), "engaged at 0: slave {slave}");
+    assert!((498..=500).contains(&slave), "engaged at 0: slave {slave}");
 }
 
 #[test]
