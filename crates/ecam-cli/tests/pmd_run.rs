@@ -199,3 +199,12 @@ fn stops_hold_a_simulated_move_and_the_cam_on_it() {
     // 230. Breakpoint abrupt stop at 150 (breakpoint 0 event only): cam 300.
     assert_eq!(values(&lines), [30, 0, 60, 0x2400, 115, 230, 150, 4, 300]);
 }
+
+#[test]
+fn a_table_edited_while_running_takes_over_at_the_seam() {
+    let lines = run_file(&examples().join("table_edit.pmd"), &[]);
+    assert!(lines.iter().all(|l| l.get("error").is_none()), "{lines:?}");
+    // The old copy to the table end (no step at the write), then the new
+    // values continuing from 200.
+    assert_eq!(values(&lines), [150, 200, 300, 500]);
+}

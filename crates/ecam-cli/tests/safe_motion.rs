@@ -169,9 +169,7 @@ fn a_mid_cam_end_table_stops_the_cam_when_it_completes() {
 /// A cam on C235 (10 kHz from DPLSY on Y1): when the master passes 2500 the
 /// program writes new table words while the cam runs.
 fn edited_while_running(edit: &str) -> String {
-    let extra = format!(
-        "RST C235\nLD M8000\nOUT C235 K2500\nDPLSY K10000 K0 Y1\nLD C235\n{edit}"
-    );
+    let extra = format!("RST C235\nLD M8000\nOUT C235 K2500\nDPLSY K10000 K0 Y1\nLD C235\n{edit}");
     line_cam("C235", 1000, 1, &extra)
 }
 
@@ -196,9 +194,15 @@ fn a_table_edited_while_running_takes_over_at_the_seam_without_a_step() {
     assert!((3500..=4000).contains(&master));
     let expected = 3000 + 3 * (master - 3000);
     let slave = dump["DD8140"].as_i64().unwrap();
-    assert!((slave - expected).abs() <= 30, "slave {slave}, expected {expected}");
+    assert!(
+        (slave - expected).abs() <= 30,
+        "slave {slave}, expected {expected}"
+    );
     let at_2900 = rows.iter().find(|r| r[2] >= 2900).unwrap();
-    assert!((at_2900[1] - at_2900[2]).abs() <= 10, "old table up to the seam");
+    assert!(
+        (at_2900[1] - at_2900[2]).abs() <= 10,
+        "old table up to the seam"
+    );
 }
 
 #[test]
@@ -218,7 +222,10 @@ fn a_bad_table_write_keeps_the_cam_running_and_the_flags_say_so() {
     assert_eq!(flags & 0b11_1000, 0, "bits 3-5 off: the cam did not stop");
     let master = dump["C235"].as_i64().unwrap();
     let slave = dump["DD8140"].as_i64().unwrap();
-    assert!((slave - master).abs() <= 10, "still following the 1:1 table");
+    assert!(
+        (slave - master).abs() <= 10,
+        "still following the 1:1 table"
+    );
 }
 
 fn simulate(dir: &Path, scenario: &str) -> Value {

@@ -812,3 +812,54 @@ async fn latched_values_the_program_wrote_survive_a_restart() {
         json!({"D300": 1234, "M700": 1, "D301": 1, "M1": 0})
     );
 }
+
+/// Reads a signed 32-bit register pair (low word first).
+async fn dword(ctx: &mut Context, at: u16) -> i64 {
+    let words = ctx.read_holding_registers(at, 2).await.unwrap().unwrap();
+    i64::from((u32::from(words[0]) | u32::from(words[1]) << 16) as i32)
+}
+
+#[tokio::test]
+async fn a_table_written_over_modbus_while_the_cam_runs_takes_over_at_the_seam() {
+    // The rotary knife: ECAMTBX's rotary-cut table (3183 feed counts per
+    // 1000 knife pulses) run as the cyclic cam.
+    let dir = state_dir("table-edit");
+    let il = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plc/rotary_knife.il");
+    let server = Server::start(
+        &dir,
+        &["--program", il.to_str().unwrap(), "--wire", "Y1:X0"],
+    );
+    let mut ctx = server.client().await;
+    cam_moves(&mut ctx).await;
+    // One request: a straight table over the same cut, 2 points.
+    let table: [u16; 10] = [2, 40, 0, 0, 0, 0, 3183, 0, 1000, 0];
+    ctx.write_multiple_registers(2038, &table)
+        .await
+        .unwrap()
+        .unwrap();
+    // The knife never steps back, across the seam that takes the new table.
+    let mut last = y0_pulses(&mut ctx).await;
+    let start = Instant::now();
+    let mut straight = 0;
+    while start.elapsed() < Duration::from_millis(1500) {
+        let now = y0_pulses(&mut ctx).await;
+        assert!(now >= last, "the knife stepped back: {last} -> {now}");
+        last = now;
+        // On the straight table the knife's place in its revolution is
+        // the feed's place in the cut × 1000 / 3183.
+        let slave = dword(&mut ctx, 2019).await;
+        let in_cut = dword(&mut ctx, 2027).await;
+        let expected = (in_cut * 1000 + 1591) / 3183;
+        if (slave - expected)
+            .rem_euclid(1000)
+            .min((expected - slave).rem_euclid(1000))
+            <= 6
+        {
+            straight += 1;
+        }
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    assert!(straight > 50, "the straight table runs: {straight} samples");
+    let flags = ctx.read_holding_registers(2001, 1).await.unwrap().unwrap()[0];
+    assert_eq!(flags & 0b1_0011_1000, 0, "no error flags: {flags:#b}");
+}

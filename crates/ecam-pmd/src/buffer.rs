@@ -63,6 +63,9 @@ pub struct BufferWindow {
 pub struct BufferMemory {
     ram: Vec<i32>,
     windows: [BufferWindow; BUFFER_COUNT as usize],
+    /// Counts the writes into memory, so a running cam can tell cheaply
+    /// whether its table may have changed.
+    revision: u64,
 }
 
 impl core::fmt::Debug for BufferMemory {
@@ -93,7 +96,14 @@ impl BufferMemory {
         Self {
             ram: vec![0; MEMORY_DWORDS as usize],
             windows: [BufferWindow::default(); BUFFER_COUNT as usize],
+            revision: 0,
         }
+    }
+
+    /// How many `WriteBuffer`s the memory has taken: changes whenever any
+    /// value may have changed.
+    pub fn revision(&self) -> u64 {
+        self.revision
     }
 
     /// The window of buffer `id`.
@@ -204,6 +214,7 @@ impl BufferMemory {
         if let Some(cell) = self.ram.get_mut(address) {
             *cell = value;
         }
+        self.revision = self.revision.wrapping_add(1);
         let next = w.write_index.saturating_add(1);
         if let Some(w) = self.window_mut(id) {
             w.write_index = if next >= w.length { 0 } else { next };

@@ -1,13 +1,16 @@
-//! A cam table read straight from buffer memory.
+//! A cam table taken from buffer memory.
 //!
 //! Document 002's tables are N signed values evenly spaced over `CamCounts`
-//! master counts (N − 1 linear pieces, fractional spacing allowed). The
-//! running cam reads the buffer on every evaluation, so `WriteBuffer` into a
-//! running cam's table takes effect at once: the document allows changing
-//! table data during execution "at their own risk", and this is the
-//! behaviour a user watching the device would see. Moving or resizing the
-//! buffer of an active cam is refused instead (it would change N and so the
-//! spacing under the running cam).
+//! master counts (N − 1 linear pieces, fractional spacing allowed). A
+//! running cam works on a copy of the buffer taken when it starts; values
+//! written into the buffer while it runs (the document allows changing table
+//! data during execution "at their own risk") take over at the next seam
+//! the input crosses, where the engine continues the output from the
+//! slave position at the seam. Changing the values under the running cam at
+//! once would step the output (the accumulated stroke was fixed from the
+//! old first and last values), and a step is what a servo trips on. Moving
+//! or resizing the buffer of an active cam is refused (it would change N and
+//! so the spacing under the running cam).
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -19,37 +22,72 @@ use crate::{BufferId, BufferMemory};
 /// Memory shared between the processor (which writes it) and running cams.
 pub type SharedMemory = Rc<RefCell<BufferMemory>>;
 
-/// An evenly spaced cam table living in buffer `buffer` of shared memory.
+/// An evenly spaced cam table copied from buffer `buffer` of shared memory.
 #[derive(Clone, Debug)]
 pub struct BufferCam {
     memory: SharedMemory,
     buffer: BufferId,
     cam_counts: i64,
-    /// Number of table values, fixed when the cam starts.
-    values: u32,
+    /// The table values (at least two), as the buffer held them.
+    values: Vec<i64>,
+    /// The memory's revision when the values were copied.
+    revision: u64,
 }
 
 impl BufferCam {
-    /// A view of `values` entries of `buffer` spread over `cam_counts` counts.
-    /// The caller checks `values >= 2` and `cam_counts >= 2`.
+    /// A copy of `values` entries of `buffer` spread over `cam_counts`
+    /// counts. The caller checks `values >= 2` and `cam_counts >= 2`.
     pub fn new(memory: SharedMemory, buffer: BufferId, cam_counts: i64, values: u32) -> Self {
+        let (values, revision) = match memory.try_borrow() {
+            Ok(m) => (
+                (0..values.max(2))
+                    .map(|i| i64::from(m.read(buffer, i)))
+                    .collect(),
+                m.revision(),
+            ),
+            Err(_) => (vec![0; values.max(2) as usize], 0),
+        };
         Self {
             memory,
             buffer,
             cam_counts: cam_counts.max(1),
-            values: values.max(2),
+            values,
+            revision,
         }
     }
 
-    fn value(&self, index: u32) -> i64 {
-        self.memory
-            .try_borrow()
-            .map_or(0, |m| i64::from(m.read(self.buffer, index)))
+    /// A fresh copy when the buffer was written since this one was taken
+    /// and holds other values; `None` otherwise.
+    pub fn refreshed(&self) -> Option<Self> {
+        let revision = self.memory.try_borrow().ok()?.revision();
+        if revision == self.revision {
+            return None;
+        }
+        let fresh = Self::new(
+            self.memory.clone(),
+            self.buffer,
+            self.cam_counts,
+            u32::try_from(self.values.len()).unwrap_or(u32::MAX),
+        );
+        Some(fresh)
+    }
+
+    /// True when both hold the same table.
+    pub fn same_table(&self, other: &Self) -> bool {
+        self.values == other.values && self.cam_counts == other.cam_counts
+    }
+
+    fn value(&self, index: usize) -> i64 {
+        self.values.get(index).copied().unwrap_or(0)
+    }
+
+    fn pieces(&self) -> usize {
+        self.values.len().saturating_sub(1).max(1)
     }
 
     /// Master counts per table piece (may be fractional).
     fn spacing(&self) -> f64 {
-        self.cam_counts as f64 / f64::from(self.values - 1)
+        self.cam_counts as f64 / self.pieces() as f64
     }
 }
 
@@ -64,20 +102,20 @@ impl CamCurve for BufferCam {
         self.value(0)
     }
     fn slave_last(&self) -> i64 {
-        self.value(self.values - 1)
+        self.value(self.values.len().saturating_sub(1))
     }
     fn segment_count(&self) -> usize {
-        (self.values - 1) as usize
+        self.pieces()
     }
 
     fn eval(&self, master: f64, cursor: &mut Cursor) -> Kinematics {
-        let pieces = self.values - 1;
+        let pieces = self.pieces();
         let x = (master.clamp(0.0, self.cam_counts as f64) / self.spacing()).max(0.0);
         // `x` is within [0, pieces]; the float→int cast saturates.
-        let i = (x.floor() as u32).min(pieces - 1);
-        cursor.segment = i as usize;
+        let i = (x.floor() as usize).min(pieces - 1);
+        cursor.segment = i;
         let (y0, y1) = (self.value(i) as f64, self.value(i + 1) as f64);
-        let u = x - f64::from(i);
+        let u = x - i as f64;
         Kinematics {
             s: y0 + (y1 - y0) * u,
             v: (y1 - y0) / self.spacing(),
@@ -123,10 +161,15 @@ mod tests {
     }
 
     #[test]
-    fn sees_new_buffer_values() {
+    fn keeps_its_copy_and_offers_a_fresh_one_after_a_write() {
         let c = cam(&[0, 100, 200], 100);
+        assert!(c.refreshed().is_none());
         c.memory.borrow_mut().set_write_index(c.buffer, 1).unwrap();
         c.memory.borrow_mut().write(c.buffer, 50).unwrap();
-        assert_eq!(c.position(50.0, &mut Cursor::new()), 50.0);
+        assert_eq!(c.position(50.0, &mut Cursor::new()), 100.0, "its own copy");
+        let fresh = c.refreshed().unwrap();
+        assert_eq!(fresh.position(50.0, &mut Cursor::new()), 50.0);
+        assert!(!fresh.same_table(&c));
+        assert!(fresh.refreshed().is_none());
     }
 }

@@ -26,6 +26,8 @@ const CYCLE_US: u32 = 100;
 /// A cam that was started by `StartCam`.
 pub struct RunningCam {
     axis: CamAxis<BufferCam>,
+    /// The newest copy of the table: in use, or waiting for the next seam.
+    newest: BufferCam,
     fault: Option<EngineError>,
 }
 
@@ -64,15 +66,36 @@ impl RunningCam {
             slave_align: SlaveAlign::Relative,
             ..AxisConfig::default()
         };
+        let newest = table.clone();
         let mut axis = CamAxis::new(table, config).map_err(|e| e.to_string())?;
         axis.set_slave_position(commanded)
             .map_err(|e| e.to_string())?;
         axis.arm().map_err(|e| e.to_string())?;
-        Ok(Self { axis, fault: None })
+        Ok(Self {
+            axis,
+            newest,
+            fault: None,
+        })
+    }
+
+    /// Buffer values written since the newest copy wait for the next seam.
+    fn take_buffer_writes(&mut self) {
+        let Some(fresh) = self.newest.refreshed() else {
+            return;
+        };
+        if fresh.same_table(&self.newest) {
+            // Written, but with the values it had: nothing to switch.
+            self.newest = fresh;
+            return;
+        }
+        if self.axis.queue_curve(fresh.clone()).is_ok() {
+            self.newest = fresh;
+        }
     }
 
     /// Runs one processor cycle with the cam input `input`.
     pub fn cycle(&mut self, input: i64) -> CamCycle {
+        self.take_buffer_writes();
         let out = self.axis.tick(&TickInput {
             master: input,
             master_fraction: 0,
@@ -84,6 +107,7 @@ impl RunningCam {
         if out.fault.is_some() {
             self.fault = out.fault;
         }
+        drop(self.axis.take_retired_curve());
         CamCycle {
             commanded: out.slave,
             output_offset: out.output_offset,

@@ -262,7 +262,8 @@ ReadBuffer 1 2
 }
 
 #[test]
-fn buffer_writes_reach_a_running_cam_but_its_shape_is_locked() {
+fn buffer_writes_take_over_at_the_next_seam_and_the_shape_is_locked() {
+    // [0, 100, 200] over 100 counts; at input 75 the last value becomes 300.
     let script = format!(
         "{THREE_ENTRY_CAM}
 SetEventAction 0 9
@@ -273,12 +274,23 @@ SetBufferWriteIndex 1 2
 WriteBuffer 1 300
 Tick 1
 GetCommandedPosition
+MoveTo 1 100 25
+Tick 25
+GetCommandedPosition
+MoveTo 1 150 50
+Tick 50
+GetCommandedPosition
+MoveTo 1 200 50
+Tick 50
+GetCommandedPosition
 SetBufferLength 1 4
 SetBufferStart 1 8
 "
     );
     let (values, errors) = run(&script);
-    assert_eq!(values, [150, 200]);
+    // The old table runs to its end (200) without a step; from the seam on
+    // the new one continues from there: 200 + [0, 100, 300].
+    assert_eq!(values, [150, 150, 200, 300, 500]);
     assert_eq!(errors.len(), 2, "{errors:?}");
     assert!(errors[0].1.contains("active cam on axis 0"));
 }
