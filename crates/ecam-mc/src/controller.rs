@@ -1,5 +1,7 @@
 //! The motion controller: axes with document 001's settings and E-CAM channels.
 
+use core::num::NonZeroU64;
+
 use ecam_core::PointTable;
 use ecam_engine::{
     AxisConfig, CamAxis, EngineError, MasterAlign, SlaveAlign, StartMode, TickInput,
@@ -29,6 +31,8 @@ struct Axis {
     position: i64,
     single_turn: Option<SingleTurn>,
     user_unit: UserUnit,
+    /// Largest step per cycle accepted from this axis as a master.
+    max_step: Option<NonZeroU64>,
     /// Why the E-CAM this axis followed stopped by itself, if it did.
     fault: Option<EngineError>,
 }
@@ -111,6 +115,28 @@ impl MotionController {
         Ok(self.axis(axis)?.single_turn)
     }
 
+    /// Sets the largest step per cycle a cam accepts from `axis` as its
+    /// master; a larger one stops the cam with
+    /// [`EngineError::MasterStep`] (reported by [`MotionController::fault`]).
+    /// On a single-turn master a step of more than half a turn cannot be
+    /// told from a step the other way round (the cam would run backwards):
+    /// set this below half a turn to fault instead. `None` (the default)
+    /// accepts any step.
+    ///
+    /// # Errors
+    /// Unknown axis, or the axis takes part in a running E-CAM.
+    pub fn set_max_master_step(
+        &mut self,
+        axis: usize,
+        step: Option<NonZeroU64>,
+    ) -> Result<(), McError> {
+        if self.in_use(axis) {
+            return Err(McError::AxisInUse { axis });
+        }
+        self.axis_mut(axis)?.max_step = step;
+        Ok(())
+    }
+
     /// Sets how many pulses make a user unit on `axis` (used when it is a
     /// Repeat cam's slave).
     ///
@@ -181,6 +207,7 @@ impl MotionController {
                 SlaveAlign::Absolute
             },
             single_turn: master.single_turn.map(SingleTurn::counts),
+            max_master_step: master.max_step,
             ..AxisConfig::default()
         };
         let mut cam = CamAxis::new(data.table, config)?;

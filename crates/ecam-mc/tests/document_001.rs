@@ -259,3 +259,40 @@ fn repeat_started_mid_way_counts_cycles_from_the_table_start() {
     assert_eq!(mc.position(SLAVE).unwrap(), 2750);
     assert_eq!(mc.drive(MASTER, 60000, SLAVE).unwrap(), 3500);
 }
+
+#[test]
+fn normal_type_on_a_single_turn_master_follows_every_turn() {
+    // Document 001: with a table covering the turn, Normal and Periodic
+    // behave the same; Normal must not freeze at the end after a wrap.
+    let mut mc = MotionController::new(2);
+    mc.set_single_turn(MASTER, Some(SingleTurn::new(30000).unwrap()))
+        .unwrap();
+    start(&mut mc, CamType::Normal, doc_table());
+    let normal = sweep(&mut mc, 0, 75000, 5000);
+    let mut mc = MotionController::new(2);
+    mc.set_single_turn(MASTER, Some(SingleTurn::new(30000).unwrap()))
+        .unwrap();
+    start(&mut mc, CamType::Periodic, doc_table());
+    let periodic = sweep(&mut mc, 0, 75000, 5000);
+    assert_eq!(normal, periodic);
+    // 75000 is 15000 into the third turn: halfway from 1500 to 1000.
+    assert_eq!(normal.last(), Some(&(75000, 1250)));
+}
+
+#[test]
+fn a_master_step_above_the_limit_faults_instead_of_reversing() {
+    let mut mc = MotionController::new(2);
+    mc.set_single_turn(MASTER, Some(SingleTurn::new(30000).unwrap()))
+        .unwrap();
+    mc.set_max_master_step(MASTER, core::num::NonZeroU64::new(9000))
+        .unwrap();
+    start(&mut mc, CamType::Repeat, doc_table());
+    mc.drive(MASTER, 5000, SLAVE).unwrap();
+    // 20000 further on reads as 10000 back the short way round.
+    mc.drive(MASTER, 25000, SLAVE).unwrap();
+    assert!(!mc.ecam_running(SLAVE));
+    assert_eq!(
+        mc.fault(SLAVE).unwrap(),
+        Some(ecam_engine::EngineError::MasterStep)
+    );
+}
