@@ -33,31 +33,81 @@ pub struct CamAxis<C> {
     config: AxisConfig,
     geometry: Geometry,
     cursor: Cursor,
-    state: AxisState,
-    start: Option<StartWatch>,
-    engagement: Option<Engagement>,
-    ramp: Option<Ramp>,
-    cycle_end: Option<CycleEnd>,
+    /// Where the axis is in its life, with what only that phase has.
+    phase: Phase<C>,
     turn: Option<TurnUnwrap>,
     tracker: MasterTracker,
     /// The last unwrapped reading (for the master-step guard).
     last_reading: Option<i64>,
-    /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
-    pending: Option<C>,
-    /// What the axis does after the waiting table's first pass.
-    pending_then: AfterPass,
     /// The table a switch replaced, for the caller to take back
     /// ([`CamAxis::take_retired_curve`]): dropping it inside `tick` would
     /// free memory in the control cycle.
     retired: Option<C>,
     commanded: i64,
     pulse: PulseOutput,
-    last_master: Option<i64>,
     last_start_input: bool,
-    last_place: Option<Place>,
     /// Events of a stop that took effect between ticks, reported by the next tick.
     pending_events: Events,
     last: TickOutput,
+}
+
+/// The life of an axis; each phase holds what only it has, so a stopping
+/// axis without a cycle end, or a running one without an engagement,
+/// cannot be built.
+#[derive(Clone, Debug)]
+enum Phase<C> {
+    /// Not coupled; the slave holds.
+    Idle,
+    /// Waiting for the start condition.
+    Armed(Armed),
+    /// Following the cam.
+    Running(Engaged<C>),
+    /// Following the cam to the end of the current cycle.
+    Stopping(Engaged<C>, CycleEnd),
+    /// A one-shot ended or an end-of-cycle stop completed; the slave holds.
+    Finished,
+}
+
+/// An armed axis' start watch.
+#[derive(Clone, Copy, Debug)]
+struct Armed {
+    watch: StartWatch,
+    /// The master of the last tick since arming: delays and crossings
+    /// count from the first tick after arming, not from motion before it.
+    previous: Option<i64>,
+    /// The start came and a delay is being counted.
+    delaying: bool,
+}
+
+/// What an engaged axis has.
+#[derive(Clone, Debug)]
+struct Engaged<C> {
+    engagement: Engagement,
+    ramp: Option<Ramp>,
+    /// The place followed at the last tick (where a stop is measured from).
+    place: Place,
+    /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
+    queued: Option<(C, AfterPass)>,
+}
+
+impl<C> Phase<C> {
+    fn state(&self) -> AxisState {
+        match self {
+            Self::Idle => AxisState::Idle,
+            Self::Armed(Armed { delaying: true, .. }) => AxisState::Delaying,
+            Self::Armed(_) => AxisState::Armed,
+            Self::Running(_) => AxisState::Running,
+            Self::Stopping(..) => AxisState::Stopping,
+            Self::Finished => AxisState::Finished,
+        }
+    }
+
+    fn engaged(&self) -> Option<&Engaged<C>> {
+        match self {
+            Self::Running(e) | Self::Stopping(e, _) => Some(e),
+            _ => None,
+        }
+    }
 }
 
 impl<C: CamCurve> CamAxis<C> {
@@ -73,22 +123,14 @@ impl<C: CamCurve> CamAxis<C> {
             config,
             geometry,
             cursor: Cursor::new(),
-            state: AxisState::Idle,
-            start: None,
-            engagement: None,
-            ramp: None,
-            cycle_end: None,
+            phase: Phase::Idle,
             turn: config.single_turn.map(TurnUnwrap::new),
             tracker: MasterTracker::new(config.master_filter),
             last_reading: None,
-            pending: None,
-            pending_then: AfterPass::Repeat,
             retired: None,
             commanded: 0,
             pulse: PulseOutput::at(0),
-            last_master: None,
             last_start_input: false,
-            last_place: None,
             pending_events: Events::default(),
             last: TickOutput {
                 direction_forward: true,
@@ -109,7 +151,7 @@ impl<C: CamCurve> CamAxis<C> {
 
     /// The current state.
     pub fn state(&self) -> AxisState {
-        self.state
+        self.phase.state()
     }
 
     /// The commanded slave position now.
@@ -123,7 +165,7 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     fn ensure_inactive(&self) -> Result<(), EngineError> {
-        if self.state.is_active() {
+        if self.state().is_active() {
             Err(EngineError::Busy)
         } else {
             Ok(())
@@ -140,7 +182,6 @@ impl<C: CamCurve> CamAxis<C> {
         let geometry = Geometry::new(&self.curve, &config)?;
         if config.single_turn != self.config.single_turn {
             self.turn = config.single_turn.map(TurnUnwrap::new);
-            self.last_master = None;
             self.last_reading = None;
             self.tracker.reset();
         }
@@ -191,24 +232,25 @@ impl<C: CamCurve> CamAxis<C> {
     /// As [`CamAxis::queue_curve`].
     pub fn queue_curve_then(&mut self, curve: C, then: AfterPass) -> Result<(), EngineError> {
         let geometry = Geometry::new(&curve, &self.config)?;
-        if !self.state.is_engaged() {
-            self.geometry = geometry;
-            self.cursor = Cursor::new();
-            self.pending = None;
-            self.retired = Some(core::mem::replace(&mut self.curve, curve));
-            return Ok(());
+        match &mut self.phase {
+            Phase::Running(engaged) | Phase::Stopping(engaged, _) => {
+                if geometry.extent == crate::coupling::Extent::Single {
+                    return Err(EngineError::NoSeam);
+                }
+                engaged.queued = Some((curve, then));
+            }
+            Phase::Idle | Phase::Armed(_) | Phase::Finished => {
+                self.geometry = geometry;
+                self.cursor = Cursor::new();
+                self.retired = Some(core::mem::replace(&mut self.curve, curve));
+            }
         }
-        if geometry.extent == crate::coupling::Extent::Single {
-            return Err(EngineError::NoSeam);
-        }
-        self.pending = Some(curve);
-        self.pending_then = then;
         Ok(())
     }
 
     /// True while a queued table waits for the next seam.
     pub fn has_queued_curve(&self) -> bool {
-        self.pending.is_some()
+        self.phase.engaged().is_some_and(|e| e.queued.is_some())
     }
 
     /// The table the last switch or replacement retired, if not yet taken.
@@ -258,15 +300,15 @@ impl<C: CamCurve> CamAxis<C> {
     /// # Errors
     /// [`EngineError::Busy`] while the cam is engaged.
     pub fn arm(&mut self) -> Result<(), EngineError> {
-        match self.state {
-            AxisState::Running | AxisState::Stopping => Err(EngineError::Busy),
-            AxisState::Armed | AxisState::Delaying => Ok(()),
-            AxisState::Idle | AxisState::Finished => {
-                self.start = Some(StartWatch::arm(self.config.start));
-                // Delays and position crossings count from the first tick
-                // after arming, not from master motion before it.
-                self.last_master = None;
-                self.state = AxisState::Armed;
+        match self.phase {
+            Phase::Running(_) | Phase::Stopping(..) => Err(EngineError::Busy),
+            Phase::Armed(_) => Ok(()),
+            Phase::Idle | Phase::Finished => {
+                self.phase = Phase::Armed(Armed {
+                    watch: StartWatch::arm(self.config.start),
+                    previous: None,
+                    delaying: false,
+                });
                 Ok(())
             }
         }
@@ -278,37 +320,31 @@ impl<C: CamCurve> CamAxis<C> {
     /// is exactly on a cycle end, finishes there at once. Either cancels a
     /// pending start. The next tick reports what a stop here did.
     pub fn stop(&mut self, kind: StopKind) {
-        match (self.state, kind) {
-            (AxisState::Running, StopKind::EndOfCycle) => {
-                // Engaging records the place, so a running axis always has
-                // one; without it there is no cycle to finish, and the stop
-                // must still happen rather than be lost.
-                let at = self.last_place.map_or(
-                    StopAt::Here {
-                        completes_cycle: false,
-                    },
-                    |place| CycleEnd::of(&self.geometry, place),
-                );
-                match at {
-                    StopAt::Ahead(end) => {
-                        self.cycle_end = Some(end);
-                        self.state = AxisState::Stopping;
-                    }
+        let phase = core::mem::replace(&mut self.phase, Phase::Idle);
+        self.phase = match (phase, kind) {
+            (Phase::Running(engaged), StopKind::EndOfCycle) => {
+                match CycleEnd::of(&self.geometry, engaged.place) {
+                    StopAt::Ahead(end) => Phase::Stopping(engaged, end),
                     StopAt::Here { completes_cycle } => {
-                        self.halt();
-                        self.state = AxisState::Finished;
                         self.pending_events.stopped = true;
                         self.pending_events.cycle_completed |= completes_cycle;
+                        self.end_run(engaged.queued);
+                        Phase::Finished
                     }
                 }
             }
-            (AxisState::Stopping, StopKind::EndOfCycle) => {}
-            (state, _) if state.is_active() => {
-                self.halt();
+            (stopping @ Phase::Stopping(..), StopKind::EndOfCycle) => stopping,
+            (Phase::Running(engaged) | Phase::Stopping(engaged, _), StopKind::Immediate) => {
                 self.pending_events.stopped = true;
+                self.end_run(engaged.queued);
+                Phase::Idle
             }
-            _ => {}
-        }
+            (Phase::Armed(_), _) => {
+                self.pending_events.stopped = true;
+                Phase::Idle
+            }
+            (other, _) => other,
+        };
     }
 
     /// Stops immediately and cancels any pending start.
@@ -316,20 +352,25 @@ impl<C: CamCurve> CamAxis<C> {
         self.stop(StopKind::Immediate);
     }
 
-    fn halt(&mut self) {
-        if let Some(curve) = self.pending.take() {
-            // A stop ends the run: the waiting table is the one to restart with.
-            if let Ok(geometry) = Geometry::new(&curve, &self.config) {
-                self.geometry = geometry;
-                self.cursor = Cursor::new();
-                self.retired = Some(core::mem::replace(&mut self.curve, curve));
-            }
+    /// Ends a run: a table still queued is the one to restart with.
+    fn end_run(&mut self, queued: Option<(C, AfterPass)>) {
+        if let Some((curve, _)) = queued
+            && let Ok(geometry) = Geometry::new(&curve, &self.config)
+        {
+            self.geometry = geometry;
+            self.cursor = Cursor::new();
+            self.retired = Some(core::mem::replace(&mut self.curve, curve));
         }
-        self.state = AxisState::Idle;
-        self.start = None;
-        self.engagement = None;
-        self.ramp = None;
-        self.cycle_end = None;
+    }
+
+    /// Leaves any active phase for `Idle` at once (output inhibit, fault).
+    fn halt(&mut self) {
+        let phase = core::mem::replace(&mut self.phase, Phase::Idle);
+        match phase {
+            Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged.queued),
+            Phase::Finished => self.phase = Phase::Finished,
+            Phase::Idle | Phase::Armed(_) => {}
+        }
     }
 
     /// One control cycle. Never allocates, never panics; O(1) while the
@@ -346,8 +387,6 @@ impl<C: CamCurve> CamAxis<C> {
             .tracker
             .update(reading, input.master_fraction, input.dt_us);
         let master = estimate.counts;
-        let previous = self.last_master.unwrap_or(master);
-        self.last_master = Some(master);
         let edge = input.start_input && !self.last_start_input;
         self.last_start_input = input.start_input;
 
@@ -355,12 +394,12 @@ impl<C: CamCurve> CamAxis<C> {
         let mut fault = None;
         let mut sample = None;
 
-        if !input.output_enabled && self.state.is_active() {
+        if !input.output_enabled && self.state().is_active() {
             self.halt();
             events.stopped = true;
         }
 
-        if self.state.is_active()
+        if self.state().is_active()
             && self
                 .config
                 .max_master_step
@@ -371,31 +410,45 @@ impl<C: CamCurve> CamAxis<C> {
             events.stopped = true;
         }
 
-        if matches!(self.state, AxisState::Armed | AxisState::Delaying)
-            && let Some(start) = &mut self.start
-        {
-            match start.step(previous, master, edge, input.watch) {
-                StartStep::Waiting => {}
-                StartStep::Delaying => self.state = AxisState::Delaying,
-                StartStep::Engage(at) => match self.engage(at) {
-                    Ok(()) => events.engaged = true,
-                    Err(e) => {
-                        fault = Some(e);
-                        self.halt();
-                        events.stopped = true;
-                    }
-                },
+        let start = match &mut self.phase {
+            Phase::Armed(armed) => {
+                let previous = armed.previous.unwrap_or(master);
+                armed.previous = Some(master);
+                let step = armed.watch.step(previous, master, edge, input.watch);
+                armed.delaying |= step == StartStep::Delaying;
+                step
             }
-        }
-
-        if self.state.is_engaged() {
-            match self.follow(master, estimate.fraction, &mut events) {
-                Ok(s) => sample = Some(s),
+            _ => StartStep::Waiting,
+        };
+        if let StartStep::Engage(at) = start {
+            match self.engage(at) {
+                Ok(()) => events.engaged = true,
                 Err(e) => {
                     fault = Some(e);
                     self.halt();
                     events.stopped = true;
                 }
+            }
+        }
+
+        let phase = core::mem::replace(&mut self.phase, Phase::Idle);
+        let followed = match phase {
+            Phase::Running(engaged) => self.follow(engaged, None, master, estimate.fraction),
+            Phase::Stopping(engaged, end) => {
+                self.follow(engaged, Some(end), master, estimate.fraction)
+            }
+            other => Ok((other, None, Events::default())),
+        };
+        match followed {
+            Ok((phase, followed, happened)) => {
+                self.phase = phase;
+                sample = followed;
+                events.merge(happened);
+            }
+            Err(e) => {
+                // The engaged phase was taken out: the axis is idle now.
+                fault = Some(e);
+                events.stopped = true;
             }
         }
 
@@ -415,25 +468,30 @@ impl<C: CamCurve> CamAxis<C> {
             at,
             self.commanded,
         )?;
-        self.last_place = Some(
-            self.geometry
-                .locate(engagement.table_input(&self.geometry, at)),
-        );
-        self.engagement = Some(engagement);
-        self.ramp = self
-            .config
-            .ramp_in
-            .map(|ramp| Ramp::new(ramp, at, self.commanded));
-        self.cycle_end = None;
-        self.start = None;
-        self.state = AxisState::Running;
+        let place = self
+            .geometry
+            .locate(engagement.table_input(&self.geometry, at));
+        self.phase = Phase::Running(Engaged {
+            engagement,
+            ramp: self
+                .config
+                .ramp_in
+                .map(|ramp| Ramp::new(ramp, at, self.commanded)),
+            place,
+            queued: None,
+        });
         Ok(())
     }
 
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
     /// span or to the end of a requested end-of-cycle stop), whether a
     /// one-shot finished, and whether the stop was reached (and forwards).
-    fn resolve(&self, engagement: &Engagement, master: i64) -> Resolved {
+    fn resolve(
+        &self,
+        engagement: &Engagement,
+        stop_at: Option<&CycleEnd>,
+        master: i64,
+    ) -> Resolved {
         let geo = &self.geometry;
         let t = engagement.table_input(geo, master);
         let mut finished = false;
@@ -447,8 +505,7 @@ impl<C: CamCurve> CamAxis<C> {
         };
         let mut place = geo.locate(t);
         let mut stopped = None;
-        if self.state == AxisState::Stopping
-            && let Some(end) = self.cycle_end
+        if let Some(end) = stop_at
             && let Some((at, forward)) = end.reached(geo, t)
         {
             place = at;
@@ -467,12 +524,15 @@ impl<C: CamCurve> CamAxis<C> {
     /// and whether a ramp-in is still blending.
     fn command_at(
         &mut self,
-        engagement: &Engagement,
+        engaged: &Engaged<C>,
         place: Place,
         master: i64,
     ) -> Result<(Sample, i64, f64, bool), EngineError> {
-        let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-        match self
+        let cam =
+            engaged
+                .engagement
+                .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        match engaged
             .ramp
             .and_then(|ramp| Some((ramp, ramp.blend(master, cam.slave)?)))
         {
@@ -483,16 +543,12 @@ impl<C: CamCurve> CamAxis<C> {
         }
     }
 
-    /// Takes a queued table over at the seam between `from` and `to` (cycle
-    /// indices of the last and this tick's place), if one waits.
-    fn switch_at_seam(
-        &mut self,
-        engagement: Engagement,
-        from: Place,
-        to: Place,
-    ) -> Result<Option<Engagement>, EngineError> {
-        if from.k == to.k || self.pending.is_none() {
-            return Ok(None);
+    /// Takes a queued table over at the seam between the last place and
+    /// `to`, if one waits; gives back the engagement on the new table.
+    fn switch_at_seam(&mut self, engaged: &mut Engaged<C>, to: Place) -> Result<bool, EngineError> {
+        let from = engaged.place;
+        if from.k == to.k || engaged.queued.is_none() {
+            return Ok(false);
         }
         let forward = to.k > from.k;
         // The first boundary crossed: the end of the last cycle going
@@ -502,13 +558,16 @@ impl<C: CamCurve> CamAxis<C> {
         } else {
             Geometry::cycle_start(from.k)
         };
-        let old = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
-        let Some(curve) = self.pending.take() else {
-            return Ok(None);
+        let old =
+            engaged
+                .engagement
+                .sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
+        let Some((curve, then)) = engaged.queued.take() else {
+            return Ok(false);
         };
         let geometry = Geometry::new(&curve, &self.config)?;
         let mut cursor = Cursor::new();
-        let mut next = engagement.across_seam(
+        let mut next = engaged.engagement.across_seam(
             &self.geometry,
             &geometry,
             &curve,
@@ -517,80 +576,82 @@ impl<C: CamCurve> CamAxis<C> {
             forward,
             old.slave,
         )?;
-        if self.pending_then == AfterPass::Finish {
+        if then == AfterPass::Finish {
             next.finish_after_first_pass(&geometry, forward);
         }
         self.geometry = geometry;
         self.cursor = cursor;
         self.retired = Some(core::mem::replace(&mut self.curve, curve));
-        Ok(Some(next))
+        engaged.engagement = next;
+        Ok(true)
     }
 
+    /// Follows the cam for one tick; gives the phase after it, what was
+    /// followed and what happened.
     fn follow(
         &mut self,
+        mut engaged: Engaged<C>,
+        stop_at: Option<CycleEnd>,
         master: i64,
         fraction: u32,
-        events: &mut Events,
-    ) -> Result<FollowSample, EngineError> {
-        let Some(mut engagement) = self.engagement else {
-            return Err(EngineError::Busy);
-        };
-        let mut here = self.resolve(&engagement, master);
-        if here.stopped.is_none()
-            && let Some(last) = self.last_place
-            && let Some(next) = self.switch_at_seam(engagement, last, here.place)?
-        {
-            engagement = next;
-            self.engagement = Some(next);
+    ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
+        let mut events = Events::default();
+        let mut here = self.resolve(&engaged.engagement, stop_at.as_ref(), master);
+        if here.stopped.is_none() && self.switch_at_seam(&mut engaged, here.place)? {
             events.table_switched = true;
             events.cycle_completed = true;
-            here = self.resolve(&engagement, master);
+            here = self.resolve(&engaged.engagement, stop_at.as_ref(), master);
             // Cycle indices restart with the new table.
-            self.last_place = Some(here.place);
+            engaged.place = here.place;
         }
         let place = here.place;
-        let (cam, mut slave, velocity_ratio, ramping) =
-            self.command_at(&engagement, place, master)?;
+        let (cam, mut slave, velocity_ratio, ramping) = self.command_at(&engaged, place, master)?;
         if fraction != 0 && here.stopped.is_none() && !here.finished {
             // Between whole master counts (an exact time base, or a coarse
             // master's estimate) the command moves along the straight line
             // to the next count's value: exact at every whole count, and
             // monotonic in between.
             let next_master = master.saturating_add(1);
-            let ahead = self.resolve(&engagement, next_master);
-            let (_, next_slave, _, _) = self.command_at(&engagement, ahead.place, next_master)?;
+            let ahead = self.resolve(&engaged.engagement, stop_at.as_ref(), next_master);
+            let (_, next_slave, _, _) = self.command_at(&engaged, ahead.place, next_master)?;
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
             slave =
                 i64::try_from(i128::from(slave) + step).map_err(|_| EngineError::SlaveOverflow)?;
         }
         if !ramping {
-            self.ramp = None;
+            engaged.ramp = None;
         }
         self.commanded = slave;
-        if self.last_place.is_some_and(|p| p.k != place.k) {
+        if engaged.place.k != place.k {
             events.cycle_completed = true;
             events.seam_jump |= self.geometry.jumps_at_seam;
         }
-        self.last_place = Some(place);
-        if let Some(forward) = here.stopped {
-            events.cycle_completed |= forward;
-            events.stopped = true;
-            self.halt();
-            self.state = AxisState::Finished;
-        } else if here.finished {
-            events.finished = true;
-            events.cycle_completed = true;
-            self.halt();
-            self.state = AxisState::Finished;
-        }
-        Ok(FollowSample {
+        engaged.place = place;
+        let followed = FollowSample {
             cam,
             velocity_ratio,
             following: !ramping,
-            input_offset: engagement.input_offset(&self.geometry),
-            cycle: place.k.saturating_sub(engagement.k_engage),
-        })
+            input_offset: engaged.engagement.input_offset(&self.geometry),
+            cycle: place.k.saturating_sub(engaged.engagement.k_engage),
+        };
+        let phase = if let Some(forward) = here.stopped {
+            events.cycle_completed |= forward;
+            events.stopped = true;
+            self.end_run(engaged.queued);
+            Phase::Finished
+        } else if here.finished {
+            events.finished = true;
+            events.cycle_completed = true;
+            self.end_run(engaged.queued);
+            Phase::Finished
+        } else {
+            match stop_at {
+                Some(end) => Phase::Stopping(engaged, end),
+                None => Phase::Running(engaged),
+            }
+        };
+        Ok((phase, Some(followed), events))
     }
 
     fn report(
@@ -602,7 +663,8 @@ impl<C: CamCurve> CamAxis<C> {
         fault: Option<EngineError>,
     ) -> TickOutput {
         let mut out = self.last;
-        out.state = self.state;
+        let state = self.state();
+        out.state = state;
         out.master = master;
         out.velocity_ratio = 0.0;
         out.following = false;
@@ -615,7 +677,7 @@ impl<C: CamCurve> CamAxis<C> {
             out.slave_unzoomed = s.cam.unzoomed;
             out.input_offset = s.input_offset;
             out.output_offset = self.commanded.saturating_sub(s.cam.in_cycle_zoomed);
-            if self.state.is_engaged() {
+            if state.is_engaged() {
                 out.velocity_ratio = s.velocity_ratio;
                 out.following = s.following;
             }
@@ -626,13 +688,13 @@ impl<C: CamCurve> CamAxis<C> {
         out.emitted = self.pulse.emitted;
         out.backlog = self.pulse.backlog(self.commanded);
         out.pulse_delayed = out.backlog != 0;
-        out.sync = if self.state.is_engaged() {
+        out.sync = if state.is_engaged() {
             active_windows(&self.config.sync_windows, out.master_in_cycle)
         } else {
             0
         };
         out.in_sync = out.sync != 0;
-        out.initialised = self.state.is_active();
+        out.initialised = state.is_active();
         out.busy = out.initialised || out.backlog != 0;
         out.events = events;
         out.fault = fault;

@@ -58,6 +58,18 @@ pub struct Events {
     pub table_switched: bool,
 }
 
+impl Events {
+    /// Adds what `other` reports to this.
+    pub fn merge(&mut self, other: Self) {
+        self.engaged |= other.engaged;
+        self.cycle_completed |= other.cycle_completed;
+        self.finished |= other.finished;
+        self.stopped |= other.stopped;
+        self.seam_jump |= other.seam_jump;
+        self.table_switched |= other.table_switched;
+    }
+}
+
 /// Everything an axis reports after a tick.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TickOutput {
