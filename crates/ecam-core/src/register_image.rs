@@ -131,7 +131,18 @@ pub fn from_words(words: &[i16]) -> Result<PointTable, TableError> {
             name: "register block",
             reason: "is shorter than its section count needs (40 + 4 words per section)",
         })?;
-    let points = data
+    table_from_sections(data)
+}
+
+/// The table held by section words (from offset 40 on, four words per
+/// point), however many points they make.
+///
+/// # Errors
+/// [`TableError::MasterNotIncreasing`] (6782) naming the first section whose
+/// master is not greater than the one before; [`TableError::SectionCount`]
+/// for fewer than two points.
+pub fn table_from_sections(words: &[i16]) -> Result<PointTable, TableError> {
+    let points = words
         .chunks_exact(WORDS_PER_SECTION)
         .map(|w| CamPoint::new(i64::from(join(w[0], w[1])), i64::from(join(w[2], w[3]))))
         .collect();

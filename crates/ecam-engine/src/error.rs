@@ -31,10 +31,7 @@ pub enum EngineError {
     NoSeam,
 }
 
-/// PLC code 6781: parameter error.
-const CODE_PARAMETER: u16 = 6781;
-/// PLC code 6782: table out of range.
-const CODE_TABLE: u16 = 6782;
+use ecam_core::{CODE_PARAMETER, CODE_TABLE};
 
 impl EngineError {
     /// The document 003 operation error code: 6781 for parameters and

@@ -3,7 +3,7 @@
 
 use core::num::NonZeroU16;
 
-use ecam_core::{CamPoint, PointTable, TableError};
+use ecam_core::{PointTable, TableError, register_image};
 
 use super::block_error::BlockError;
 use super::{flags, offsets};
@@ -206,13 +206,10 @@ impl<'a> Block<'a> {
         if !(2..=offsets::MAX_SECTIONS as i16).contains(&count) || !fits {
             return Err(BlockError::SectionCount { count });
         }
-        let points: Vec<CamPoint> = (0..count as u16)
-            .map(|i| {
-                let at = offsets::TABLE + offsets::WORDS_PER_SECTION * i;
-                CamPoint::new(i64::from(self.dword(at)), i64::from(self.dword(at + 2)))
-            })
+        let words: Vec<i16> = (0..offsets::WORDS_PER_SECTION * count as u16)
+            .map(|i| self.word(offsets::TABLE + i) as i16)
             .collect();
-        PointTable::new(points).map_err(|e| match e {
+        register_image::table_from_sections(&words).map_err(|e| match e {
             TableError::MasterNotIncreasing { section }
             | TableError::ValueOutOfRange { section } => BlockError::Table {
                 section: u16::try_from(section).unwrap_or(u16::MAX),

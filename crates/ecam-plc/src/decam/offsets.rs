@@ -4,6 +4,8 @@
 //! manual labels some rows inconsistently; the comments say which reading
 //! this implementation takes (see `docs/plc.md`).
 
+use ecam_core::register_image;
+
 /// Version of the cam function; the controller shows 5200.
 pub const VERSION: u16 = 0;
 /// The version number written to offset 0.
@@ -65,13 +67,16 @@ pub const TABLE_END: u16 = 31;
 pub const TABLE_END_REPEAT: u16 = 0;
 /// Offset 31 value: the table runs one pass and the cam stops at its end.
 pub const TABLE_END_STOP: u16 = 1;
+// The table image (offsets 38 on) has its home in
+// `ecam_core::register_image`; these are its offsets as register numbers.
+
 /// Number of table points ("sections"), 2–512.
-pub const SECTIONS: u16 = 38;
+pub const SECTIONS: u16 = register_image::SECTION_COUNT_OFFSET as u16;
 /// Offset of the table; always 40 (the controller writes it).
-pub const TABLE_OFFSET: u16 = 39;
+pub const TABLE_OFFSET: u16 = register_image::TABLE_OFFSET_OFFSET as u16;
 /// First word of the table: point i is at `TABLE + 4 i` (master, slave; 32-bit each).
-pub const TABLE: u16 = 40;
+pub const TABLE: u16 = register_image::TABLE_OFFSET as u16;
 /// Most points a table may hold.
-pub const MAX_SECTIONS: u16 = 512;
+pub const MAX_SECTIONS: u16 = register_image::MAX_SECTIONS as u16;
 /// Words per table point.
-pub const WORDS_PER_SECTION: u16 = 4;
+pub const WORDS_PER_SECTION: u16 = register_image::WORDS_PER_SECTION as u16;
