@@ -530,3 +530,21 @@ fn offset_2_and_error_flags_stay_clear_on_a_good_block() {
     assert_eq!(r.flags() & 0b11_1000, 0);
     assert!(r.errors.is_empty());
 }
+
+#[test]
+fn a_run_that_ends_under_the_frequency_limit_sends_every_pulse_it_owes() {
+    // Noncyclic once, 5000 pulses over 1000 counts, at most 10 kHz (one
+    // pulse per 100 µs tick): the master finishes the table long before
+    // the pulses do. The run ends only once the last one has gone out.
+    let mut r = Rig::new(&[(0, 0), (1000, 5000)]);
+    r.set_d(6, 10_000);
+    r.start(2);
+    r.run_to(1200, 100);
+    assert!(r.cam.is_running(), "still sending what it owes");
+    assert!(r.flag(2), "pulse output delayed");
+    assert!(!r.flag(9));
+    r.run(6000, 0);
+    assert_eq!(r.pulses(), 5000, "no pulse lost");
+    assert!(!r.cam.is_running());
+    assert!(r.flag(9) && !r.flag(2));
+}

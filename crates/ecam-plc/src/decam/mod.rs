@@ -54,6 +54,7 @@ pub mod flags;
 mod master;
 pub mod offsets;
 mod operands;
+mod run;
 mod start_gate;
 mod sync_output;
 
@@ -66,13 +67,10 @@ pub use sync_output::SyncOutput;
 
 use core::sync::atomic::{AtomicU64, Ordering};
 
-use ecam_core::{CamCurve, PointTable};
-use ecam_engine::{
-    AfterPass, AxisConfig, AxisState, CamAxis, Coupling, MasterAlign, MasterFilter, MasterPosition,
-    SlaveAlign, StartMode, StopKind, TickInput, Zoom,
-};
+use ecam_engine::MasterPosition;
 
 use self::block::Block;
+use self::run::{Origin, Run, Start};
 use crate::devices::Devices;
 use crate::hardware::{Hardware, OutputOwner, record_pulses};
 use crate::operation_error::OperationError;
@@ -88,17 +86,23 @@ static NEXT_INSTANCE: AtomicU64 = AtomicU64::new(0);
 /// First word of each output's pulse counter D8140, D8142, D8150, D8152.
 const PULSE_COUNTERS: [u16; 4] = [8140, 8142, 8150, 8152];
 
-/// Where the instruction is between starts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Where the instruction is between starts; each phase holds what only it
+/// has.
+#[derive(Clone, Debug)]
 enum Phase {
     /// No mode accepted.
     Idle,
     /// A mode with external start (function bit 5) waits for a rising edge
     /// of S3, accepted from `ready_at` on; `announced` once flag bit 0 was
     /// set for this readiness.
-    Ready { ready_at: u64, announced: bool },
-    /// The engine is armed (delay, start position) or following.
-    Running,
+    Ready {
+        start: Start,
+        ready_at: u64,
+        announced: bool,
+    },
+    /// The engine is armed (delay, start position), following, or sending
+    /// the last pulses it owes.
+    Running(Box<Run>),
     /// Stopped at a cycle end or by M8145…: the start register must go
     /// through 0 to start again.
     Done,
@@ -118,15 +122,12 @@ pub struct Decam {
     live: Option<LiveSettings>,
     error: Option<BlockError>,
     phase: Phase,
-    /// What the running cam was started with.
-    running: Option<Running>,
-    axis: Option<CamAxis<PointTable>>,
     start_level: bool,
     sync: SyncOutput,
-    /// Flag bit 9.
+    /// Flag bit 9, latched when a run ends at a cycle end; cleared at the
+    /// next start.
     cycle_done: bool,
-    in_sync: bool,
-    pulse_delayed: bool,
+    /// Pending writes to the program-owned flag bits 0 and 1.
     set_latched: u16,
     clear_latched: u16,
     /// The engine stopped the cam on a runtime fault (e.g. a slave position
@@ -135,26 +136,6 @@ pub struct Decam {
     runtime_fault: Option<ecam_engine::EngineError>,
     /// The fault not yet returned to the scan (D8067/M8067).
     fault_to_report: Option<ecam_engine::EngineError>,
-    /// A table (and its single-pass mark) written while the cam runs,
-    /// waiting for the next seam.
-    queued_table: Option<(PointTable, bool)>,
-}
-
-/// What a start fixed until the next stop.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Running {
-    mode: CamMode,
-    external_start: bool,
-    stop_requested: bool,
-    /// Counts to wait (delay) and the travel so far, for offset 13.
-    delay: Option<u64>,
-    travel: u64,
-    last_master: i64,
-    start_position: Option<i64>,
-    /// The table in use runs one pass and stops (offset 31, midCAMend).
-    single_pass: bool,
-    /// The master the cam engaged at.
-    engaged_at: Option<i64>,
 }
 
 impl Decam {
@@ -170,18 +151,20 @@ impl Decam {
             live: None,
             error: None,
             phase: Phase::Idle,
-            running: None,
-            axis: None,
             start_level: false,
             sync: SyncOutput::new(),
             cycle_done: false,
-            in_sync: false,
-            pulse_delayed: false,
             set_latched: 0,
             clear_latched: 0,
             runtime_fault: None,
             fault_to_report: None,
-            queued_table: None,
+        }
+    }
+
+    fn run(&self) -> Option<&Run> {
+        match &self.phase {
+            Phase::Running(run) => Some(run),
+            _ => None,
         }
     }
 
@@ -206,9 +189,10 @@ impl Decam {
         self.gate.active()
     }
 
-    /// True while the engine is armed or following a cam.
+    /// True while the engine is armed or following a cam (or sending the
+    /// last pulses it owes).
     pub fn is_running(&self) -> bool {
-        self.axis.is_some()
+        self.run().is_some()
     }
 
     /// The instruction at its place in the scan; `enabled` is its power flow.
@@ -238,7 +222,9 @@ impl Decam {
             .and_then(|setup| Ok((setup, live_settings(&block, &operands)?)));
         let result = match checked {
             Ok((setup, live)) => {
-                self.queue_changed_table(&setup.table, setup.single_pass);
+                if let Phase::Running(run) = &mut self.phase {
+                    run.offer_table(&setup.table, setup.single_pass);
+                }
                 self.setup = Some(setup);
                 self.live = Some(live);
                 self.error = None;
@@ -262,33 +248,6 @@ impl Decam {
         }
     }
 
-    /// A table written while the cam runs takes over at the next seam
-    /// (`docs/plc.md`, "Changing the table while the cam runs"): the engine
-    /// continues the slave from where it stands at the seam, so the output
-    /// never steps.
-    fn queue_changed_table(&mut self, table: &PointTable, single_pass: bool) {
-        let (Some(axis), Some(running)) = (self.axis.as_mut(), self.running.as_mut()) else {
-            return;
-        };
-        let waiting = match &self.queued_table {
-            Some((queued, queued_single)) => (queued, *queued_single),
-            None => (axis.curve(), running.single_pass),
-        };
-        if waiting == (table, single_pass) {
-            return;
-        }
-        let then = if single_pass {
-            AfterPass::Finish
-        } else {
-            AfterPass::Repeat
-        };
-        if axis.queue_curve_then(table.clone(), then).is_ok() {
-            self.queued_table = axis
-                .has_queued_curve()
-                .then(|| (table.clone(), single_pass));
-        }
-    }
-
     /// One hardware tick of `dt_us` ending at `now_us`.
     pub fn hardware_tick(
         &mut self,
@@ -298,7 +257,7 @@ impl Decam {
         dt_us: u32,
     ) {
         if !self.enabled {
-            let was_active = self.phase != Phase::Idle || self.gate.active().is_some();
+            let was_active = !matches!(self.phase, Phase::Idle) || self.gate.active().is_some();
             self.gate.power_off(now_us);
             if was_active {
                 self.stop_now(devices, hardware);
@@ -328,25 +287,21 @@ impl Decam {
         if let Phase::Ready {
             ready_at,
             announced,
-        } = self.phase
-            && now_us >= ready_at
+            ..
+        } = &mut self.phase
+            && now_us >= *ready_at
         {
-            if !announced {
+            if !*announced {
                 self.set_latched |= flags::INIT_DONE;
-                self.phase = Phase::Ready {
-                    ready_at,
-                    announced: true,
-                };
+                *announced = true;
             }
             if edge {
                 self.trigger(devices, hardware);
             }
         }
-        if self.phase == Phase::Running {
-            self.run(devices, hardware, now_us, dt_us);
+        if matches!(self.phase, Phase::Running(_)) {
+            self.follow(devices, hardware, now_us, dt_us);
         } else {
-            self.in_sync = false;
-            self.pulse_delayed = false;
             self.sync.release(devices);
             let _ = devices.set_word(self.operands.reg(offsets::MASTER_REMAINING), 0);
         }
@@ -369,29 +324,21 @@ impl Decam {
         let Some(setup) = self.setup.as_ref() else {
             return;
         };
-        let external_start = setup.external_start;
+        let start = Start {
+            mode,
+            external_start: setup.external_start,
+        };
         self.gate.started(mode);
         self.cycle_done = false;
         self.runtime_fault = None;
         self.set_latched |= flags::INIT_DONE;
         self.clear_latched &= !flags::INIT_DONE;
-        self.running = Some(Running {
-            mode,
-            external_start,
-            stop_requested: false,
-            delay: None,
-            travel: 0,
-            last_master: self.master.position(),
-            start_position: None,
-            single_pass: false,
-            engaged_at: None,
-        });
-        if external_start {
-            self.phase = Phase::Ready {
-                ready_at: 0,
-                announced: true,
-            };
-        } else {
+        self.phase = Phase::Ready {
+            start,
+            ready_at: 0,
+            announced: true,
+        };
+        if !start.external_start {
             self.trigger(devices, hardware);
         }
     }
@@ -405,95 +352,30 @@ impl Decam {
         {
             return;
         }
-        let (Some(setup), Some(running)) = (self.setup.as_ref(), self.running.as_mut()) else {
+        let (Some(setup), Phase::Ready { start, .. }) = (self.setup.as_ref(), &self.phase) else {
             return;
         };
         let block = Block::new(devices, self.operands.block);
-        let noncyclic = running.mode == CamMode::Noncyclic;
-        // A midCAMend table runs once from its start, whichever the mode.
-        let single_pass = setup.single_pass;
-        // Document 003 restricts delay and start position to the noncyclic cam.
-        let delay = setup.delay.filter(|_| noncyclic).map(u64::from);
-        let start_position = setup.start_position.filter(|_| noncyclic);
-        let start = match (delay, start_position) {
-            (Some(counts), _) => StartMode::AfterDelay {
-                counts,
-                after_edge: false,
-            },
-            (None, Some(position)) => StartMode::AtMasterPosition {
-                position,
-                after_edge: false,
-            },
-            (None, None) => StartMode::Immediate,
+        let origin = Origin {
+            master_raw: i64::from(block.dword(offsets::MASTER_RAW)),
+            slave_zoomed: i64::from(block.dword(offsets::SLAVE_ZOOMED)),
+            output_counter: PULSE_COUNTERS
+                .get(usize::from(self.operands.pulse_output))
+                .and_then(|&d| devices.dword(d).ok())
+                .map_or(0, i64::from),
         };
-        let table = setup.table.clone();
-        let master_align = if setup.from_current {
-            MasterAlign::StartAtUnzoomed(i64::from(block.dword(offsets::MASTER_RAW)))
-        } else if noncyclic || single_pass {
-            MasterAlign::StartAt(table.master_first())
-        } else {
-            MasterAlign::Absolute
-        };
-        let output_counter = PULSE_COUNTERS
-            .get(usize::from(self.operands.pulse_output))
-            .and_then(|&d| devices.dword(d).ok())
-            .unwrap_or(0);
-        let (slave_align, slave_now) = if setup.from_current {
-            let slave = i64::from(block.dword(offsets::SLAVE_ZOOMED));
-            (SlaveAlign::At(slave), slave)
-        } else if noncyclic {
-            (SlaveAlign::Relative, i64::from(output_counter))
-        } else {
-            (SlaveAlign::Absolute, i64::from(output_counter))
-        };
-        // A pulse output cannot jump: at a seam the slave goes on from where
-        // it stands (the stroke accumulates), in the cyclic cam as in the
-        // noncyclic one; an out-and-back table has no stroke and repeats
-        // as it is (docs/plc.md, "Seams").
-        let config = AxisConfig {
-            coupling: if single_pass {
-                Coupling::OneShot { repeats: 0 }
-            } else if noncyclic {
-                Coupling::OneShot {
-                    repeats: setup.repeats,
-                }
-            } else {
-                Coupling::Repeat { min_stroke: 1 }
-            },
-            // A counter or register master changes in whole counts at its
-            // own rate; the time base is exact time with its fraction.
-            master_filter: if self.master.is_time_base() {
-                MasterFilter::Direct
-            } else {
-                MasterFilter::INTERPOLATE
-            },
-            start,
-            master_align,
-            slave_align,
-            master_zoom: zoom(setup.master_zoom),
-            slave_zoom: zoom(setup.slave_zoom),
-            max_frequency_hz: i64::from(setup.max_frequency_hz),
-            ..AxisConfig::default()
-        };
-        let armed = CamAxis::new(table, config).and_then(|mut axis| {
-            axis.set_slave_position(slave_now)?;
-            axis.arm()?;
-            Ok(axis)
-        });
-        match armed {
-            Ok(axis) => {
-                // The time base reads 0 at the start instant, so a start
-                // position of 0 fires and a noncyclic cam engages at 0.
-                self.master.restart_time_base();
-                self.axis = Some(axis);
-                self.queued_table = None;
-                running.single_pass = single_pass;
-                running.engaged_at = None;
-                running.delay = delay;
-                running.start_position = start_position;
-                running.travel = 0;
-                running.last_master = self.master.position();
-                self.phase = Phase::Running;
+        // The time base reads 0 at the start instant, so a start position
+        // of 0 fires and a noncyclic cam engages at 0.
+        self.master.restart_time_base();
+        match Run::arm(
+            *start,
+            setup,
+            origin,
+            self.master.is_time_base(),
+            self.master.position(),
+        ) {
+            Ok(run) => {
+                self.phase = Phase::Running(Box::new(run));
                 self.cycle_done = false;
                 // Free for this instance: checked on entry.
                 hardware.claim_output(self.operands.pulse_output, self.owner);
@@ -510,58 +392,24 @@ impl Decam {
         }
     }
 
-    /// One engine tick while armed or following.
-    fn run(&mut self, devices: &mut Devices, hardware: &mut Hardware, now_us: u64, dt_us: u32) {
-        let MasterPosition {
-            counts: master,
-            fraction: master_fraction,
-        } = self.master.current();
+    /// One engine tick while armed, following or sending owed pulses.
+    fn follow(&mut self, devices: &mut Devices, hardware: &mut Hardware, now_us: u64, dt_us: u32) {
         let output = self.operands.pulse_output;
-        let (Some(axis), Some(running)) = (self.axis.as_mut(), self.running.as_mut()) else {
-            self.phase = Phase::Done;
-            return;
-        };
         if Hardware::output_stopped(devices, output) {
             // M8145…: stop at once; the start register must go through 0.
             self.stop_now(devices, hardware);
             self.phase = Phase::Done;
             return;
         }
+        let MasterPosition {
+            counts: master,
+            fraction,
+        } = self.master.current();
         let live = self.live;
-        // Bit 1 set before the start means "run this cycle, then stop": the
-        // request waits until the master has left the place the cam engaged
-        // at, where the engine would take it as a stop on the table end.
-        if live.is_some_and(|l| l.stop_after_cycle)
-            && !running.stop_requested
-            && axis.status().state == AxisState::Running
-            && running
-                .engaged_at
-                .is_some_and(|at| at != axis.status().master)
-        {
-            axis.stop(StopKind::EndOfCycle);
-            running.stop_requested = true;
-        }
-        let out = axis.tick(&TickInput {
-            master,
-            master_fraction,
-            start_input: false,
-            watch: 0,
-            dt_us,
-            output_enabled: true,
-        });
-        // Offset 13 counts the travel of the master the cam follows (the
-        // tracker's estimate), the same position the start watches.
-        if out.events.engaged {
-            running.engaged_at = Some(out.master);
-        }
-        let step = out.master.abs_diff(running.last_master);
-        running.last_master = out.master;
-        if out.events.table_switched {
-            if let Some((_, single_pass)) = self.queued_table.take() {
-                running.single_pass = single_pass;
-            }
-            drop(axis.take_retired_curve());
-        }
+        let Phase::Running(run) = &mut self.phase else {
+            return;
+        };
+        let out = run.tick(master, fraction, dt_us, live);
         let pulses =
             i32::try_from(out.pulses).unwrap_or(if out.pulses < 0 { i32::MIN } else { i32::MAX });
         if pulses != 0 {
@@ -575,19 +423,8 @@ impl Decam {
             self.runtime_fault = Some(fault);
             self.fault_to_report = Some(fault);
         }
-        self.pulse_delayed = out.pulse_delayed;
-        let remaining = match out.state {
-            AxisState::Armed | AxisState::Delaying => {
-                running.travel = running.travel.saturating_add(step);
-                if let Some(delay) = running.delay {
-                    delay.saturating_sub(running.travel)
-                } else {
-                    running.start_position.map_or(0, |p| p.abs_diff(out.master))
-                }
-            }
-            _ => 0,
-        };
         let reg = |offset| self.operands.reg(offset);
+        let remaining = run.master_remaining();
         let _ = devices.set_word(reg(offsets::MASTER_REMAINING), remaining.min(32767) as i16);
         let engaged = out.state.is_engaged() || out.events.finished || out.events.stopped;
         if engaged {
@@ -596,54 +433,47 @@ impl Decam {
             let _ = devices.set_dword(reg(offsets::MASTER_ZOOMED), out.master_in_cycle as i32);
             let _ = devices.set_dword(reg(offsets::MASTER_RAW), out.master_in_cycle_raw as i32);
         }
-        self.in_sync =
-            out.state.is_engaged() && live.is_some_and(|l| l.in_window(out.master_in_cycle));
         match live {
             Some(l) if l.sync_enabled => {
-                self.sync.drive(devices, Some(l.sync_output), self.in_sync)
+                self.sync
+                    .drive(devices, Some(l.sync_output), run.in_sync(live))
             }
             _ => self.sync.release(devices),
         }
-        if matches!(out.state, AxisState::Finished | AxisState::Idle) {
-            // A cam the engine had to stop did not finish: no bit 9, no re-arm.
-            let faulted = out.fault.is_some();
-            let rearm = running.mode == CamMode::Noncyclic
-                && running.external_start
-                && !running.stop_requested
-                && !faulted;
-            let noncyclic = running.mode == CamMode::Noncyclic;
-            self.axis = None;
-            hardware.release_output(output, self.owner);
-            self.cycle_done = !faulted;
-            self.in_sync = false;
-            self.sync.release(devices);
-            if noncyclic {
-                // Section 4.2.1 step 4: the controller clears bit 0 when the run ends.
-                self.clear_latched |= flags::INIT_DONE;
-                self.set_latched &= !flags::INIT_DONE;
-            }
-            self.phase = if rearm {
-                Phase::Ready {
-                    ready_at: now_us.saturating_add(NONCYCLIC_REARM_US),
-                    announced: false,
-                }
-            } else {
-                Phase::Done
-            };
+        if !run.over() {
+            return;
         }
+        // A cam the engine had to stop did not finish: no bit 9, no re-arm.
+        let faulted = self.runtime_fault.is_some();
+        let start = run.start;
+        let rearm = start.mode == CamMode::Noncyclic
+            && start.external_start
+            && !run.stop_requested
+            && !faulted;
+        hardware.release_output(output, self.owner);
+        self.cycle_done = !faulted;
+        self.sync.release(devices);
+        if start.mode == CamMode::Noncyclic {
+            // Section 4.2.1 step 4: the controller clears bit 0 when the run ends.
+            self.clear_latched |= flags::INIT_DONE;
+            self.set_latched &= !flags::INIT_DONE;
+        }
+        self.phase = if rearm {
+            Phase::Ready {
+                start,
+                ready_at: now_us.saturating_add(NONCYCLIC_REARM_US),
+                announced: false,
+            }
+        } else {
+            Phase::Done
+        };
     }
 
     /// Immediate stop: the slave holds where it is, outputs are released.
     fn stop_now(&mut self, devices: &mut Devices, hardware: &mut Hardware) {
-        if let Some(mut axis) = self.axis.take() {
-            axis.disengage();
-        }
         hardware.release_output(self.operands.pulse_output, self.owner);
         self.sync.release(devices);
-        self.in_sync = false;
-        self.pulse_delayed = false;
         self.phase = Phase::Idle;
-        self.running = None;
     }
 
     /// Rewrites the flag register: bits 0 and 1 keep what the program left
@@ -659,14 +489,14 @@ impl Decam {
         match &self.error {
             // The running cam keeps its last good table and settings: an
             // immediate stop would be a velocity step (docs/plc.md, "Errors").
-            Some(_) if self.axis.is_some() => value |= flags::KEPT_LAST_GOOD,
+            Some(_) if self.run().is_some() => value |= flags::KEPT_LAST_GOOD,
             Some(e) => value |= e.flag_bits(),
             None => {}
         }
         if self.runtime_fault.is_some() {
             value |= flags::ERROR;
         }
-        if self.pulse_delayed {
+        if self.run().is_some_and(|run| run.status().pulse_delayed) {
             value |= flags::PULSE_DELAYED;
         }
         match self.gate.active() {
@@ -677,7 +507,7 @@ impl Decam {
         if self.cycle_done {
             value |= flags::CURRENT_CYCLE_COMPLETE;
         }
-        if self.in_sync {
+        if self.run().is_some_and(|run| run.in_sync(self.live)) {
             value |= flags::IN_SYNC_AREA;
         }
         if self.master.is_time_base() {
@@ -704,10 +534,6 @@ fn live_settings(block: &Block<'_>, operands: &DecamOperands) -> Result<LiveSett
         }
     }
     Ok(live)
-}
-
-fn zoom(ratio: ZoomRatio) -> Zoom {
-    Zoom::new(ratio.num.get(), ratio.den.get()).unwrap_or(Zoom::ONE)
 }
 
 fn engine_refusal(e: ecam_engine::EngineError) -> &'static str {
