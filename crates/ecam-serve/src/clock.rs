@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use ecam_plc::sim::{self, RunLength};
 
-use super::state::{Shared, lock};
+use crate::state::{Event, Shared, lock};
 
 /// Largest lag the loop catches up by running scans back to back.
 pub const MAX_LAG: Duration = Duration::from_millis(200);
@@ -50,8 +50,8 @@ impl Drop for Scanning<'_> {
     }
 }
 
-/// Runs the PLC until `stop` is set.
-pub fn run(shared: &Shared, stop: &AtomicBool) {
+/// Runs the PLC on the calling thread until `stop` is set.
+pub fn scan_loop(shared: &Shared, stop: &AtomicBool) {
     shared.stats.scanning.store(true, Ordering::Relaxed);
     let _scanning = Scanning(&shared.stats.scanning);
     let mut origin = Instant::now();
@@ -74,15 +74,17 @@ pub fn run(shared: &Shared, stop: &AtomicBool) {
                 let behind = origin.elapsed().saturating_sub(simulated);
                 let us = u64::try_from(behind.as_micros()).unwrap_or(u64::MAX);
                 shared.stats.lag_us.store(us, Ordering::Relaxed);
-                run_period(shared);
+                scan_period(shared);
             }
         }
     }
 }
 
 /// Runs one scan period now (one scan, then the hardware ticks covering
-/// the scan period) and reports the operation errors it raised.
-pub fn run_period(shared: &Shared) {
+/// the scan period) and reports the operation errors it raised: each is
+/// counted and kept as the last one, and each distinct one (by line and
+/// code) is reported once as [`Event::OperationError`].
+pub fn scan_period(shared: &Shared) {
     let timing = shared.info.timing;
     let result = shared.with_plc(|plc| sim::run(plc, timing, RunLength::Scans(1), |_| {}));
     // The timing was checked non-zero at start, so `run` cannot fail.
@@ -96,7 +98,7 @@ pub fn run_period(shared: &Shared) {
         let text = format!("{file}:{}: {} (D8067={})", e.line, e.error, e.error.code);
         // Like `ecam plc run`: each distinct error once on stderr.
         if lock(&shared.stats.reported_errors).insert((e.line, e.error.code)) {
-            eprintln!("ecam serve: warning: {text}");
+            shared.report(Event::OperationError(text.clone()));
         }
         *lock(&shared.stats.last_operation_error) = Some(text);
     }
