@@ -123,4 +123,44 @@ mod tests {
     fn skips_a_backlog_over_the_limit() {
         assert_eq!(next_step(MS(1000), MS(10), MAX_LAG), Step::Skip(MS(990)));
     }
+
+    #[test]
+    fn each_distinct_operation_error_is_reported_once() {
+        use crate::state::ServeInfo;
+        use std::sync::{Arc, Mutex};
+
+        // PLSY with a negative frequency: operation error 6705 every scan.
+        let source = "LD M8000\nPLSY K-5 K10 Y0\n";
+        let plc = ecam_plc::scan::Plc::new(ecam_plc::il::parse(source, "op.il").unwrap()).unwrap();
+        let addr = "127.0.0.1:0".parse().unwrap();
+        let info = ServeInfo {
+            program: Some("op.il".into()),
+            timing: ecam_plc::sim::Timing::default(),
+            modbus: addr,
+            http: addr,
+            state_dir: None,
+        };
+        let heard = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&heard);
+        let shared = Shared::new(plc, None, info, move |event| {
+            if let Event::OperationError(text) = event {
+                sink.lock().unwrap().push(text);
+            }
+        });
+        for _ in 0..3 {
+            scan_period(&shared);
+        }
+        let heard = heard.lock().unwrap();
+        assert_eq!(heard.len(), 1, "{heard:?}");
+        assert!(
+            heard[0].starts_with("op.il:2: operation error 6705"),
+            "{heard:?}"
+        );
+        assert!(heard[0].ends_with("(D8067=6705)"), "{heard:?}");
+        assert_eq!(shared.stats.operation_errors.load(Ordering::Relaxed), 3);
+        assert_eq!(
+            lock(&shared.stats.last_operation_error).as_deref(),
+            Some(heard[0].as_str())
+        );
+    }
 }

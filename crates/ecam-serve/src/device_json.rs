@@ -193,6 +193,14 @@ mod tests {
     }
 
     #[test]
+    fn bodies_are_json_objects() {
+        let (batch, _) = parse_device_sets(br#"{"D100": 3183}"#).unwrap();
+        assert_eq!(batch.to_line(), "D100 3183");
+        let message = parse_device_sets(b"D100=3183").unwrap_err();
+        assert!(message.starts_with("the body is not JSON: "), "{message}");
+    }
+
+    #[test]
     fn read_only_and_bad_values_are_refused() {
         for body in [
             json!({"Y7": 1}),

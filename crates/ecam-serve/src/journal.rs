@@ -485,6 +485,25 @@ mod tests {
     }
 
     #[test]
+    fn a_failed_compaction_is_left_for_the_caller_and_the_write_stands() {
+        let dir = scratch("compact-fails");
+        let (mut journal, _) = Journal::open(&dir).unwrap();
+        journal.compact_after = 1;
+        // The open journal file outlives its directory; the snapshot cannot.
+        fs::remove_dir_all(&dir).unwrap();
+        let mut batch = WriteBatch::new();
+        batch.word(100, 5);
+        assert!(journal.append(&batch).is_ok());
+        assert!(matches!(
+            journal.take_compaction_failure(),
+            Some(JournalError::Io { .. })
+        ));
+        assert!(journal.take_compaction_failure().is_none());
+        assert_eq!(journal.records(), 1);
+        assert_eq!(journal.persisted().get(&Slot::D(100)), Some(&5));
+    }
+
+    #[test]
     fn a_long_journal_is_compacted_by_size() {
         let dir = scratch("compact-bytes");
         let (mut journal, _) = Journal::open(&dir).unwrap();
