@@ -13,15 +13,10 @@ use anyhow::Context as _;
 use ecam_plc::hardware::Wire;
 use ecam_plc::scan::Plc;
 use ecam_plc::sim::{self, Timing};
+use ecam_serve::{Event, Journal, LatchedImage, Recovery, ServeInfo, Shared, Slot};
 use tokio::net::TcpListener;
 
-use crate::serve::clock;
-use crate::serve::http;
-use crate::serve::journal::{Journal, Recovery};
-use crate::serve::modbus;
-use crate::serve::retain::{self, LatchedImage};
-use crate::serve::state::{ServeInfo, Shared};
-use crate::serve::write::Slot;
+use crate::serve::{http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
 pub const DEFAULT_MODBUS: &str = "127.0.0.1:5020";
@@ -123,10 +118,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             stdout.flush()?;
         }
         eprintln!("ecam serve: designer page at http://{}/", info.http);
-        let shared = Arc::new(Shared::new(plc, journal, info));
+        let shared = Arc::new(Shared::new(plc, journal, info, report));
         // The first scan runs before any client is served, so whatever it
         // changes of the restored values is the program's (or hardware's) doing.
-        clock::run_period(&shared);
+        ecam_serve::scan_period(&shared);
         if let Some((dir, recovery, restored)) = &restored {
             report_restore(&shared, dir, recovery, restored);
         }
@@ -135,7 +130,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
             std::thread::Builder::new()
                 .name("plc-scan".into())
-                .spawn(move || clock::run(&shared, &stop))
+                .spawn(move || ecam_serve::scan_loop(&shared, &stop))
                 .context("cannot start the scan loop")?
         };
         let saver = match &restored {
@@ -143,7 +138,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
                 let saver = std::thread::Builder::new()
                     .name("latched-save".into())
-                    .spawn(move || retain::save_periodically(&shared, &stop))
+                    .spawn(move || ecam_serve::save_latched_periodically(&shared, &stop))
                     .context("cannot start the latched-value saver")?;
                 Some(saver)
             }
@@ -168,6 +163,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         served
     })
+}
+
+/// Says on stderr what the server's operator should hear.
+fn report(event: Event) {
+    match event {
+        Event::OperationError(text) => eprintln!("ecam serve: warning: {text}"),
+        Event::WriteRefused(err) => eprintln!("ecam serve: write refused: {err}"),
+        Event::CompactionFailed(err) => {
+            eprintln!("ecam serve: journal compaction failed (will retry): {err}");
+        }
+        Event::LatchedSaveFailing(err) => {
+            eprintln!("ecam serve: cannot save latched values (will retry): {err}");
+        }
+        Event::LatchedSavesResumed => eprintln!("ecam serve: latched values saved again"),
+    }
 }
 
 /// Longest list of device names one stderr line gives.
@@ -203,7 +213,7 @@ fn report_restore(
             names(skipped.iter().copied())
         );
     }
-    let overridden = shared.read(|devices| retain::overridden(restored, devices));
+    let overridden = shared.read(|devices| ecam_serve::overridden(restored, devices));
     for o in overridden.iter().take(NAMES_SHOWN) {
         eprintln!(
             "ecam serve: state {dir}: {} restored as {}, but it is {} after the first scan \

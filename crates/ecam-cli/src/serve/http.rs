@@ -25,11 +25,10 @@ use axum::extract::{Path, Query, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
+use ecam_serve::{Shared, devices_to_json, parse_device_names, parse_device_sets};
 use serde_json::{Value, json};
 
 use super::design;
-use super::device_json;
-use super::state::Shared;
 
 const INDEX_HTML: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/index.html"));
 const APP_JS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/app.js"));
@@ -95,20 +94,17 @@ async fn get_devices(
     Query(query): Query<HashMap<String, String>>,
 ) -> Response {
     let names = query.get("names").map_or("", String::as_str);
-    match device_json::parse_names(names) {
+    match parse_device_names(names) {
         Ok(views) => json_text(
             StatusCode::OK,
-            shared.read(|devices| device_json::to_json(&views, devices)),
+            shared.read(|devices| devices_to_json(&views, devices)),
         ),
         Err(message) => error(StatusCode::BAD_REQUEST, &message),
     }
 }
 
 async fn post_devices(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
-    let parsed = serde_json::from_slice::<Value>(&body)
-        .map_err(|e| format!("the body is not JSON: {e}"))
-        .and_then(|value| device_json::parse_sets(&value));
-    let (batch, views) = match parsed {
+    let (batch, views) = match parse_device_sets(&body) {
         Ok(parsed) => parsed,
         Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
@@ -121,7 +117,7 @@ async fn post_devices(State(shared): State<Arc<Shared>>, body: Bytes) -> Respons
     match written {
         Ok(()) => json_text(
             StatusCode::OK,
-            shared.read(|devices| device_json::to_json(&views, devices)),
+            shared.read(|devices| devices_to_json(&views, devices)),
         ),
         Err(message) => error(
             StatusCode::INTERNAL_SERVER_ERROR,

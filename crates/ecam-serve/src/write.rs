@@ -4,7 +4,7 @@
 //! Only D words and M/X bits are written from outside: Y outputs belong to
 //! the program and counters to the hardware. Counter values appear only in
 //! records of latched values the program itself wrote (see
-//! [`super::retain`]). A line holds runs of consecutive devices, separated
+//! [`LatchedImage`](crate::LatchedImage)). A line holds runs of consecutive devices, separated
 //! by `;`, each run the first device's name and its values:
 //! `D100 5 -3 7;M0 1 0;X17 1;C231 70000` (X/Y names in octal, words as
 //! signed 16-bit values, bits 0/1, counters as their signed value). One
@@ -111,7 +111,7 @@ impl WriteBatch {
         self
     }
 
-    /// Adds `slot = value` as [`Journal`](super::journal::Journal) keeps it
+    /// Adds `slot = value` as [`Journal`](crate::Journal) keeps it
     /// (`value` as [`Self::writes`] gives it back; a counter value outside
     /// the counter's range, or a bit other than 0/1, is stored as the
     /// device would hold it).
@@ -127,7 +127,7 @@ impl WriteBatch {
     }
 
     /// Adds a bit (`device` must be M or X; others are ignored, so callers
-    /// check writability first, as [`super::map::writable_coils`] does).
+    /// check writability first, as [`writable_coil_range`](crate::writable_coil_range) does).
     pub fn bit(&mut self, device: Device, on: bool) -> &mut Self {
         if let Some(slot) = Slot::of(device).filter(|s| s.is_bit()) {
             self.writes.push((slot, i32::from(on)));

@@ -10,16 +10,16 @@ use ecam_plc::devices::{Device, Devices};
 use ecam_plc::view::View;
 use serde_json::Value;
 
-use super::write::WriteBatch;
+use crate::write::WriteBatch;
 
 /// Most values one `GET /api/devices` returns.
-pub const MAX_NAMES: usize = 10_000;
+pub const MAX_DEVICE_NAMES: usize = 10_000;
 
 /// Expands a comma-separated list of `NAME[:COUNT]`, in order, each device once.
 ///
 /// # Errors
-/// An unknown or out-of-range name, a bad count, or more than [`MAX_NAMES`] values.
-pub fn parse_names(names: &str) -> Result<Vec<View>, String> {
+/// An unknown or out-of-range name, a bad count, or more than [`MAX_DEVICE_NAMES`] values.
+pub fn parse_device_names(names: &str) -> Result<Vec<View>, String> {
     let mut views = Vec::new();
     let mut seen = HashSet::new();
     for item in names.split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -41,8 +41,8 @@ pub fn parse_names(names: &str) -> Result<Vec<View>, String> {
             if seen.insert(view) {
                 views.push(view);
             }
-            if views.len() > MAX_NAMES {
-                return Err(format!("at most {MAX_NAMES} values per request"));
+            if views.len() > MAX_DEVICE_NAMES {
+                return Err(format!("at most {MAX_DEVICE_NAMES} values per request"));
             }
         }
     }
@@ -54,7 +54,7 @@ pub fn parse_names(names: &str) -> Result<Vec<View>, String> {
 
 /// `{"D2000": 5200, "M0": 1}` with keys in the order of `views` (like
 /// `ecam plc run`'s dump).
-pub fn to_json(views: &[View], devices: &Devices) -> String {
+pub fn devices_to_json(views: &[View], devices: &Devices) -> String {
     let mut json = String::from("{");
     for (i, view) in views.iter().enumerate() {
         if i > 0 {
@@ -71,9 +71,16 @@ pub fn to_json(views: &[View], devices: &Devices) -> String {
 /// to answer with. Keys are taken in name order.
 ///
 /// # Errors
-/// Not an object, an unknown name, a Y output or counter (read only from
-/// outside), or a value that does not fit the device.
-pub fn parse_sets(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
+/// Not JSON, not an object, an unknown name, a Y output or counter (read
+/// only from outside), or a value that does not fit the device.
+pub fn parse_device_sets(body: &[u8]) -> Result<(WriteBatch, Vec<View>), String> {
+    serde_json::from_slice::<Value>(body)
+        .map_err(|e| format!("the body is not JSON: {e}"))
+        .and_then(|value| sets_from_json(&value))
+}
+
+/// [`parse_device_sets`] once the body is JSON.
+fn sets_from_json(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
     let object = body
         .as_object()
         .ok_or("the body must be a JSON object such as {\"D100\": 3183, \"M0\": 1}")?;
@@ -148,13 +155,13 @@ mod tests {
 
     #[test]
     fn names_expand_in_order_without_repeats() {
-        let views = parse_names("D2019:2, DD2019, M0,D2019,X17").unwrap();
+        let views = parse_device_names("D2019:2, DD2019, M0,D2019,X17").unwrap();
         let names: Vec<String> = views.iter().map(ToString::to_string).collect();
         assert_eq!(names, ["D2019", "D2020", "DD2019", "M0", "X17"]);
-        assert!(parse_names("").is_err());
-        assert!(parse_names("D8512").is_err());
-        assert!(parse_names("D8511:2").is_err());
-        assert!(parse_names("Q1").is_err());
+        assert!(parse_device_names("").is_err());
+        assert!(parse_device_names("D8512").is_err());
+        assert!(parse_device_names("D8511:2").is_err());
+        assert!(parse_device_names("Q1").is_err());
     }
 
     #[test]
@@ -162,18 +169,19 @@ mod tests {
         let mut devices = Devices::new();
         devices.set_dword(2019, -70000).unwrap();
         devices.set_m(0, true).unwrap();
-        let views = parse_names("DD2019,D2019,M0").unwrap();
+        let views = parse_device_names("DD2019,D2019,M0").unwrap();
         assert_eq!(
-            to_json(&views, &devices),
+            devices_to_json(&views, &devices),
             r#"{"DD2019": -70000, "D2019": -4464, "M0": 1}"#
         );
     }
 
     #[test]
     fn sets_become_word_and_bit_writes() {
-        let (batch, views) =
-            parse_sets(&json!({"DD100": -2, "DE106": 1.5, "M0": true, "X17": "1", "D7": 65535}))
-                .unwrap();
+        let (batch, views) = sets_from_json(
+            &json!({"DD100": -2, "DE106": 1.5, "M0": true, "X17": "1", "D7": 65535}),
+        )
+        .unwrap();
         let mut devices = Devices::new();
         batch.apply(&mut devices);
         assert_eq!(devices.dword(100), Ok(-2));
@@ -182,6 +190,14 @@ mod tests {
         assert_eq!(devices.bit(Device::X(15)), Ok(true));
         assert_eq!(devices.word(7), Ok(-1));
         assert_eq!(views.len(), 5);
+    }
+
+    #[test]
+    fn bodies_are_json_objects() {
+        let (batch, _) = parse_device_sets(br#"{"D100": 3183}"#).unwrap();
+        assert_eq!(batch.to_line(), "D100 3183");
+        let message = parse_device_sets(b"D100=3183").unwrap_err();
+        assert!(message.starts_with("the body is not JSON: "), "{message}");
     }
 
     #[test]
@@ -200,7 +216,7 @@ mod tests {
             json!({"DD100": 1, "D101": 5}),
             json!({"X17": 1, "x017": 0}),
         ] {
-            assert!(parse_sets(&body).is_err(), "{body}");
+            assert!(sets_from_json(&body).is_err(), "{body}");
         }
     }
 }

@@ -2,7 +2,7 @@
 //!
 //! Every write a client makes (Modbus 0x05/0x06/0x0F/0x10, HTTP `POST
 //! /api/devices`) is appended to `DIR/journal.log` as one line (see
-//! [`super::write`]) and the file is `fdatasync`ed *before* the response is
+//! [`WriteBatch::to_line`]) and the file is `fdatasync`ed *before* the response is
 //! sent, so an acknowledged write survives `kill -9` and a power cut. A
 //! write the server could not make durable is refused (Modbus exception 04,
 //! HTTP 500) and not applied.
@@ -17,7 +17,7 @@
 //! runs while serving once the journal holds [`COMPACT_AFTER`] records or
 //! [`COMPACT_AFTER_BYTES`] bytes.
 //!
-//! What is kept (see [`super::retain`] for the rules): the last value
+//! What is kept (see [`is_kept`](crate::is_kept) for the rules): the last value
 //! *written from outside* to each ordinary D, M and X device, and the
 //! latched devices' values the program itself wrote, saved periodically.
 //! Special devices (D8000–D8511, M8000–M8511) are never kept: a write to
@@ -32,8 +32,8 @@ use std::path::{Path, PathBuf};
 
 use ecam_plc::devices::Devices;
 
-use super::retain;
-use super::write::{Slot, WriteBatch};
+use crate::retain;
+use crate::write::{Slot, WriteBatch};
 
 /// Journal file name inside the state directory.
 pub const JOURNAL_FILE: &str = "journal.log";
@@ -123,6 +123,7 @@ pub struct Journal {
     compact_after: usize,
     compact_after_bytes: u64,
     broken: bool,
+    compaction_failure: Option<JournalError>,
     persisted: BTreeMap<Slot, i32>,
 }
 
@@ -247,6 +248,7 @@ impl Journal {
                 compact_after: COMPACT_AFTER,
                 compact_after_bytes: COMPACT_AFTER_BYTES,
                 broken: false,
+                compaction_failure: None,
                 persisted,
             },
             Recovery {
@@ -320,10 +322,18 @@ impl Journal {
             // The record is already durable, so this write stands whatever
             // happens here; a failed compaction is retried on the next one.
             if let Err(err) = self.compact() {
-                eprintln!("ecam serve: journal compaction failed (will retry): {err}");
+                self.compaction_failure = Some(err);
             }
         }
         Ok(())
+    }
+
+    /// The failure of the last compaction [`Self::append`] tried, if it
+    /// failed and was not taken yet. The append itself stood: its record
+    /// was durable before the compaction began, which is retried on the
+    /// next append.
+    pub fn take_compaction_failure(&mut self) -> Option<JournalError> {
+        self.compaction_failure.take()
     }
 
     /// Folds the journal into the snapshot and empties it.
@@ -472,6 +482,25 @@ mod tests {
         assert_eq!(expected.get(&Slot::D(10)), Some(&10));
         assert_eq!(expected.get(&Slot::D(49)), Some(&49));
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_failed_compaction_is_left_for_the_caller_and_the_write_stands() {
+        let dir = scratch("compact-fails");
+        let (mut journal, _) = Journal::open(&dir).unwrap();
+        journal.compact_after = 1;
+        // The open journal file outlives its directory; the snapshot cannot.
+        fs::remove_dir_all(&dir).unwrap();
+        let mut batch = WriteBatch::new();
+        batch.word(100, 5);
+        assert!(journal.append(&batch).is_ok());
+        assert!(matches!(
+            journal.take_compaction_failure(),
+            Some(JournalError::Io { .. })
+        ));
+        assert!(journal.take_compaction_failure().is_none());
+        assert_eq!(journal.records(), 1);
+        assert_eq!(journal.persisted().get(&Slot::D(100)), Some(&5));
     }
 
     #[test]

@@ -5,6 +5,10 @@
 //! or one write. Writes go through a second lock, the journal's, which is
 //! taken first and held until the write is applied, so the journal's order
 //! is the order writes reach device memory.
+//!
+//! The library prints nothing: what a server operator should hear about
+//! (a new operation error, a refused write, a failed save) is handed to the
+//! [`Event`] sink the binary gives [`Shared::new`].
 
 use std::collections::HashSet;
 use std::net::SocketAddr;
@@ -17,9 +21,10 @@ use ecam_plc::scan::Plc;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
-use super::journal::{Journal, JournalError};
-use super::retain::LatchedImage;
-use super::write::WriteBatch;
+use crate::journal::{Journal, JournalError};
+use crate::pdu::{Exception, Response};
+use crate::retain::LatchedImage;
+use crate::write::WriteBatch;
 
 /// How the server was started (for `GET /api/status`).
 #[derive(Clone, Debug)]
@@ -64,9 +69,39 @@ pub struct Stats {
     pub latched_saves: AtomicU64,
 }
 
+impl Stats {
+    /// Counts one Modbus answer: a response, or an exception.
+    pub fn count_modbus_reply(&self, reply: &Result<Response, Exception>) {
+        self.modbus_requests.fetch_add(1, Ordering::Relaxed);
+        if reply.is_err() {
+            self.modbus_exceptions.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+}
+
+/// Something the server's operator should hear about, handed to the sink
+/// given to [`Shared::new`] as it happens (the binary prints it on stderr).
+#[derive(Debug)]
+pub enum Event {
+    /// A scan raised an operation error not reported before (each distinct
+    /// line and code once): `file:line: message (D8067=code)`.
+    OperationError(String),
+    /// A Modbus write could not be made durable; it was refused with
+    /// exception 04 and not applied.
+    WriteRefused(JournalError),
+    /// Folding the journal into the snapshot failed after a durable append;
+    /// the write stands and the compaction is tried again on the next one.
+    CompactionFailed(JournalError),
+    /// A periodic save of latched values failed (reported once until saves
+    /// work again); it is retried every [`SAVE_PERIOD`](crate::SAVE_PERIOD).
+    LatchedSaveFailing(JournalError),
+    /// Periodic saves of latched values work again after failing.
+    LatchedSavesResumed,
+}
+
 /// Locks `mutex`, carrying on after a panic elsewhere: device memory is
 /// plain data, always in a usable state.
-pub fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+pub(crate) fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
     mutex.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
@@ -78,17 +113,39 @@ pub struct Shared {
     pub info: ServeInfo,
     /// Counters.
     pub stats: Stats,
+    events: Box<dyn Fn(Event) + Send + Sync>,
 }
 
 impl Shared {
-    /// Shares `plc` (with any kept values already restored) and `journal`.
-    pub fn new(plc: Plc, journal: Option<Journal>, info: ServeInfo) -> Self {
+    /// Shares `plc` (with any kept values already restored) and `journal`;
+    /// `events` hears what the operator should (see [`Event`]).
+    pub fn new(
+        plc: Plc,
+        journal: Option<Journal>,
+        info: ServeInfo,
+        events: impl Fn(Event) + Send + Sync + 'static,
+    ) -> Self {
         Self {
             plc: Mutex::new(plc),
             journal: Mutex::new(journal),
             info,
             stats: Stats::default(),
+            events: Box::new(events),
         }
+    }
+
+    /// Hands `event` to the sink given to [`Self::new`].
+    pub(crate) fn report(&self, event: Event) {
+        (self.events)(event);
+    }
+
+    /// Appends `batch` to `journal`, reporting a failed compaction.
+    fn append(&self, journal: &mut Journal, batch: &WriteBatch) -> Result<(), JournalError> {
+        let appended = journal.append(batch);
+        if let Some(err) = journal.take_compaction_failure() {
+            self.report(Event::CompactionFailed(err));
+        }
+        appended
     }
 
     /// Runs `f` with the PLC locked (the scan loop).
@@ -110,14 +167,14 @@ impl Shared {
     pub fn write(&self, batch: &WriteBatch) -> Result<(), JournalError> {
         let mut journal = lock(&self.journal);
         if let Some(journal) = journal.as_mut() {
-            journal.append(batch)?;
+            self.append(journal, batch)?;
         }
         batch.apply(lock(&self.plc).devices_mut());
         Ok(())
     }
 
     /// Saves the latched devices' values that differ from what a restart
-    /// would restore, as one journal record (see [`super::retain`]); returns
+    /// would restore, as one journal record (see [`LatchedImage`]); returns
     /// how many were saved. The journal's lock is held throughout, so no
     /// client write falls between the copy and the record; the PLC's only
     /// for the copy into `image`.
@@ -131,7 +188,7 @@ impl Shared {
         };
         image.capture(lock(&self.plc).devices());
         let changes = image.changes(journal.persisted());
-        journal.append(&changes)?;
+        self.append(journal, &changes)?;
         self.stats.latched_saves.fetch_add(1, Ordering::Relaxed);
         Ok(changes.writes().len())
     }

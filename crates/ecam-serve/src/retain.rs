@@ -26,8 +26,8 @@ use std::time::{Duration, Instant};
 
 use ecam_plc::devices::{C_COUNT, C_LATCHED, D_LATCHED, Device, Devices, M_LATCHED, Retention};
 
-use super::state::Shared;
-use super::write::{Slot, WriteBatch};
+use crate::state::{Event, Shared};
+use crate::write::{Slot, WriteBatch};
 
 /// How often the latched values the program wrote are saved: a crash loses
 /// at most this much of the program's latched work (never a client write).
@@ -40,7 +40,7 @@ pub fn is_kept(slot: Slot) -> bool {
 
 /// `batch` without the devices that are not kept, or `None` when every
 /// device of it is kept (the common case, which then costs no copy).
-pub fn kept(batch: &WriteBatch) -> Option<WriteBatch> {
+pub(crate) fn kept(batch: &WriteBatch) -> Option<WriteBatch> {
     if batch.writes().iter().all(|&(slot, _)| is_kept(slot)) {
         return None;
     }
@@ -52,7 +52,7 @@ pub fn kept(batch: &WriteBatch) -> Option<WriteBatch> {
 }
 
 /// The value `slot` holds in `devices`, as [`WriteBatch::writes`] gives it.
-pub fn value_of(devices: &Devices, slot: Slot) -> i32 {
+pub(crate) fn value_of(devices: &Devices, slot: Slot) -> i32 {
     // Slots only hold devices that exist, so these reads cannot fail.
     match slot {
         Slot::D(n) => devices.word(n).map(i32::from).unwrap_or(0),
@@ -157,8 +157,11 @@ pub fn overridden(restored: &BTreeMap<Slot, i32>, devices: &Devices) -> Vec<Over
 }
 
 /// Saves the latched values every [`SAVE_PERIOD`] until `stop` is set
-/// (the caller saves once more after the scan loop has stopped).
-pub fn save_periodically(shared: &Shared, stop: &AtomicBool) {
+/// (the caller saves once more after the scan loop has stopped), on the
+/// calling thread. A failing save is reported once as
+/// [`Event::LatchedSaveFailing`], and [`Event::LatchedSavesResumed`] when
+/// saves work again.
+pub fn save_latched_periodically(shared: &Shared, stop: &AtomicBool) {
     let mut image = LatchedImage::new();
     let mut next = Instant::now() + SAVE_PERIOD;
     let mut failing = false;
@@ -173,12 +176,12 @@ pub fn save_periodically(shared: &Shared, stop: &AtomicBool) {
         match shared.save_latched(&mut image) {
             Ok(_) if failing => {
                 failing = false;
-                eprintln!("ecam serve: latched values saved again");
+                shared.report(Event::LatchedSavesResumed);
             }
             Ok(_) => {}
             Err(err) if !failing => {
                 failing = true;
-                eprintln!("ecam serve: cannot save latched values (will retry): {err}");
+                shared.report(Event::LatchedSaveFailing(err));
             }
             Err(_) => {}
         }

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use ecam_plc::sim::{self, RunLength};
 
-use super::state::{Shared, lock};
+use crate::state::{Event, Shared, lock};
 
 /// Largest lag the loop catches up by running scans back to back.
 pub const MAX_LAG: Duration = Duration::from_millis(200);
@@ -50,8 +50,8 @@ impl Drop for Scanning<'_> {
     }
 }
 
-/// Runs the PLC until `stop` is set.
-pub fn run(shared: &Shared, stop: &AtomicBool) {
+/// Runs the PLC on the calling thread until `stop` is set.
+pub fn scan_loop(shared: &Shared, stop: &AtomicBool) {
     shared.stats.scanning.store(true, Ordering::Relaxed);
     let _scanning = Scanning(&shared.stats.scanning);
     let mut origin = Instant::now();
@@ -74,15 +74,17 @@ pub fn run(shared: &Shared, stop: &AtomicBool) {
                 let behind = origin.elapsed().saturating_sub(simulated);
                 let us = u64::try_from(behind.as_micros()).unwrap_or(u64::MAX);
                 shared.stats.lag_us.store(us, Ordering::Relaxed);
-                run_period(shared);
+                scan_period(shared);
             }
         }
     }
 }
 
 /// Runs one scan period now (one scan, then the hardware ticks covering
-/// the scan period) and reports the operation errors it raised.
-pub fn run_period(shared: &Shared) {
+/// the scan period) and reports the operation errors it raised: each is
+/// counted and kept as the last one, and each distinct one (by line and
+/// code) is reported once as [`Event::OperationError`].
+pub fn scan_period(shared: &Shared) {
     let timing = shared.info.timing;
     let result = shared.with_plc(|plc| sim::run(plc, timing, RunLength::Scans(1), |_| {}));
     // The timing was checked non-zero at start, so `run` cannot fail.
@@ -96,7 +98,7 @@ pub fn run_period(shared: &Shared) {
         let text = format!("{file}:{}: {} (D8067={})", e.line, e.error, e.error.code);
         // Like `ecam plc run`: each distinct error once on stderr.
         if lock(&shared.stats.reported_errors).insert((e.line, e.error.code)) {
-            eprintln!("ecam serve: warning: {text}");
+            shared.report(Event::OperationError(text.clone()));
         }
         *lock(&shared.stats.last_operation_error) = Some(text);
     }
@@ -120,5 +122,45 @@ mod tests {
     #[test]
     fn skips_a_backlog_over_the_limit() {
         assert_eq!(next_step(MS(1000), MS(10), MAX_LAG), Step::Skip(MS(990)));
+    }
+
+    #[test]
+    fn each_distinct_operation_error_is_reported_once() {
+        use crate::state::ServeInfo;
+        use std::sync::{Arc, Mutex};
+
+        // PLSY with a negative frequency: operation error 6705 every scan.
+        let source = "LD M8000\nPLSY K-5 K10 Y0\n";
+        let plc = ecam_plc::scan::Plc::new(ecam_plc::il::parse(source, "op.il").unwrap()).unwrap();
+        let addr = "127.0.0.1:0".parse().unwrap();
+        let info = ServeInfo {
+            program: Some("op.il".into()),
+            timing: ecam_plc::sim::Timing::default(),
+            modbus: addr,
+            http: addr,
+            state_dir: None,
+        };
+        let heard = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&heard);
+        let shared = Shared::new(plc, None, info, move |event| {
+            if let Event::OperationError(text) = event {
+                sink.lock().unwrap().push(text);
+            }
+        });
+        for _ in 0..3 {
+            scan_period(&shared);
+        }
+        let heard = heard.lock().unwrap();
+        assert_eq!(heard.len(), 1, "{heard:?}");
+        assert!(
+            heard[0].starts_with("op.il:2: operation error 6705"),
+            "{heard:?}"
+        );
+        assert!(heard[0].ends_with("(D8067=6705)"), "{heard:?}");
+        assert_eq!(shared.stats.operation_errors.load(Ordering::Relaxed), 3);
+        assert_eq!(
+            lock(&shared.stats.last_operation_error).as_deref(),
+            Some(heard[0].as_str())
+        );
     }
 }

@@ -1,4 +1,4 @@
-//! The Modbus TCP address map (the **contract** in ARCHITECTURE.md):
+//! The Modbus TCP address map (the **contract** in `docs/architecture.md`):
 //!
 //! | device | Modbus object | address |
 //! |---|---|---|
@@ -14,7 +14,7 @@
 
 use ecam_plc::devices::{D_COUNT, Device, M_COUNT, XY_COUNT};
 
-use super::pdu::Exception;
+use crate::pdu::Exception;
 
 /// Coil address of X0.
 pub const X_COIL_BASE: u16 = 10000;
@@ -62,7 +62,7 @@ pub struct CoilRange {
 impl CoilRange {
     /// The devices of the range, in address order.
     pub fn devices(self) -> impl Iterator<Item = Device> {
-        // `coils` checked first + quantity ≤ the area's size, so no overflow.
+        // `coil_range` checked first + quantity ≤ the area's size, so no overflow.
         (self.first..self.first + self.quantity).map(move |n| self.area.device(n))
     }
 }
@@ -96,7 +96,7 @@ fn inside(address: u16, quantity: u16, base: u16, size: u16) -> Option<u16> {
 /// # Errors
 /// [`Exception::IllegalDataAddress`] when the range is not wholly inside
 /// one area, [`Exception::IllegalDataValue`] for quantity 0.
-pub fn coils(address: u16, quantity: u16) -> Result<CoilRange, Exception> {
+pub fn coil_range(address: u16, quantity: u16) -> Result<CoilRange, Exception> {
     if quantity == 0 {
         return Err(Exception::IllegalDataValue);
     }
@@ -119,9 +119,9 @@ pub fn coils(address: u16, quantity: u16) -> Result<CoilRange, Exception> {
 /// The coils a write of `quantity` coils at `address` covers.
 ///
 /// # Errors
-/// As [`coils`], and [`Exception::IllegalDataAddress`] for the read-only Y area.
-pub fn writable_coils(address: u16, quantity: u16) -> Result<CoilRange, Exception> {
-    let range = coils(address, quantity)?;
+/// As [`coil_range`], and [`Exception::IllegalDataAddress`] for the read-only Y area.
+pub fn writable_coil_range(address: u16, quantity: u16) -> Result<CoilRange, Exception> {
+    let range = coil_range(address, quantity)?;
     if range.area.is_writable() {
         Ok(range)
     } else {
@@ -133,7 +133,7 @@ pub fn writable_coils(address: u16, quantity: u16) -> Result<CoilRange, Exceptio
 ///
 /// # Errors
 /// [`Exception::IllegalDataAddress`] past D8511, [`Exception::IllegalDataValue`] for quantity 0.
-pub fn registers(address: u16, quantity: u16) -> Result<RegisterRange, Exception> {
+pub fn register_range(address: u16, quantity: u16) -> Result<RegisterRange, Exception> {
     if quantity == 0 {
         return Err(Exception::IllegalDataValue);
     }
@@ -161,28 +161,28 @@ mod tests {
     #[test]
     fn areas_sit_where_the_contract_puts_them() {
         assert_eq!(
-            coils(0, 1),
+            coil_range(0, 1),
             Ok(CoilRange {
                 area: CoilArea::M,
                 first: 0,
                 quantity: 1
             })
         );
-        assert_eq!(coils(8511, 1).map(|r| r.area), Ok(CoilArea::M));
+        assert_eq!(coil_range(8511, 1).map(|r| r.area), Ok(CoilArea::M));
         assert_eq!(
-            coils(10015, 1),
+            coil_range(10015, 1),
             Ok(CoilRange {
                 area: CoilArea::X,
                 first: 15,
                 quantity: 1
             })
         );
-        assert_eq!(coils(12000, 256).map(|r| r.area), Ok(CoilArea::Y));
+        assert_eq!(coil_range(12000, 256).map(|r| r.area), Ok(CoilArea::Y));
         assert_eq!(coil_address(Device::parse("X17").unwrap()), Some(10015));
         assert_eq!(coil_address(Device::parse("Y7").unwrap()), Some(12007));
         assert_eq!(coil_address(Device::D(0)), None);
         assert_eq!(
-            registers(8511, 1),
+            register_range(8511, 1),
             Ok(RegisterRange {
                 first: 8511,
                 quantity: 1
@@ -204,20 +204,23 @@ mod tests {
             (65535, 2000),
         ] {
             assert_eq!(
-                coils(address, quantity),
+                coil_range(address, quantity),
                 Err(Exception::IllegalDataAddress),
                 "{address}+{quantity}"
             );
         }
-        assert_eq!(registers(8511, 2), Err(Exception::IllegalDataAddress));
-        assert_eq!(registers(10000, 1), Err(Exception::IllegalDataAddress));
-        assert_eq!(registers(0, 0), Err(Exception::IllegalDataValue));
+        assert_eq!(register_range(8511, 2), Err(Exception::IllegalDataAddress));
+        assert_eq!(register_range(10000, 1), Err(Exception::IllegalDataAddress));
+        assert_eq!(register_range(0, 0), Err(Exception::IllegalDataValue));
     }
 
     #[test]
     fn outputs_are_read_only() {
-        assert_eq!(writable_coils(12007, 1), Err(Exception::IllegalDataAddress));
-        assert_eq!(writable_coils(10000, 256).map(|r| r.quantity), Ok(256));
+        assert_eq!(
+            writable_coil_range(12007, 1),
+            Err(Exception::IllegalDataAddress)
+        );
+        assert_eq!(writable_coil_range(10000, 256).map(|r| r.quantity), Ok(256));
     }
 
     proptest! {
@@ -226,13 +229,13 @@ mod tests {
         /// the address of each device maps back to it.
         #[test]
         fn accepted_ranges_name_existing_devices(address: u16, quantity in 1u16..=2000) {
-            if let Ok(range) = coils(address, quantity) {
+            if let Ok(range) = coil_range(address, quantity) {
                 for (k, device) in range.devices().enumerate() {
                     prop_assert!(device.check().is_ok());
                     prop_assert_eq!(coil_address(device), Some(address + k as u16));
                 }
             }
-            if let Ok(range) = registers(address, quantity) {
+            if let Ok(range) = register_range(address, quantity) {
                 prop_assert!(u32::from(range.first) + u32::from(range.quantity) <= u32::from(D_COUNT));
             }
         }

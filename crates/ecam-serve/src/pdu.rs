@@ -47,6 +47,8 @@ impl Exception {
     }
 }
 
+impl std::error::Error for Exception {}
+
 impl fmt::Display for Exception {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
@@ -119,6 +121,20 @@ pub enum Request {
     },
 }
 
+impl Request {
+    /// Whether the request writes (0x05, 0x06, 0x0F, 0x10): answering it
+    /// may wait for the journal's sync to disk.
+    pub const fn is_write(&self) -> bool {
+        matches!(
+            self,
+            Self::WriteSingleCoil { .. }
+                | Self::WriteSingleRegister { .. }
+                | Self::WriteMultipleCoils { .. }
+                | Self::WriteMultipleRegisters { .. }
+        )
+    }
+}
+
 /// A successful response.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Response {
@@ -186,7 +202,7 @@ fn write_block(
 /// # Errors
 /// The exception to send back: 01 for a function we do not serve, 03 for a
 /// malformed body. Addresses are checked later, against the map.
-pub fn parse(pdu: &[u8]) -> Result<Request, Exception> {
+pub fn parse_request(pdu: &[u8]) -> Result<Request, Exception> {
     let function = *pdu.first().ok_or(Exception::IllegalFunction)?;
     Ok(match function {
         0x01 => {
@@ -250,7 +266,7 @@ pub fn parse(pdu: &[u8]) -> Result<Request, Exception> {
 
 /// Encodes the response PDU to a request with function code `function`:
 /// the response itself, or `function | 0x80` and the exception code.
-pub fn encode(function: u8, reply: &Result<Response, Exception>) -> Vec<u8> {
+pub fn encode_response(function: u8, reply: &Result<Response, Exception>) -> Vec<u8> {
     let mut out = Vec::new();
     match reply {
         Err(exception) => {
@@ -299,32 +315,38 @@ mod tests {
     #[test]
     fn reads_decode_and_check_quantity() {
         assert_eq!(
-            parse(&[0x03, 0x07, 0xD0, 0x00, 0x02]),
+            parse_request(&[0x03, 0x07, 0xD0, 0x00, 0x02]),
             Ok(Request::ReadHoldingRegisters {
                 address: 2000,
                 quantity: 2
             })
         );
-        assert_eq!(parse(&[0x03, 0, 0, 0, 0]), Err(Exception::IllegalDataValue));
         assert_eq!(
-            parse(&[0x03, 0, 0, 0, 126]),
+            parse_request(&[0x03, 0, 0, 0, 0]),
             Err(Exception::IllegalDataValue)
         );
         assert_eq!(
-            parse(&[0x01, 0, 0, 0x07, 0xD0]),
+            parse_request(&[0x03, 0, 0, 0, 126]),
+            Err(Exception::IllegalDataValue)
+        );
+        assert_eq!(
+            parse_request(&[0x01, 0, 0, 0x07, 0xD0]),
             Ok(Request::ReadCoils {
                 address: 0,
                 quantity: 2000
             })
         );
         assert_eq!(
-            parse(&[0x01, 0, 0, 0x07, 0xD1]),
+            parse_request(&[0x01, 0, 0, 0x07, 0xD1]),
             Err(Exception::IllegalDataValue)
         );
         // Too short and too long bodies.
-        assert_eq!(parse(&[0x03, 0, 0]), Err(Exception::IllegalDataValue));
         assert_eq!(
-            parse(&[0x03, 0, 0, 0, 1, 9]),
+            parse_request(&[0x03, 0, 0]),
+            Err(Exception::IllegalDataValue)
+        );
+        assert_eq!(
+            parse_request(&[0x03, 0, 0, 0, 1, 9]),
             Err(Exception::IllegalDataValue)
         );
     }
@@ -332,35 +354,41 @@ mod tests {
     #[test]
     fn unknown_functions_are_illegal() {
         for f in [0x00, 0x07, 0x08, 0x11, 0x16, 0x17, 0x2B, 0x41, 0x83, 0xFF] {
-            assert_eq!(parse(&[f, 0, 0, 0, 1]), Err(Exception::IllegalFunction));
+            assert_eq!(
+                parse_request(&[f, 0, 0, 0, 1]),
+                Err(Exception::IllegalFunction)
+            );
         }
-        assert_eq!(parse(&[]), Err(Exception::IllegalFunction));
+        assert_eq!(parse_request(&[]), Err(Exception::IllegalFunction));
     }
 
     #[test]
     fn single_coil_takes_only_the_two_legal_values() {
         assert_eq!(
-            parse(&[0x05, 0x27, 0x1F, 0xFF, 0x00]),
+            parse_request(&[0x05, 0x27, 0x1F, 0xFF, 0x00]),
             Ok(Request::WriteSingleCoil {
                 address: 10015,
                 on: true
             })
         );
         assert_eq!(
-            parse(&[0x05, 0, 1, 0, 0]),
+            parse_request(&[0x05, 0, 1, 0, 0]),
             Ok(Request::WriteSingleCoil {
                 address: 1,
                 on: false
             })
         );
-        assert_eq!(parse(&[0x05, 0, 1, 0, 1]), Err(Exception::IllegalDataValue));
+        assert_eq!(
+            parse_request(&[0x05, 0, 1, 0, 1]),
+            Err(Exception::IllegalDataValue)
+        );
     }
 
     #[test]
     fn multiple_coils_need_a_matching_byte_count() {
         // 10 coils: 0b1100_1101, 0b01 → on at 0, 2, 3, 6, 7, 8.
         let pdu = [0x0F, 0, 20, 0, 10, 2, 0xCD, 0x01];
-        let Ok(Request::WriteMultipleCoils { address, coils }) = parse(&pdu) else {
+        let Ok(Request::WriteMultipleCoils { address, coils }) = parse_request(&pdu) else {
             panic!("should decode");
         };
         assert_eq!(address, 20);
@@ -368,16 +396,16 @@ mod tests {
         assert_eq!(on, vec![0, 2, 3, 6, 7, 8]);
         // Quantity claims more coils than the bytes hold: 03, no panic.
         assert_eq!(
-            parse(&[0x0F, 0, 0, 0, 100, 1, 0xFF]),
+            parse_request(&[0x0F, 0, 0, 0, 100, 1, 0xFF]),
             Err(Exception::IllegalDataValue)
         );
         // Byte count says 2, only 1 byte follows.
         assert_eq!(
-            parse(&[0x0F, 0, 0, 0, 10, 2, 0xFF]),
+            parse_request(&[0x0F, 0, 0, 0, 10, 2, 0xFF]),
             Err(Exception::IllegalDataValue)
         );
         assert_eq!(
-            parse(&[0x0F, 0, 0, 0, 0, 0]),
+            parse_request(&[0x0F, 0, 0, 0, 0, 0]),
             Err(Exception::IllegalDataValue)
         );
     }
@@ -385,7 +413,7 @@ mod tests {
     #[test]
     fn multiple_registers_need_a_matching_byte_count() {
         assert_eq!(
-            parse(&[0x10, 0, 100, 0, 2, 4, 0x12, 0x34, 0xFF, 0xFE]),
+            parse_request(&[0x10, 0, 100, 0, 2, 4, 0x12, 0x34, 0xFF, 0xFE]),
             Ok(Request::WriteMultipleRegisters {
                 address: 100,
                 values: vec![0x1234, 0xFFFE]
@@ -393,15 +421,15 @@ mod tests {
         );
         // Quantity 0x8000 would overflow a naive `quantity * 2`.
         assert_eq!(
-            parse(&[0x10, 0, 0, 0x80, 0, 0]),
+            parse_request(&[0x10, 0, 0, 0x80, 0, 0]),
             Err(Exception::IllegalDataValue)
         );
         assert_eq!(
-            parse(&[0x10, 0, 0, 0, 124, 248]),
+            parse_request(&[0x10, 0, 0, 0, 124, 248]),
             Err(Exception::IllegalDataValue)
         );
         assert_eq!(
-            parse(&[0x10, 0, 0, 0, 1, 2, 0x12]),
+            parse_request(&[0x10, 0, 0, 0, 1, 2, 0x12]),
             Err(Exception::IllegalDataValue)
         );
     }
@@ -409,7 +437,7 @@ mod tests {
     #[test]
     fn responses_encode_per_the_specification() {
         assert_eq!(
-            encode(
+            encode_response(
                 0x01,
                 &Ok(Response::Bits(vec![
                     true, false, true, true, false, false, true, true, true
@@ -418,11 +446,11 @@ mod tests {
             vec![0x01, 2, 0xCD, 0x01]
         );
         assert_eq!(
-            encode(0x03, &Ok(Response::Registers(vec![0x1234, 1]))),
+            encode_response(0x03, &Ok(Response::Registers(vec![0x1234, 1]))),
             vec![0x03, 4, 0x12, 0x34, 0, 1]
         );
         assert_eq!(
-            encode(
+            encode_response(
                 0x06,
                 &Ok(Response::Echo {
                     address: 7,
@@ -432,7 +460,7 @@ mod tests {
             vec![0x06, 0, 7, 0, 9]
         );
         assert_eq!(
-            encode(
+            encode_response(
                 0x10,
                 &Ok(Response::Written {
                     address: 7,
@@ -442,7 +470,7 @@ mod tests {
             vec![0x10, 0, 7, 0, 3]
         );
         assert_eq!(
-            encode(0x05, &Err(Exception::IllegalDataAddress)),
+            encode_response(0x05, &Err(Exception::IllegalDataAddress)),
             vec![0x85, 0x02]
         );
     }

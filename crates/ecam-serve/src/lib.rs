@@ -1,0 +1,87 @@
+//! # ecam-serve: the PLC behind Modbus TCP and HTTP, without the sockets
+//!
+//! Everything `ecam serve` decides, as plain functions and types the
+//! binary wires to its listeners: the Modbus PDU codec ([`parse_request`],
+//! [`encode_response`]) and MBAP framing ([`MbapHeader`]), the address map
+//! (the **contract** in `docs/architecture.md`: [`coil_range`],
+//! [`register_range`]), device writes and their one-line text form
+//! ([`WriteBatch`]), the durable journal of a state directory
+//! ([`Journal`]), which devices a restart keeps ([`is_kept`],
+//! [`LatchedImage`]), device names as JSON for the HTTP API
+//! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
+//! and the PLC shared by the scan loop and the servers ([`Shared`]), paced
+//! by the wall clock ([`scan_loop`]).
+//!
+//! It has no async runtime and prints nothing: the binary owns the
+//! sockets, the threads and stderr, and hears what the operator should
+//! through [`Event`]. The scan loop and the latched-value saver block the
+//! thread they run on. Use it to serve the PLC over another transport, or
+//! to test what a client sees without a network; to run PLC programs in
+//! simulated time, use `ecam_plc::sim` directly. `docs/modbus.md` describes
+//! the server as a user sees it.
+//!
+//! ```
+//! use ecam_plc::{il, scan::Plc, sim::Timing};
+//! use ecam_serve::{Response, ServeInfo, Shared, answer_request, encode_response, parse_request};
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let plc = Plc::new(il::parse("", "empty.il")?)?;
+//! let addr = "127.0.0.1:0".parse()?;
+//! let info = ServeInfo {
+//!     program: None,
+//!     timing: Timing::default(),
+//!     modbus: addr,
+//!     http: addr,
+//!     state_dir: None,
+//! };
+//! let shared = Shared::new(plc, None, info, |event| eprintln!("{event:?}"));
+//!
+//! // 0x10 Write Multiple Registers: D100 = 0x0C6F, D101 = 0, so DD100 = 3183
+//! // (32-bit values low word first).
+//! let pdu = [0x10, 0, 100, 0, 2, 4, 0x0C, 0x6F, 0x00, 0x00];
+//! let request = parse_request(&pdu)?;
+//! let reply = answer_request(&shared, &request);
+//! assert_eq!(reply, Ok(Response::Written { address: 100, quantity: 2 }));
+//! assert_eq!(encode_response(pdu[0], &reply), [0x10, 0, 100, 0, 2]);
+//! assert_eq!(shared.read(|devices| devices.dword(100)), Ok(3183));
+//!
+//! // Y outputs are the program's: writing coil 12000 (Y0) is exception 02.
+//! let reply = answer_request(&shared, &parse_request(&[0x05, 0x2E, 0xE0, 0xFF, 0x00])?);
+//! assert_eq!(encode_response(0x05, &reply), [0x85, 0x02]);
+//! # Ok(())
+//! # }
+//! ```
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
+
+mod answer;
+mod clock;
+mod device_json;
+mod journal;
+mod map;
+mod mbap;
+mod pdu;
+mod retain;
+mod state;
+mod write;
+
+pub use answer::answer_request;
+pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
+pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
+pub use journal::{
+    COMPACT_AFTER, COMPACT_AFTER_BYTES, JOURNAL_FILE, Journal, JournalError, Recovery,
+    SNAPSHOT_FILE,
+};
+pub use map::{
+    CoilArea, CoilRange, RegisterRange, X_COIL_BASE, Y_COIL_BASE, coil_range, register_range,
+    writable_coil_range,
+};
+pub use mbap::MbapHeader;
+pub use pdu::{
+    Exception, MAX_READ_BITS, MAX_READ_REGISTERS, MAX_WRITE_BITS, MAX_WRITE_REGISTERS, Request,
+    Response, encode_response, parse_request,
+};
+pub use retain::{
+    LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
+};
+pub use state::{Event, ServeInfo, Shared, Stats};
+pub use write::{LineError, Slot, WriteBatch};
