@@ -11,7 +11,7 @@ use ecam_core::table::UniformTable;
 use ecam_core::{CamCurve, PointTable};
 use serde::Deserialize;
 
-use crate::{generate, scenario, table_file};
+use crate::{generate, scenario};
 
 const SOURCES: [&str; 5] = ["points", "uniform", "file", "expr", "generator"];
 
@@ -66,7 +66,7 @@ pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve
         "file" => {
             let f: File = value.try_into()?;
             let path = scenario::resolve(base, &f.file);
-            table_file::read_curve(&path)?
+            ecam_core::io::read(&path)?.into_curve()
         }
         // Exactly `ecam table gen function`'s keys and defaults (from 0,
         // to 36000, 361 points), as docs/simulate.md promises.

@@ -26,20 +26,36 @@ fn csv_round_trip_and_header() {
 }
 
 #[test]
-fn csv_errors_name_the_line() {
-    assert!(matches!(
+fn csv_errors_name_the_row() {
+    assert_eq!(
         from_csv("m,s\n0,0\n"),
-        Err(FormatError::Csv { line: 1, .. })
-    ));
-    assert!(matches!(
+        Err(FormatError::MissingColumn { column: "master" })
+    );
+    assert_eq!(
         from_csv(""),
-        Err(FormatError::Csv { line: 1, .. })
-    ));
+        Err(FormatError::MissingColumn { column: "master" })
+    );
+    assert_eq!(
+        from_csv("master,s\n0,0\n"),
+        Err(FormatError::MissingColumn { column: "slave" })
+    );
     let e = from_csv("master,slave\n0,0\n10,1.5\n").unwrap_err();
-    assert!(matches!(e, FormatError::Csv { line: 3, .. }), "{e}");
-    assert!(e.to_string().contains("line 3"));
+    assert!(
+        matches!(
+            e,
+            FormatError::NotAnInteger {
+                row: 2,
+                column: "slave",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().starts_with("row 2: "));
+    // Every row has the header's number of fields.
     let e = from_csv("master,slave\n0,0\n10\n").unwrap_err();
-    assert!(matches!(e, FormatError::Csv { line: 3, .. }), "{e}");
+    assert!(matches!(e, FormatError::CsvRow { row: 2, .. }), "{e}");
+    assert!(from_csv("master,slave\n0,0\n10,5,7\n").is_err());
     assert_eq!(
         from_csv("master,slave\n0,0\n0,1\n").unwrap_err(),
         FormatError::Table(TableError::MasterNotIncreasing { section: 1 })
@@ -48,8 +64,12 @@ fn csv_errors_name_the_line() {
         from_csv("master,slave\n0,0\n1e300,1\n")
             .unwrap_err()
             .to_string(),
-        "CSV line 3: master `1e300` is not a whole number"
+        "row 2: master \"1e300\" is not an integer"
     );
+    // Derivative columns, when all three are there, must hold numbers.
+    let e =
+        from_csv("master,slave,velocity,acceleration,jerk\n0,0,1,0,0\n10,5,nan,0,0\n").unwrap_err();
+    assert_eq!(e.to_string(), "row 2: velocity \"nan\" is not a number");
 }
 
 #[test]

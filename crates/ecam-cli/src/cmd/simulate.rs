@@ -21,10 +21,10 @@ use std::path::PathBuf;
 use ecam_engine::{CamAxis, TickInput};
 use serde::Serialize;
 
-use crate::plot::{Figure, Panel, Series};
 use crate::progress::Progress;
 use crate::scenario::Scenario;
 use crate::trace::{Row, TraceWriter, state_name};
+use ecam_plot::{Figure, Panel, Series};
 
 /// Arguments of `ecam simulate`.
 #[derive(clap::Args, Debug)]

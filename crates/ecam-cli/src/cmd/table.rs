@@ -12,12 +12,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 use ecam_core::CamCurve;
+use ecam_core::io::{self, AnyTable, Columns, TableFile};
 use ecam_core::table::Summary;
+use ecam_plot::cam_table;
 use serde::Serialize;
 
 use crate::generate::{self, GenCommand};
 use crate::plot;
-use crate::table_file::{self, AnyTable, Columns, TableFile};
 
 /// Subcommands of `ecam table`.
 #[derive(clap::Subcommand, Debug)]
@@ -101,7 +102,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
     let output = args.generator.output().clone();
     // Refuse bad extensions before the (possibly slow) generation.
     if let Some(path) = &output.output {
-        table_file::FileFormat::of(path)?;
+        io::FileFormat::of(path)?;
     }
     if let Some(path) = &output.plot {
         plot::Format::of(path)?;
@@ -118,13 +119,20 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
     } else {
         Columns::Full
     };
-    table_file::write(&file, output.output.as_deref(), columns)?;
+    match output.output.as_deref() {
+        Some(path) => io::write(&file, path, columns)?,
+        None => {
+            let mut out = std::io::stdout().lock();
+            out.write_all(file.to_csv(columns).as_bytes())?;
+            out.flush()?;
+        }
+    }
     for (key, value) in &generated.outputs {
         eprintln!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
         let design = generated.design.as_ref();
-        plot::draw_chart(&plot::cam_table::chart(&file, design, generated.name), path)?;
+        plot::draw_chart(cam_table::chart(&file, design, generated.name), path)?;
     }
     Ok(())
 }
@@ -147,7 +155,7 @@ struct ShowJson<'a> {
 }
 
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
-    let table = table_file::read(&args.file)?;
+    let table = io::read(&args.file)?;
     let kind = table.kind();
     match table {
         AnyTable::Points(file) => show_points(args, &file),
@@ -290,7 +298,7 @@ fn short(v: f64) -> String {
 
 fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
     plot::Format::of(&args.output)?;
-    let chart = match table_file::read(&args.file)? {
+    let chart = match io::read(&args.file)? {
         AnyTable::Points(mut file) => {
             if args.sync.is_some() {
                 file.sync = args.sync;
@@ -299,16 +307,16 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
                 .generator
                 .clone()
                 .unwrap_or_else(|| display_name(&args.file));
-            plot::cam_table::chart(&file, None, &name)
+            cam_table::chart(&file, None, &name)
         }
         AnyTable::Uniform(table) => {
-            plot::cam_table::uniform_chart(&table, args.sync, &display_name(&args.file))
+            cam_table::uniform_chart(&table, args.sync, &display_name(&args.file))
         }
         AnyTable::Profile(profile) => {
-            plot::cam_table::profile_chart(&profile, args.sync, &display_name(&args.file))
+            cam_table::profile_chart(&profile, args.sync, &display_name(&args.file))
         }
     };
-    plot::draw_chart(&chart, &args.output)
+    plot::draw_chart(chart, &args.output)
 }
 
 fn display_name(path: &Path) -> String {

@@ -1,49 +1,163 @@
-//! What can go wrong reading a table file.
+//! What can go wrong reading a table file: [`FormatError`] for its text,
+//! [`FileError`] for the file around it.
+//!
+//! The messages are what `ecam` prints (a [`FileError`] followed by its
+//! source, `: `-separated), so each names what to fix.
 
+use std::fmt;
+use std::path::PathBuf;
 use std::string::String;
 
 use crate::TableError;
 
-/// A table file that could not be read.
+/// Table text that could not be read.
 #[derive(Clone, Debug, PartialEq)]
 pub enum FormatError {
-    /// A CSV line is malformed (`line` counts from 1, the header included).
-    Csv {
-        /// Line number in the file.
-        line: u64,
-        /// What is wrong with it.
+    /// The CSV header line cannot be read.
+    CsvHeader {
+        /// The CSV parser's message.
         message: String,
     },
-    /// The JSON text is malformed or does not describe a table.
+    /// The CSV header lacks a column every table needs.
+    MissingColumn {
+        /// `master` or `slave`.
+        column: &'static str,
+    },
+    /// A CSV row is malformed (e.g. its field count differs from the header's).
+    CsvRow {
+        /// Data row, counting from 1 (header and comment lines not counted).
+        row: u64,
+        /// The CSV parser's message.
+        message: String,
+    },
+    /// A position is not a whole number of counts or pulses.
+    NotAnInteger {
+        /// Data row, counting from 1.
+        row: u64,
+        /// `master` or `slave`.
+        column: &'static str,
+        /// The text found.
+        text: String,
+    },
+    /// A derivative column holds something other than a finite number.
+    NotANumber {
+        /// Data row, counting from 1.
+        row: u64,
+        /// `velocity`, `acceleration` or `jerk`.
+        column: &'static str,
+        /// The text found.
+        text: String,
+    },
+    /// `ecam_core`'s JSON (tagged by `kind`) is malformed or does not
+    /// describe a valid table.
     Json {
-        /// The parser's message, with line and column.
+        /// The parser's message, with line and column (and, for a table
+        /// its constructor refuses, the error code and section).
         message: String,
     },
-    /// The file was read but the table it holds is invalid.
+    /// A JSON text that is neither a table file's object nor `ecam_core`'s
+    /// tagged JSON.
+    NotATable {
+        /// The table-file parser's message, with line and column.
+        message: String,
+    },
+    /// A synchronised zone whose low end is above its high end.
+    SyncZone {
+        /// Low end (master counts).
+        low: i64,
+        /// High end (master counts).
+        high: i64,
+    },
+    /// The text was read but the table it holds is invalid.
     Table(TableError),
 }
 
-impl core::fmt::Display for FormatError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+impl fmt::Display for FormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Csv { line, message } => write!(f, "CSV line {line}: {message}"),
+            Self::CsvHeader { message } => write!(f, "cannot read the CSV header: {message}"),
+            Self::MissingColumn { column } => write!(
+                f,
+                "the CSV header needs a `{column}` column (e.g. `master,slave`)"
+            ),
+            Self::CsvRow { row, message } => write!(f, "bad CSV row {row}: {message}"),
+            Self::NotAnInteger { row, column, text } => {
+                write!(f, "row {row}: {column} {text:?} is not an integer")
+            }
+            Self::NotANumber { row, column, text } => {
+                write!(f, "row {row}: {column} {text:?} is not a number")
+            }
             Self::Json { message } => write!(f, "JSON: {message}"),
+            Self::NotATable { message } => write!(f, "not a table JSON object: {message}"),
+            Self::SyncZone { low, high } => {
+                write!(f, "sync zone low {low} is above high {high}")
+            }
             Self::Table(e) => e.fmt(f),
         }
     }
 }
 
 impl std::error::Error for FormatError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            Self::Table(e) => Some(e),
-            _ => None,
-        }
-    }
+    // `Table` shows the table error itself (it has no source of its own):
+    // naming it again as the source would print it twice in a chain.
 }
 
 impl From<TableError> for FormatError {
     fn from(e: TableError) -> Self {
         Self::Table(e)
+    }
+}
+
+/// A table file that could not be read or written.
+#[derive(Debug)]
+pub enum FileError {
+    /// The path's extension names no table format.
+    Extension {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// The file cannot be read.
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file was read but its text is not a valid table.
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with the text.
+        source: FormatError,
+    },
+    /// The file cannot be written.
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+}
+
+impl fmt::Display for FileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Extension { path } => {
+                write!(f, "table file {} must end in .csv or .json", path.display())
+            }
+            Self::Read { path, .. } => write!(f, "cannot read table file {}", path.display()),
+            Self::Format { path, .. } => write!(f, "in table file {}", path.display()),
+            Self::Write { path, .. } => write!(f, "cannot write table file {}", path.display()),
+        }
+    }
+}
+
+impl std::error::Error for FileError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Extension { .. } => None,
+            Self::Read { source, .. } | Self::Write { source, .. } => Some(source),
+            Self::Format { source, .. } => Some(source),
+        }
     }
 }

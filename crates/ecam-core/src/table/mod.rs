@@ -8,12 +8,15 @@
 //!   ECAMTBX K2), exact, and sampled into a point table on demand;
 //! - [`CamTable`]: any of them behind one type;
 //! - [`sample_function`]: a point table from a function of the master;
-//! - [`Summary`]: a table's sections, stroke, peaks and continuity.
+//! - [`Summary`]: a table's sections, stroke, peaks and continuity;
+//! - [`derivatives`]: velocity, acceleration and jerk estimated from a
+//!   point table's points where no exact curve is known.
 //!
 //! All of them evaluate through [`crate::CamCurve`] with a [`crate::Cursor`]:
 //! O(1) when the master moves a little, a binary search after a jump.
 
 mod cam_table;
+pub mod derivatives;
 mod function;
 mod point;
 mod resolution;

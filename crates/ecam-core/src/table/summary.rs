@@ -2,6 +2,7 @@
 
 use alloc::vec::Vec;
 
+use super::derivatives;
 use crate::{CamCurve, Cursor, Kinematics};
 
 /// How smooth a curve is where its segments meet.
@@ -194,19 +195,17 @@ impl Summary {
     }
 }
 
-/// Largest `|Δv| / mean length of the two sections` over the joints. Joint
-/// `k` is `starts[k + 1]`, with the velocity step `steps[k]`; its sections
-/// run from `starts[k]` to the next joint (or the end `last`).
+/// Largest `|Δv| / mean length of the two sections` over the joints (see
+/// [`derivatives::joint_acceleration`]). Joint `k` is `starts[k + 1]`, with
+/// the velocity step `steps[k]`; its sections run from `starts[k]` to the
+/// next joint (or the end `last`).
 fn joint_acceleration(starts: &[(f64, usize)], steps: &[f64], first: f64, last: f64) -> f64 {
     let mut peak: f64 = 0.0;
-    for (k, step) in steps.iter().enumerate() {
+    for (k, &step) in steps.iter().enumerate() {
         let before = starts.get(k).map_or(first, |s| s.0);
         let after = starts.get(k + 2).map_or(last, |s| s.0);
-        let mean_len = 0.5 * (after - before);
-        if mean_len > 0.0 {
-            // `max` ignores NaN.
-            peak = peak.max((step / mean_len).abs());
-        }
+        // `max` ignores NaN.
+        peak = peak.max(derivatives::joint_acceleration(step, before, after).abs());
     }
     peak
 }

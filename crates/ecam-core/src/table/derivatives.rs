@@ -24,8 +24,32 @@
 //! itself: the same difference of slopes, but of chords spanning `k`
 //! sections on each side, which divides the rounding ripple by about `k²`
 //! and is still exact for a table sampled from a parabola.
+//!
+//! [`joint_acceleration`] is the one home of the per-joint estimate:
+//! [`at_joints`] applies it at every point, and
+//! [`Summary::peak_acceleration`](super::Summary::peak_acceleration) takes
+//! its largest magnitude over a curve of straight sections.
+//!
+//! ```
+//! use ecam_core::CamPoint;
+//! use ecam_core::table::derivatives;
+//!
+//! // Slope 1 over 10 counts, then 3 over 30: the velocity changes by 2
+//! // over a mean section of 20 counts.
+//! let k = derivatives::of_points(&[
+//!     CamPoint::new(0, 0),
+//!     CamPoint::new(10, 10),
+//!     CamPoint::new(40, 100),
+//! ]);
+//! assert_eq!(k[0].v, 1.0);
+//! assert_eq!(k[1].v, 3.0);
+//! assert_eq!(k[1].a, 0.1);
+//! ```
 
-use ecam_core::{CamPoint, Kinematics};
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::{CamPoint, Kinematics};
 
 /// Displacement, section velocity, and the estimated acceleration and jerk
 /// at each point (see the module documentation).
@@ -58,19 +82,33 @@ pub fn forward(x: &[f64], y: &[f64]) -> Vec<f64> {
     out
 }
 
-/// Change of section velocity at each interior point over the mean length
-/// of its two sections; 0 at both ends. `v[i]` is the slope of the section
-/// starting at `x[i]`.
+/// The acceleration estimated at a joint between two straight sections:
+/// the velocity step `dv` there over the mean length of the two sections,
+/// which run from `x_before` to the joint and on to `x_after`:
+/// `dv / ((x_after − x_before)/2)` (the central second difference). 0 when
+/// the sections have no length.
+///
+/// ```
+/// use ecam_core::table::derivatives::joint_acceleration;
+///
+/// // Slope 1 from 0 to 10, slope 3 from 10 to 40.
+/// assert_eq!(joint_acceleration(3.0 - 1.0, 0.0, 40.0), 0.1);
+/// assert_eq!(joint_acceleration(2.0, 5.0, 5.0), 0.0);
+/// ```
+pub fn joint_acceleration(dv: f64, x_before: f64, x_after: f64) -> f64 {
+    let mean_len = 0.5 * (x_after - x_before);
+    if mean_len > 0.0 { dv / mean_len } else { 0.0 }
+}
+
+/// [`joint_acceleration`] at each interior point; 0 at both ends. `v[i]`
+/// is the slope of the section starting at `x[i]`.
 pub fn at_joints(x: &[f64], v: &[f64]) -> Vec<f64> {
     let n = x.len().min(v.len());
     let mut out = vec![0.0; n];
     let inner = out.iter_mut().skip(1).take(n.saturating_sub(2));
     for ((slot, xw), vw) in inner.zip(x.windows(3)).zip(v.windows(2)) {
         if let (&[x0, _, x2], &[v0, v1]) = (xw, vw) {
-            let mean_len = 0.5 * (x2 - x0);
-            if mean_len > 0.0 {
-                *slot = (v1 - v0) / mean_len;
-            }
+            *slot = joint_acceleration(v1 - v0, x0, x2);
         }
     }
     out
@@ -147,6 +185,7 @@ pub fn centred(x: &[f64], y: &[f64]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::vec;
 
     #[test]
     fn slopes_of_sections_on_uneven_spacing() {

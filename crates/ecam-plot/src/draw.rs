@@ -1,131 +1,11 @@
-//! Plots: stacked panels sharing one x axis, drawn to SVG or PNG.
-//!
-//! A cam table is shown as displacement, velocity, acceleration and jerk over
-//! the master; a simulation trace as master, slave, velocity and backlog over
-//! time. Both are a [`Figure`]: one x vector, several panels of y series, and
-//! optional shaded x ranges (the synchronised zone of a rotary cut, or the
-//! times a sync window output was on).
-//!
-//! A [`Chart`] is the general form: every [`Trace`] has its own x values and
-//! a [`Style`], so a smooth design curve sampled densely can share a panel
-//! with the few points of the table that samples it. A [`Figure`] is drawn
-//! as the chart whose traces all share its x.
+//! Drawing a [`Chart`] to an SVG or PNG file with plotters.
 
-pub mod cam_table;
-mod font;
+use std::path::{Path, PathBuf};
 
-use std::path::Path;
-
-use anyhow::{Context, anyhow, bail};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-/// One line in a panel.
-pub struct Series {
-    /// Legend name.
-    pub name: String,
-    /// One y value per x of the figure.
-    pub values: Vec<f64>,
-}
-
-/// One panel: a y axis with its series.
-pub struct Panel {
-    /// The y quantity, with its unit, e.g. "velocity (pulse/count)".
-    pub title: String,
-    /// The lines drawn in this panel.
-    pub series: Vec<Series>,
-}
-
-/// Panels stacked over one shared x axis.
-pub struct Figure {
-    /// Title above the first panel.
-    pub title: String,
-    /// The x quantity, with its unit.
-    pub x_label: String,
-    /// The shared x values.
-    pub x: Vec<f64>,
-    /// Panels, top to bottom.
-    pub panels: Vec<Panel>,
-    /// x ranges shaded in every panel.
-    pub shaded: Vec<(f64, f64)>,
-}
-
-/// How a trace is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Style {
-    /// A line through the points, `width` pixels wide.
-    Line {
-        /// Stroke width in pixels.
-        width: u32,
-    },
-    /// A staircase: `y[i]` holds from `x[i]` to `x[i + 1]` (a point table's
-    /// section velocities); the last value is drawn as a point.
-    Steps,
-    /// A small dot at each point, no line (a table's points over its design).
-    Markers,
-}
-
-/// One drawn series with its own x values.
-pub struct Trace {
-    /// Legend name.
-    pub name: String,
-    /// x values, one per y.
-    pub x: Vec<f64>,
-    /// y values.
-    pub y: Vec<f64>,
-    /// How it is drawn.
-    pub style: Style,
-}
-
-/// One panel of a [`Chart`]: a y axis with its traces.
-pub struct ChartPanel {
-    /// The y quantity, with its unit.
-    pub title: String,
-    /// The traces, drawn in order (later ones on top).
-    pub traces: Vec<Trace>,
-}
-
-/// Panels stacked over one shared x axis, each trace with its own x values.
-pub struct Chart {
-    /// Title above the first panel.
-    pub title: String,
-    /// The x quantity, with its unit.
-    pub x_label: String,
-    /// Panels, top to bottom.
-    pub panels: Vec<ChartPanel>,
-    /// x ranges shaded in every panel.
-    pub shaded: Vec<(f64, f64)>,
-}
-
-impl From<&Figure> for Chart {
-    fn from(figure: &Figure) -> Self {
-        // Wide strokes on dense zig-zags grow miter spikes past the
-        // panel: thin lines once there are more points than pixels.
-        let width = if figure.x.len() > 1000 { 1 } else { 2 };
-        Self {
-            title: figure.title.clone(),
-            x_label: figure.x_label.clone(),
-            panels: figure
-                .panels
-                .iter()
-                .map(|p| ChartPanel {
-                    title: p.title.clone(),
-                    traces: p
-                        .series
-                        .iter()
-                        .map(|s| Trace {
-                            name: s.name.clone(),
-                            x: figure.x.clone(),
-                            y: s.values.clone(),
-                            style: Style::Line { width },
-                        })
-                        .collect(),
-                })
-                .collect(),
-            shaded: figure.shaded.clone(),
-        }
-    }
-}
+use crate::{Chart, Figure, PlotError, Style, font};
 
 /// The picture formats `draw` writes, chosen by the output file's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -137,15 +17,17 @@ pub enum Format {
 }
 
 impl Format {
-    /// The format for `path`'s extension.
+    /// The format for `path`'s extension, in any case.
     ///
     /// # Errors
-    /// Any extension other than `svg` or `png`.
-    pub fn of(path: &Path) -> anyhow::Result<Self> {
-        match crate::table_file::extension(path).as_deref() {
+    /// [`PlotError::Extension`] for any extension other than `svg` or `png`.
+    pub fn of(path: &Path) -> Result<Self, PlotError> {
+        match ecam_core::io::extension(path).as_deref() {
             Some("svg") => Ok(Self::Svg),
             Some("png") => Ok(Self::Png),
-            _ => bail!("plot file {} must end in .svg or .png", path.display()),
+            _ => Err(PlotError::Extension {
+                path: path.to_path_buf(),
+            }),
         }
     }
 }
@@ -153,54 +35,103 @@ impl Format {
 const PANEL_HEIGHT: u32 = 260;
 const WIDTH: u32 = 1100;
 
-/// Draws `figure` to `out` (SVG or PNG by extension).
+/// A chart checked and ready to be drawn to a file: [`Plot::has_text`] says,
+/// before anything is written, whether the labels can be drawn (a TrueType
+/// font was found, see the crate documentation), so the caller can warn.
+#[derive(Debug)]
+pub struct Plot {
+    chart: Chart,
+    out: PathBuf,
+    format: Format,
+    text: bool,
+}
+
+impl Plot {
+    /// Checks `chart` and the picture format of `out` (SVG or PNG by
+    /// extension), and looks for a font.
+    ///
+    /// # Errors
+    /// A bad extension, or a chart without panels or x values.
+    pub fn new(chart: Chart, out: &Path) -> Result<Self, PlotError> {
+        let format = Format::of(out)?;
+        let xs = chart
+            .panels
+            .iter()
+            .flat_map(|p| p.traces.iter())
+            .map(|t| t.x.len())
+            .sum::<usize>();
+        if chart.panels.is_empty() || xs < 2 {
+            return Err(PlotError::Empty);
+        }
+        Ok(Self {
+            chart,
+            out: out.to_path_buf(),
+            format,
+            text: font::available(),
+        })
+    }
+
+    /// As [`Plot::new`], for the chart of `figure`.
+    ///
+    /// # Errors
+    /// A bad extension, or a figure without panels or two x values.
+    pub fn of_figure(figure: &Figure, out: &Path) -> Result<Self, PlotError> {
+        Format::of(out)?;
+        if figure.panels.is_empty() || figure.x.len() < 2 {
+            return Err(PlotError::Empty);
+        }
+        Self::new(Chart::from(figure), out)
+    }
+
+    /// Whether the title, axis labels and legends will be drawn; without a
+    /// font the plot is drawn without text.
+    pub fn has_text(&self) -> bool {
+        self.text
+    }
+
+    /// Draws the chart and writes the file.
+    ///
+    /// # Errors
+    /// A drawing or write failure.
+    pub fn draw(&self) -> Result<(), PlotError> {
+        let (chart, out, labels) = (&self.chart, self.out.as_path(), self.text);
+        let height = PANEL_HEIGHT.saturating_mul(u32::try_from(chart.panels.len()).unwrap_or(8));
+        let size = (WIDTH, height.saturating_add(if labels { 40 } else { 0 }));
+        let written = match self.format {
+            Format::Svg => {
+                let root = SVGBackend::new(out, size).into_drawing_area();
+                draw_on(&root, chart, labels)?;
+                root.present().map_err(|e| e.to_string())
+            }
+            Format::Png => {
+                let root = BitMapBackend::new(out, size).into_drawing_area();
+                draw_on(&root, chart, labels)?;
+                root.present().map_err(|e| e.to_string())
+            }
+        };
+        written.map_err(|message| PlotError::Write {
+            path: out.to_path_buf(),
+            message,
+        })
+    }
+}
+
+/// Draws `figure` to `out` (SVG or PNG by extension), without text when no
+/// font is found.
 ///
 /// # Errors
 /// A bad extension, a figure without panels or x values, or a write failure.
-pub fn draw(figure: &Figure, out: &Path) -> anyhow::Result<()> {
-    Format::of(out)?;
-    if figure.panels.is_empty() || figure.x.len() < 2 {
-        bail!("nothing to plot: need at least one panel and two x values");
-    }
-    draw_chart(&Chart::from(figure), out)
+pub fn draw(figure: &Figure, out: &Path) -> Result<(), PlotError> {
+    Plot::of_figure(figure, out)?.draw()
 }
 
-/// Draws `chart` to `out` (SVG or PNG by extension).
+/// Draws `chart` to `out` (SVG or PNG by extension), without text when no
+/// font is found.
 ///
 /// # Errors
 /// A bad extension, a chart without panels or x values, or a write failure.
-pub fn draw_chart(chart: &Chart, out: &Path) -> anyhow::Result<()> {
-    let format = Format::of(out)?;
-    let xs = chart
-        .panels
-        .iter()
-        .flat_map(|p| p.traces.iter())
-        .map(|t| t.x.len())
-        .sum::<usize>();
-    if chart.panels.is_empty() || xs < 2 {
-        bail!("nothing to plot: need at least one panel and two x values");
-    }
-    let labels = font::available();
-    if !labels {
-        eprintln!(
-            "ecam: no TrueType font found (set ECAM_FONT=/path/to/font.ttf); plot drawn without text"
-        );
-    }
-    let height = PANEL_HEIGHT.saturating_mul(u32::try_from(chart.panels.len()).unwrap_or(8));
-    let size = (WIDTH, height.saturating_add(if labels { 40 } else { 0 }));
-    let written = match format {
-        Format::Svg => {
-            let root = SVGBackend::new(out, size).into_drawing_area();
-            draw_on(&root, chart, labels)?;
-            root.present().map_err(|e| anyhow!("{e}"))
-        }
-        Format::Png => {
-            let root = BitMapBackend::new(out, size).into_drawing_area();
-            draw_on(&root, chart, labels)?;
-            root.present().map_err(|e| anyhow!("{e}"))
-        }
-    };
-    written.with_context(|| format!("cannot write plot {}", out.display()))
+pub fn draw_chart(chart: &Chart, out: &Path) -> Result<(), PlotError> {
+    Plot::new(chart.clone(), out)?.draw()
 }
 
 /// A colour per series, readable on white.
@@ -218,11 +149,13 @@ fn draw_on<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     figure: &Chart,
     labels: bool,
-) -> anyhow::Result<()>
+) -> Result<(), PlotError>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("drawing failed: {e}");
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| PlotError::Drawing {
+        message: e.to_string(),
+    };
     root.fill(&WHITE).map_err(err)?;
     let body = if labels {
         let (top, rest) = root.split_vertically(40);
@@ -408,6 +341,7 @@ fn padded((lo, hi): (f64, f64)) -> (f64, f64) {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+    use crate::{Panel, Series};
 
     #[test]
     fn huge_values_give_a_finite_axis() {
@@ -439,6 +373,26 @@ mod tests {
             vec![(0.0, 1.0), (2.0, 1.0), (2.0, 3.0), (5.0, 3.0), (5.0, 3.0)]
         );
         assert!(staircase(Vec::new()).is_empty());
+    }
+
+    #[test]
+    fn empty_charts_are_refused_before_anything_is_written() {
+        let out = Path::new("never-written.svg");
+        let chart = Chart {
+            title: "t".into(),
+            x_label: "x".into(),
+            panels: Vec::new(),
+            shaded: Vec::new(),
+        };
+        assert!(matches!(
+            Plot::new(chart.clone(), out),
+            Err(PlotError::Empty)
+        ));
+        assert!(matches!(
+            Plot::new(chart, Path::new("a.pdf")),
+            Err(PlotError::Extension { .. })
+        ));
+        assert!(!out.exists());
     }
 
     #[test]

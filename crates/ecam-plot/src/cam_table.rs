@@ -11,7 +11,7 @@
 //!   through those values;
 //! - **only the points** (a plain `master,slave` file): the section
 //!   velocities as a staircase, acceleration and jerk estimated from the
-//!   points (see [`crate::derivatives`]); the title says so.
+//!   points (see [`derivatives`]); the title says so.
 //!
 //! `ecam_core`'s other table kinds are drawn from the curve itself:
 //! - **a segment profile** ([`profile_chart`]): each segment's motion law,
@@ -24,9 +24,10 @@
 use ecam_core::generator::design_curve::DesignCurve;
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, SegmentProfile, UniformTable};
 
-use super::{Chart, ChartPanel, Style, Trace};
-use crate::derivatives;
-use crate::table_file::TableFile;
+use ecam_core::io::TableFile;
+use ecam_core::table::derivatives;
+
+use crate::{Chart, ChartPanel, Style, Trace};
 
 /// Samples of the design curve drawn in all (spread over its pieces).
 const DESIGN_SAMPLES: usize = 2000;
@@ -149,7 +150,7 @@ fn estimated_panels(points: &[CamPoint]) -> Vec<ChartPanel> {
 }
 
 /// A curve of straight sections between its points, with the estimates
-/// [`crate::derivatives`] makes of the motion they sample.
+/// [`derivatives`] makes of the motion they sample.
 struct Straight {
     /// Master of each point.
     x: Vec<f64>,
