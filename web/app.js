@@ -1,7 +1,7 @@
 // ecam designer page: plain JavaScript, no dependencies.
 // Talks to `ecam serve`'s JSON endpoints (see docs/modbus.md):
 //   GET /api/laws, GET /api/law/NAME?points=N, GET /api/generators,
-//   POST /api/table/gen, GET /api/status.
+//   POST /api/keypoints, POST /api/table/gen, GET /api/status.
 "use strict";
 
 const $ = (id) => document.getElementById(id);
@@ -91,7 +91,9 @@ function buildFields() {
 }
 
 // Reads the generator form into the `params` object of POST /api/table/gen.
-function generatorParams() {
+// Key points are read by the server (POST /api/keypoints), which knows
+// their line syntax.
+async function generatorParams() {
   const params = {};
   for (const input of $("gen-fields").querySelectorAll("[data-key]")) {
     const key = input.dataset.key;
@@ -108,13 +110,12 @@ function generatorParams() {
       // Arithmetic such as "5/3" is evaluated by the server.
       params[key] = isFinite(Number(text)) ? Number(text) : text;
     } else if (type === "keys") {
-      params[key] = text.split("\n").map((l) => l.trim()).filter((l) => l).map((line) => {
-        const [master, slave, curve, resolution] = line.split(/[\s,;]+/);
-        const point = { master: Number(master), slave: Number(slave) };
-        if (curve !== undefined) point.curve = curve;
-        if (resolution !== undefined) point.resolution = Number(resolution);
-        return point;
+      const parsed = await getJson("/api/keypoints", {
+        method: "POST",
+        headers: { "Content-Type": "application/json" },
+        body: JSON.stringify({ lines: text }),
       });
+      params[key] = parsed.key;
     } else {
       params[key] = text;
     }
@@ -279,7 +280,7 @@ async function draw() {
       const option = $("law-name").selectedOptions[0];
       showSummary([["law", law.law], ["points", law.u.length], ["characteristics", option ? option.dataset.info : ""]]);
     } else {
-      const body = { generator: $("gen-name").value, params: generatorParams() };
+      const body = { generator: $("gen-name").value, params: await generatorParams() };
       const table = await getJson("/api/table/gen", {
         method: "POST",
         headers: { "Content-Type": "application/json" },

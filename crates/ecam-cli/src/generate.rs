@@ -6,17 +6,23 @@
 //! overrides what it sets, then the flags override what they set. Numeric
 //! ratios accept arithmetic (`5/3`, `3*pi`).
 
-use std::path::{Path, PathBuf};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 use anyhow::{Context, bail};
-use ecam_core::generator::accel_curve::AccelCurve;
-use ecam_core::generator::design_curve::DesignCurve;
-use ecam_core::generator::key_points::{self, CurveType, KeyPoint};
-use ecam_core::generator::placement::CamPlacement;
-use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
+use clap::{Arg, ArgAction, ArgMatches, Args};
+use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
+use ecam_core::generator::schema::{self, Field, FieldKind, Storage};
+use ecam_core::generator::{
+    CutParams, DesignCurve, Generator as Schema, flying_saw, function, rotary_cut, s_curve,
+};
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
 use serde::Deserialize;
-use serde::de::DeserializeOwned;
+use serde::de::value::MapDeserializer;
+use serde::de::{
+    DeserializeOwned, DeserializeSeed, Error as _, IntoDeserializer, MapAccess, Visitor,
+};
+use serde_json::Value;
 
 use crate::cmd::table::Output;
 use crate::expr::{self, MasterFunction};
@@ -66,34 +72,174 @@ fn kinematics_along(table: &PointTable, curve: &impl CamCurve) -> Vec<Kinematics
         .collect()
 }
 
-/// The generators of `ecam table gen`.
-#[derive(clap::Subcommand, Debug)]
-pub enum GenCommand {
-    /// ECAMTBX K0/K1: an S-type point-to-point move (master = ms at a 1 kHz master).
-    #[command(name = "s-curve")]
-    SCurve(SCurveArgs),
-    /// ECAMTBX K100: rotary knife, synchronised while cutting (document 003 §3.1).
-    #[command(name = "rotary-cut")]
-    RotaryCut(CutArgs),
-    /// ECAMTBX K101: flying saw, forward (P2 > 0) or return (P2 < 0) table (document 003 §3.2).
-    #[command(name = "fly-saw", alias = "flying-saw")]
-    FlySaw(FlySawArgs),
-    /// ECAMTBX K2: up to ten key points joined by motion curves (document 000 appendix).
-    #[command(name = "keypoints", alias = "key-points")]
-    Keypoints(KeyPointArgs),
-    /// A function of the master, sampled evenly (the PC editor's "data setting", document 003 §6.2).
-    Function(FunctionArgs),
+/// `ecam table gen NAME …`: the generator chosen, the parameters its flags
+/// set, its `--params` file and the output options. The flags are built
+/// from the generator's [`schema`] fields, one per field, named after its
+/// key.
+#[derive(Debug)]
+pub struct GenCommand {
+    generator: &'static Schema,
+    flags: Values,
+    params: Option<PathBuf>,
+    output: Output,
 }
 
 impl GenCommand {
     /// The output options of whichever generator was chosen.
     pub fn output(&self) -> &Output {
-        match self {
-            Self::SCurve(a) => &a.output,
-            Self::RotaryCut(a) => &a.output,
-            Self::FlySaw(a) => &a.cut.output,
-            Self::Keypoints(a) => &a.output,
-            Self::Function(a) => &a.output,
+        &self.output
+    }
+}
+
+impl clap::FromArgMatches for GenCommand {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let (name, sub) = matches
+            .subcommand()
+            .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingSubcommand))?;
+        let generator = schema::find(name)
+            .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::InvalidSubcommand))?;
+        let mut flags = Values::new();
+        for field in generator.fields {
+            if let Some(value) = flag_value(field, sub) {
+                flags.insert(field.key, value);
+            }
+        }
+        Ok(Self {
+            generator,
+            flags,
+            params: sub.get_one::<PathBuf>(PARAMS_ID).cloned(),
+            output: Output::from_arg_matches(sub)?,
+        })
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl clap::Subcommand for GenCommand {
+    fn augment_subcommands(command: clap::Command) -> clap::Command {
+        schema::GENERATORS
+            .iter()
+            .fold(command, |command, g| command.subcommand(subcommand(g)))
+    }
+
+    fn augment_subcommands_for_update(command: clap::Command) -> clap::Command {
+        Self::augment_subcommands(command)
+    }
+
+    fn has_subcommand(name: &str) -> bool {
+        schema::find(name).is_some()
+    }
+}
+
+const PARAMS_ID: &str = "params";
+
+/// The subcommand of generator `g`: a flag per field, `--params` and the output options.
+fn subcommand(g: &'static Schema) -> clap::Command {
+    let defaults = default_values(g);
+    let keys: Vec<String> = g.fields.iter().map(|f| format!("`{}`", f.key)).collect();
+    let command = g.fields.iter().fold(
+        clap::Command::new(g.name).about(g.about).aliases(g.aliases),
+        |command, field| command.arg(flag(field, defaults.get(field.key))),
+    );
+    let command = command.arg(
+        Arg::new(PARAMS_ID)
+            .long(PARAMS_ID)
+            .value_name("FILE.toml")
+            .value_parser(clap::value_parser!(PathBuf))
+            .help(format!(
+                "Read parameters from a TOML file ({})",
+                keys.join(", ")
+            )),
+    );
+    Output::augment_args(command)
+}
+
+/// The flag of `field`; its help ends with the default, where there is one to show.
+fn flag(field: &'static Field, default: Option<&Value>) -> Arg {
+    let mut help = match field.param {
+        Some(p) => format!("{p}: {}", field.help),
+        None => upper_first(field.help),
+    };
+    if let FieldKind::Integer { min, max, .. } = field.kind {
+        if min > i64::from(i32::MIN) && max < i64::from(i32::MAX) {
+            help.push_str(&format!(", {min}–{max}"));
+        }
+    }
+    if let FieldKind::Choice(names) = field.kind {
+        help.push_str(&format!(": {}", names.join(", ")));
+    }
+    let shown = match (field.shown_default, default) {
+        (Some(text), _) if field.kind != FieldKind::Text => Some(text.to_string()),
+        (None, Some(Value::Number(n))) => Some(n.to_string()),
+        (None, Some(Value::String(s))) => Some(s.clone()),
+        _ => None,
+    };
+    if let Some(shown) = shown.filter(|s| !s.is_empty()) {
+        help.push_str(&format!(" (default {shown})"));
+    }
+    let arg = Arg::new(field.key)
+        .long(field.flag())
+        .help(help)
+        .allow_hyphen_values(field.kind.allows_negative());
+    match field.kind {
+        FieldKind::Integer { storage, .. } => {
+            let arg = arg.value_name(field.key.to_uppercase());
+            match storage {
+                Storage::I64 => arg.value_parser(clap::value_parser!(i64)),
+                Storage::U32 => arg.value_parser(clap::value_parser!(u32)),
+                Storage::U16 => arg.value_parser(clap::value_parser!(u16)),
+                Storage::Usize => arg.value_parser(clap::value_parser!(usize)),
+            }
+        }
+        FieldKind::Number => arg
+            .value_name(field.key.to_uppercase())
+            .value_parser(expr::parse_number),
+        FieldKind::Choice(_) => arg
+            .value_name(field.key.to_uppercase())
+            .value_parser(|text: &str| Ok::<_, String>(text.trim().to_string())),
+        FieldKind::Text => arg.value_name(field.key.to_uppercase()),
+        FieldKind::Switch => arg.action(ArgAction::SetTrue),
+        FieldKind::KeyPoints => arg
+            .value_name("M:S[:CURVE[:RES]]")
+            .action(ArgAction::Append)
+            .value_parser(parse_key),
+    }
+}
+
+fn upper_first(text: &str) -> String {
+    let mut chars = text.chars();
+    chars
+        .next()
+        .map(|c| c.to_uppercase().chain(chars).collect())
+        .unwrap_or_default()
+}
+
+/// The value a flag gave, if it was given.
+fn flag_value(field: &Field, matches: &ArgMatches) -> Option<Param> {
+    let key = field.key;
+    match field.kind {
+        FieldKind::Integer { storage, .. } => match storage {
+            Storage::I64 => matches.get_one::<i64>(key).map(|&v| Param::Int(v)),
+            Storage::U32 => matches.get_one::<u32>(key).map(|&v| Param::Int(v.into())),
+            Storage::U16 => matches.get_one::<u16>(key).map(|&v| Param::Int(v.into())),
+            Storage::Usize => matches
+                .get_one::<usize>(key)
+                .map(|&v| Param::Uint(v as u64)),
+        },
+        FieldKind::Number => matches.get_one::<f64>(key).map(|&v| Param::Float(v)),
+        FieldKind::Choice(_) | FieldKind::Text => matches
+            .get_one::<String>(key)
+            .map(|v| Param::Text(v.clone())),
+        FieldKind::Switch => matches.get_flag(key).then_some(Param::Bool(true)),
+        FieldKind::KeyPoints => {
+            let keys: Vec<KeyPoint> = matches
+                .get_many::<KeyPoint>(key)
+                .map(|k| k.copied().collect())
+                .unwrap_or_default();
+            (!keys.is_empty()).then_some(Param::Keys(keys))
         }
     }
 }
@@ -103,13 +249,18 @@ impl GenCommand {
 /// # Errors
 /// Unreadable parameter files, bad parameters (with the PLC's error code).
 pub fn run(command: &GenCommand) -> anyhow::Result<Generated> {
-    match command {
-        GenCommand::SCurve(a) => s_curve_table(&with_file(a, a.params.as_deref())?),
-        GenCommand::RotaryCut(a) => rotary_cut_table(&with_file(a, a.params.as_deref())?),
-        GenCommand::FlySaw(a) => fly_saw_table(&with_file(a, a.cut.params.as_deref())?),
-        GenCommand::Keypoints(a) => key_points_table(&with_file(a, a.params.as_deref())?),
-        GenCommand::Function(a) => function(&with_file(a, a.params.as_deref())?),
-    }
+    let mut values = match &command.params {
+        None => Values::new(),
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read parameter file {}", path.display()))?;
+            ValuesSeed::new(command.generator, false)
+                .deserialize(toml::Deserializer::new(&text))
+                .with_context(|| format!("in parameter file {}", path.display()))?
+        }
+    };
+    values.extend(command.flags.clone());
+    generate(command.generator, values)
 }
 
 /// Generates from a scenario's `[table]` (without the `generator` key).
@@ -117,35 +268,218 @@ pub fn run(command: &GenCommand) -> anyhow::Result<Generated> {
 /// # Errors
 /// Unknown generator names or parameters, or bad values.
 pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
-    let value = toml::Value::Table(params);
-    let context = || format!("parameters of generator {name:?}");
-    match name {
-        "s-curve" => s_curve_table(&value.try_into().with_context(context)?),
-        "rotary-cut" => rotary_cut_table(&value.try_into().with_context(context)?),
-        "fly-saw" | "flying-saw" => fly_saw_table(&value.try_into().with_context(context)?),
-        "keypoints" | "key-points" => key_points_table(&value.try_into().with_context(context)?),
-        "function" => function(&value.try_into().with_context(context)?),
-        other => bail!(
-            "unknown generator {other:?}; known: s-curve, rotary-cut, fly-saw, keypoints, function"
-        ),
+    let generator = find(name)?;
+    let values = ValuesSeed::new(generator, false)
+        .deserialize(toml::Value::Table(params))
+        .with_context(|| format!("parameters of generator {name:?}"))?;
+    generate(generator, values)
+}
+
+/// Generates from the `params` object of the designer's HTTP request.
+///
+/// # Errors
+/// As [`from_toml`]; a value that is not an object.
+pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Generated> {
+    let generator = find(name)?;
+    if !params.is_object() {
+        let error = ValuesSeed::new(generator, true)
+            .deserialize(params)
+            .err()
+            .map_or_else(String::new, |e| e.to_string());
+        bail!("\"params\" must be an object of numbers, strings and booleans: {error}");
+    }
+    let values = ValuesSeed::new(generator, true)
+        .deserialize(params)
+        .with_context(|| format!("parameters of generator {name:?}"))?;
+    generate(generator, values)
+}
+
+fn find(name: &str) -> anyhow::Result<&'static Schema> {
+    schema::find(name).with_context(|| {
+        let known: Vec<&str> = schema::GENERATORS.iter().map(|g| g.name).collect();
+        format!("unknown generator {name:?}; known: {}", known.join(", "))
+    })
+}
+
+fn generate(generator: &Schema, mut values: Values) -> anyhow::Result<Generated> {
+    match generator.name {
+        "s-curve" => s_curve_table(&typed(values)?),
+        "rotary-cut" => rotary_cut_table(&typed(values)?),
+        "fly-saw" => {
+            let cycle = matches!(values.remove("cycle"), Some(Param::Bool(true)));
+            fly_saw_table(&typed(values)?, cycle)
+        }
+        "keypoints" => key_points_table(&typed(values)?),
+        _ => function(&typed(values)?),
     }
 }
 
-/// Arguments that can be overlaid: `self`'s set values win over `base`'s.
-trait Overlay: DeserializeOwned + Clone {
-    fn over(&self, base: Self) -> Self;
+/// The default of every field of `g` as its `Params` writes it (choices as
+/// names, key points as tables); a switch is off.
+pub fn default_values(g: &Schema) -> serde_json::Map<String, Value> {
+    let value = match g.name {
+        "s-curve" => serde_json::to_value(s_curve::Params::default()),
+        "rotary-cut" | "fly-saw" => serde_json::to_value(CutParams::default()),
+        "keypoints" => serde_json::to_value(key_points::Params::default()),
+        _ => serde_json::to_value(function::Params::default()),
+    };
+    match value {
+        Ok(Value::Object(map)) => map,
+        _ => serde_json::Map::new(),
+    }
 }
 
-/// `args` over the contents of the `--params` file, if one was given.
-fn with_file<A: Overlay>(args: &A, file: Option<&Path>) -> anyhow::Result<A> {
-    let Some(path) = file else {
-        return Ok(args.clone());
-    };
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read parameter file {}", path.display()))?;
-    let base: A =
-        toml::from_str(&text).with_context(|| format!("in parameter file {}", path.display()))?;
-    Ok(args.over(base))
+// ---------------------------------------------------------------- reading values
+
+/// Parameter values by key, each checked against its field's kind.
+type Values = BTreeMap<&'static str, Param>;
+
+/// One parameter value, as its field's kind reads it.
+#[derive(Clone, Debug, PartialEq)]
+enum Param {
+    Int(i64),
+    Uint(u64),
+    Float(f64),
+    Text(String),
+    Bool(bool),
+    Keys(Vec<KeyPoint>),
+}
+
+/// Reads a map of parameters for one generator from any serde format:
+/// refuses keys its schema does not have, reads each value as its field's
+/// kind (numbers may be arithmetic text, choices names or codes). Names
+/// are checked later, by the option types themselves.
+struct ValuesSeed {
+    generator: &'static Schema,
+    /// Say which key a bad value belongs to (formats that do not say it themselves).
+    name_keys: bool,
+}
+
+impl ValuesSeed {
+    fn new(generator: &'static Schema, name_keys: bool) -> Self {
+        Self {
+            generator,
+            name_keys,
+        }
+    }
+}
+
+impl<'de> DeserializeSeed<'de> for ValuesSeed {
+    type Value = Values;
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<Values, D::Error> {
+        d.deserialize_map(self)
+    }
+}
+
+impl<'de> Visitor<'de> for ValuesSeed {
+    type Value = Values;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a map")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Values, A::Error> {
+        let mut values = Values::new();
+        while let Some(field) = map.next_key_seed(KeySeed(self.generator))? {
+            let value = match field.kind {
+                FieldKind::Integer { storage, .. } => match storage {
+                    Storage::I64 => map.next_value::<i64>().map(Param::Int),
+                    Storage::U32 => map.next_value::<u32>().map(|v| Param::Int(v.into())),
+                    Storage::U16 => map.next_value::<u16>().map(|v| Param::Int(v.into())),
+                    Storage::Usize => map.next_value::<usize>().map(|v| Param::Uint(v as u64)),
+                },
+                FieldKind::Number => map.next_value::<Number>().map(|n| Param::Float(n.0)),
+                FieldKind::Choice(_) => map.next_value::<Word>().map(|w| Param::Text(w.0)),
+                FieldKind::Text => map.next_value::<String>().map(Param::Text),
+                FieldKind::Switch => map.next_value::<bool>().map(Param::Bool),
+                FieldKind::KeyPoints => map.next_value::<Vec<KeyPoint>>().map(Param::Keys),
+            };
+            let value = match value {
+                Err(e) if self.name_keys => {
+                    return Err(A::Error::custom(format!("{e} in `{}`", field.key)));
+                }
+                other => other?,
+            };
+            values.insert(field.key, value);
+        }
+        Ok(values)
+    }
+}
+
+/// Reads a key, refusing one the generator does not have (while reading
+/// it, so a file's error points at the key).
+struct KeySeed(&'static Schema);
+
+impl<'de> DeserializeSeed<'de> for KeySeed {
+    type Value = &'static Field;
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<&'static Field, D::Error> {
+        d.deserialize_str(self)
+    }
+}
+
+impl Visitor<'_> for KeySeed {
+    type Value = &'static Field;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a parameter name")
+    }
+
+    fn visit_str<E: serde::de::Error>(self, key: &str) -> Result<&'static Field, E> {
+        self.0
+            .field(key)
+            .ok_or_else(|| E::custom(unknown_field(key, self.0)))
+    }
+}
+
+/// Serde's own wording for an unknown field, listing the generator's keys.
+fn unknown_field(key: &str, generator: &Schema) -> String {
+    let keys: Vec<String> = generator
+        .fields
+        .iter()
+        .map(|f| format!("`{}`", f.key))
+        .collect();
+    format!("unknown field `{key}`, expected one of {}", keys.join(", "))
+}
+
+/// The generator's `Params` from checked values; the rest keep their defaults.
+fn typed<P: DeserializeOwned>(values: Values) -> anyhow::Result<P> {
+    let map = MapDeserializer::<_, serde_json::Error>::new(values.into_iter());
+    Ok(P::deserialize(map)?)
+}
+
+impl<'de> IntoDeserializer<'de, serde_json::Error> for Param {
+    type Deserializer = Self;
+
+    fn into_deserializer(self) -> Self {
+        self
+    }
+}
+
+impl<'de> serde::Deserializer<'de> for Param {
+    type Error = serde_json::Error;
+
+    fn deserialize_any<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        match self {
+            Self::Int(v) => visitor.visit_i64(v),
+            Self::Uint(v) => visitor.visit_u64(v),
+            Self::Float(v) => visitor.visit_f64(v),
+            Self::Text(v) => visitor.visit_string(v),
+            Self::Bool(v) => visitor.visit_bool(v),
+            Self::Keys(keys) => serde_json::to_value(keys)?.deserialize_any(visitor),
+        }
+    }
+
+    fn deserialize_option<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        visitor.visit_some(self)
+    }
+
+    serde::forward_to_deserialize_any! {
+        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
+        bytes byte_buf unit unit_struct newtype_struct seq tuple
+        tuple_struct map struct enum identifier ignored_any
+    }
 }
 
 /// A number written as a TOML number or as an arithmetic string (`"5/3"`).
@@ -171,37 +505,6 @@ impl<'de> Deserialize<'de> for Number {
     }
 }
 
-fn parse_number_flag(text: &str) -> Result<Number, String> {
-    expr::parse_number(text).map(Number)
-}
-
-/// Reads an [`AccelCurve`] by name or P6 low-word code.
-fn accel_named(text: &str) -> Option<AccelCurve> {
-    match text {
-        "0" | "uniform" => Some(AccelCurve::Uniform),
-        "1" | "uniform-acceleration" | "s-type" => Some(AccelCurve::UniformAcceleration),
-        "2" | "b-type" => Some(AccelCurve::BType),
-        _ => None,
-    }
-}
-
-const ACCEL_NAMES: &str = "uniform (0), uniform-acceleration (1, alias s-type), b-type (2)";
-
-/// Reads a [`CamPlacement`] by name or P6 high-word code.
-fn placement_named(text: &str) -> Option<CamPlacement> {
-    match text {
-        "0" | "left" => Some(CamPlacement::LeftCam),
-        "1" | "mid-all" => Some(CamPlacement::MidCamAll),
-        "2" | "mid-begin" => Some(CamPlacement::MidCamBegin),
-        "3" | "mid-end" => Some(CamPlacement::MidCamEnd),
-        "4" | "5" | "right" => Some(CamPlacement::RightCam),
-        _ => None,
-    }
-}
-
-const PLACEMENT_NAMES: &str =
-    "left (0), mid-all (1), mid-begin (2), mid-end (3), right (5; 4 also accepted)";
-
 /// A name or code read from a flag or TOML (an integer or a string).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Word(String);
@@ -221,86 +524,10 @@ impl<'de> Deserialize<'de> for Word {
     }
 }
 
-fn parse_word(text: &str) -> Result<Word, String> {
-    Ok(Word(text.trim().to_string()))
-}
-
-fn accel(word: Option<&Word>, default: AccelCurve) -> anyhow::Result<AccelCurve> {
-    match word {
-        None => Ok(default),
-        Some(Word(w)) => accel_named(w)
-            .with_context(|| format!("unknown acceleration curve {w:?}; use {ACCEL_NAMES}")),
-    }
-}
-
-fn placement(word: Option<&Word>) -> anyhow::Result<CamPlacement> {
-    match word {
-        None => Ok(CamPlacement::LeftCam),
-        Some(Word(w)) => placement_named(w)
-            .with_context(|| format!("unknown placement {w:?}; use {PLACEMENT_NAMES}")),
-    }
-}
-
 // ---------------------------------------------------------------- s-curve
 
-/// Parameters of `ecam table gen s-curve` (defaults: document 003 §3.2's calculation case).
-#[derive(clap::Args, Clone, Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-pub struct SCurveArgs {
-    /// P1: pulses to move, negative backwards (default 10000).
-    #[arg(long, allow_hyphen_values = true)]
-    pub pulses: Option<i64>,
-    /// P2: top speed in Hz, 1–150000 (default 50000).
-    #[arg(long)]
-    pub max_speed: Option<u32>,
-    /// P4: time from rest to top speed, ms (default 100).
-    #[arg(long)]
-    pub accel_ms: Option<u16>,
-    /// P5: time from top speed to rest, ms (default 100).
-    #[arg(long)]
-    pub decel_ms: Option<u16>,
-    /// P6: points in the table, 51–512 (default 200).
-    #[arg(long)]
-    pub resolution: Option<u16>,
-    /// Ramp shape: uniform-acceleration (S-type, the instruction's; default), uniform or b-type.
-    #[arg(long, value_parser = parse_word)]
-    pub curve: Option<Word>,
-    /// Read parameters from a TOML file (`pulses`, `max_speed`, `accel_ms`, `decel_ms`, `resolution`, `curve`).
-    #[arg(long, value_name = "FILE.toml")]
-    #[serde(skip)]
-    pub params: Option<PathBuf>,
-    #[command(flatten)]
-    #[serde(skip)]
-    #[allow(missing_docs)]
-    pub output: Output,
-}
-
-impl Overlay for SCurveArgs {
-    fn over(&self, base: Self) -> Self {
-        Self {
-            pulses: self.pulses.or(base.pulses),
-            max_speed: self.max_speed.or(base.max_speed),
-            accel_ms: self.accel_ms.or(base.accel_ms),
-            decel_ms: self.decel_ms.or(base.decel_ms),
-            resolution: self.resolution.or(base.resolution),
-            curve: self.curve.clone().or(base.curve),
-            params: self.params.clone(),
-            output: self.output.clone(),
-        }
-    }
-}
-
-fn s_curve_table(args: &SCurveArgs) -> anyhow::Result<Generated> {
-    let d = s_curve::Params::default();
-    let params = s_curve::Params {
-        total_pulses: args.pulses.unwrap_or(d.total_pulses),
-        max_speed_hz: args.max_speed.unwrap_or(d.max_speed_hz),
-        accel_ms: args.accel_ms.unwrap_or(d.accel_ms),
-        decel_ms: args.decel_ms.unwrap_or(d.decel_ms),
-        resolution: args.resolution.unwrap_or(d.resolution),
-        curve: accel(args.curve.as_ref(), d.curve)?,
-    };
-    let g = s_curve::generate(&params)?;
+fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
+    let g = s_curve::generate(params)?;
     Ok(Generated {
         outputs: vec![
             (
@@ -322,103 +549,8 @@ fn s_curve_table(args: &SCurveArgs) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- rotary cut, flying saw
 
-/// Parameters of `ecam table gen rotary-cut` (and, flattened, of `fly-saw`).
-/// Defaults: the manual's register table (3000, 1000, 300, 5/3); the max
-/// ratio defaults to ten times the sync ratio (the demo's rule), the curve
-/// to uniform, the placement to left, the resolution to 100.
-#[derive(clap::Args, Clone, Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-pub struct CutArgs {
-    /// P1: master length (material per cut), pulses.
-    #[arg(long)]
-    pub master: Option<i64>,
-    /// P2: slave length (knife pulses per revolution; fly saw: stroke, negative = return table).
-    #[arg(long, allow_hyphen_values = true)]
-    pub slave: Option<i64>,
-    /// P3: sync length in slave pulses.
-    #[arg(long)]
-    pub sync: Option<i64>,
-    /// P4: slave pulses per master pulse in the sync zone; arithmetic allowed ("5/3", "3*pi").
-    #[arg(long, value_parser = parse_number_flag)]
-    pub ratio: Option<Number>,
-    /// P5: highest ratio allowed anywhere (default 10 × ratio).
-    #[arg(long, value_parser = parse_number_flag)]
-    pub max_ratio: Option<Number>,
-    /// P6 low word: uniform (0, default), uniform-acceleration (1), b-type (2).
-    #[arg(long, value_parser = parse_word)]
-    pub accel: Option<Word>,
-    /// P6 high word: left (0, default), mid-all (1), mid-begin (2), mid-end (3), right (5).
-    #[arg(long, value_parser = parse_word)]
-    pub placement: Option<Word>,
-    /// P7: points in the table, 10–512 (default 100).
-    #[arg(long)]
-    pub resolution: Option<u16>,
-    /// Read parameters from a TOML file (`master`, `slave`, `sync`, `ratio`, `max_ratio`, `accel`, `placement`, `resolution`).
-    #[arg(long, value_name = "FILE.toml")]
-    #[serde(skip)]
-    pub params: Option<PathBuf>,
-    #[command(flatten)]
-    #[serde(skip)]
-    #[allow(missing_docs)]
-    pub output: Output,
-}
-
-impl Overlay for CutArgs {
-    fn over(&self, base: Self) -> Self {
-        Self {
-            master: self.master.or(base.master),
-            slave: self.slave.or(base.slave),
-            sync: self.sync.or(base.sync),
-            ratio: self.ratio.or(base.ratio),
-            max_ratio: self.max_ratio.or(base.max_ratio),
-            accel: self.accel.clone().or(base.accel),
-            placement: self.placement.clone().or(base.placement),
-            resolution: self.resolution.or(base.resolution),
-            params: self.params.clone(),
-            output: self.output.clone(),
-        }
-    }
-}
-
-/// The P1–P7 values common to both cutting generators.
-struct CutParams {
-    master: i64,
-    slave: i64,
-    sync: i64,
-    ratio: f64,
-    max_ratio: f64,
-    accel: AccelCurve,
-    placement: CamPlacement,
-    resolution: u16,
-}
-
-fn cut_params(args: &CutArgs) -> anyhow::Result<CutParams> {
-    let d = rotary_cut::Params::default();
-    let ratio = args.ratio.map_or(d.sync_ratio, |n| n.0);
-    Ok(CutParams {
-        master: args.master.unwrap_or(d.master_length),
-        slave: args.slave.unwrap_or(d.slave_length),
-        sync: args.sync.unwrap_or(d.sync_length),
-        ratio,
-        max_ratio: args.max_ratio.map_or(10.0 * ratio, |n| n.0),
-        accel: accel(args.accel.as_ref(), d.accel_curve)?,
-        placement: placement(args.placement.as_ref())?,
-        resolution: args.resolution.unwrap_or(d.resolution),
-    })
-}
-
-fn rotary_cut_table(args: &CutArgs) -> anyhow::Result<Generated> {
-    let p = cut_params(args)?;
-    let g = rotary_cut::generate(&rotary_cut::Params {
-        master_length: p.master,
-        slave_length: p.slave,
-        sync_length: p.sync,
-        sync_ratio: p.ratio,
-        max_ratio: p.max_ratio,
-        accel_curve: p.accel,
-        placement: p.placement,
-        resolution: p.resolution,
-    })?;
+fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
+    let g = rotary_cut::generate(params)?;
     Ok(Generated {
         outputs: vec![
             ("regime", format!("{:?}", g.regime)),
@@ -444,44 +576,9 @@ fn rotary_cut_table(args: &CutArgs) -> anyhow::Result<Generated> {
     })
 }
 
-/// Parameters of `ecam table gen fly-saw`.
-#[derive(clap::Args, Clone, Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-pub struct FlySawArgs {
-    #[command(flatten)]
-    #[serde(flatten)]
-    #[allow(missing_docs)]
-    pub cut: CutArgs,
-    /// Write the whole cut cycle: the forward table followed by its return
-    /// table (master 0 .. 2·P1, slave 0 → P2 → 0).
-    #[arg(long)]
-    #[serde(default)]
-    pub cycle: bool,
-}
-
-impl Overlay for FlySawArgs {
-    fn over(&self, base: Self) -> Self {
-        Self {
-            cut: self.cut.over(base.cut),
-            cycle: self.cycle || base.cycle,
-        }
-    }
-}
-
-fn fly_saw_table(args: &FlySawArgs) -> anyhow::Result<Generated> {
-    let p = cut_params(&args.cut)?;
-    let params = flying_saw::Params {
-        master_length: p.master,
-        slave_length: p.slave,
-        sync_length: p.sync,
-        sync_ratio: p.ratio,
-        max_ratio: p.max_ratio,
-        accel_curve: p.accel,
-        placement: p.placement,
-        resolution: p.resolution,
-    };
-    if !args.cycle {
-        let g = flying_saw::generate(&params)?;
+fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
+    if !cycle {
+        let g = flying_saw::generate(params)?;
         return Ok(Generated {
             outputs: vec![
                 ("stroke", format!("{:?}", g.stroke)),
@@ -498,7 +595,7 @@ fn fly_saw_table(args: &FlySawArgs) -> anyhow::Result<Generated> {
             design: Some(g.design),
         });
     }
-    let (forward, back) = flying_saw::generate_pair(&params)?;
+    let (forward, back) = flying_saw::generate_pair(params)?;
     let (m_end, s_end) = (forward.table.master_last(), forward.table.slave_last());
     let mut points = forward.table.points().to_vec();
     for q in back.table.points().iter().skip(1) {
@@ -523,146 +620,40 @@ fn fly_saw_table(args: &FlySawArgs) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- keypoints
 
-/// One `--key` value or `[[key]]` entry.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct KeyArg {
-    master: i64,
-    slave: i64,
-    #[serde(default, deserialize_with = "curve_from_toml")]
-    curve: Option<CurveType>,
-    #[serde(default)]
-    resolution: u16,
-}
-
-const CURVE_NAMES: &str = "constant-acceleration (0), s-type (1), cycloid (2), constant-speed (3)";
-
-fn curve_named(text: &str) -> Option<CurveType> {
-    match text {
-        "0" | "constant-acceleration" => Some(CurveType::ConstantAcceleration),
-        "1" | "s-type" => Some(CurveType::SType),
-        "2" | "cycloid" => Some(CurveType::Cycloid),
-        "3" | "constant-speed" => Some(CurveType::ConstantSpeed),
-        _ => None,
-    }
-}
-
-fn curve_from_toml<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<CurveType>, D::Error> {
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum Raw {
-        Code(i64),
-        Name(String),
-    }
-    let text = match Raw::deserialize(d)? {
-        Raw::Code(c) => c.to_string(),
-        Raw::Name(n) => n,
-    };
-    curve_named(&text).map(Some).ok_or_else(|| {
-        serde::de::Error::custom(format!("unknown curve {text:?}; use {CURVE_NAMES}"))
+/// Reads one `--key` value: the key-point line syntax, worded for a flag.
+fn parse_key(text: &str) -> Result<KeyPoint, String> {
+    KeyPoint::parse_line(text).map_err(|e| match e {
+        LineError::TooFew => format!("--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]"),
+        LineError::TooMany => format!("--key {text:?}: too many fields"),
+        LineError::NotInteger { what, text: field } => {
+            format!("{what} {field:?} in --key {text:?} is not an integer")
+        }
+        LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+        LineError::BadResolution(r) => {
+            format!("resolution {r:?} in --key {text:?} must be 0..=512")
+        }
     })
 }
 
-fn parse_key(text: &str) -> Result<KeyArg, String> {
-    let parts: Vec<&str> = text.split(':').map(str::trim).collect();
-    let int = |s: &str, what: &str| -> Result<i64, String> {
-        s.parse()
-            .map_err(|_| format!("{what} {s:?} in --key {text:?} is not an integer"))
-    };
-    let (master, slave) = match parts.as_slice() {
-        [m, s, ..] => (int(m, "master")?, int(s, "slave")?),
-        _ => {
-            return Err(format!(
-                "--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]"
-            ));
-        }
-    };
-    let curve = match parts.get(2) {
-        Some(c) => {
-            Some(curve_named(c).ok_or_else(|| format!("unknown curve {c:?}; use {CURVE_NAMES}"))?)
-        }
-        None => None,
-    };
-    let resolution = match parts.get(3) {
-        Some(r) => r
-            .parse()
-            .map_err(|_| format!("resolution {r:?} in --key {text:?} must be 0..=512"))?,
-        None => 0,
-    };
-    if parts.len() > 4 {
-        return Err(format!("--key {text:?}: too many fields"));
-    }
-    Ok(KeyArg {
-        master,
-        slave,
-        curve,
-        resolution,
+/// Reads the designer page's key-point box, one key point per line.
+///
+/// # Errors
+/// The first bad line, by number, and what is wrong with it.
+pub fn parse_key_lines(text: &str) -> Result<Vec<KeyPoint>, String> {
+    key_points::parse_lines(text).map_err(|(line, e)| {
+        let what = match e {
+            LineError::TooFew => "expected MASTER SLAVE [CURVE [RESOLUTION]]".to_string(),
+            LineError::TooMany => "too many fields".to_string(),
+            LineError::NotInteger { what, text } => format!("{what} {text:?} is not an integer"),
+            LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+            LineError::BadResolution(r) => format!("resolution {r:?} must be 0..=512"),
+        };
+        format!("key point line {line}: {what}")
     })
 }
 
-/// Parameters of `ecam table gen keypoints` (defaults: document 000's application case).
-#[derive(clap::Args, Clone, Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-pub struct KeyPointArgs {
-    /// A key point `MASTER:SLAVE[:CURVE[:RESOLUTION]]`, repeated in master order (at most 10);
-    /// CURVE is constant-acceleration (default), s-type, cycloid or constant-speed (or 0–3);
-    /// RESOLUTION 0 shares the rest of the total.
-    #[arg(long = "key", value_name = "M:S[:CURVE[:RES]]", value_parser = parse_key)]
-    #[serde(default)]
-    pub key: Vec<KeyArg>,
-    /// Total points in the table, 10–512 (default 100).
-    #[arg(long)]
-    pub resolution: Option<u16>,
-    /// Slave position the table starts at, added to every key point (default 0).
-    #[arg(long, allow_hyphen_values = true)]
-    pub initial_slave: Option<i64>,
-    /// Read parameters from a TOML file (`resolution`, `initial_slave`, `[[key]]` with `master`, `slave`, `curve`, `resolution`).
-    #[arg(long, value_name = "FILE.toml")]
-    #[serde(skip)]
-    pub params: Option<PathBuf>,
-    #[command(flatten)]
-    #[serde(skip)]
-    #[allow(missing_docs)]
-    pub output: Output,
-}
-
-impl Overlay for KeyPointArgs {
-    fn over(&self, base: Self) -> Self {
-        Self {
-            key: if self.key.is_empty() {
-                base.key
-            } else {
-                self.key.clone()
-            },
-            resolution: self.resolution.or(base.resolution),
-            initial_slave: self.initial_slave.or(base.initial_slave),
-            params: self.params.clone(),
-            output: self.output.clone(),
-        }
-    }
-}
-
-fn key_points_table(args: &KeyPointArgs) -> anyhow::Result<Generated> {
-    let mut params = key_points::Params::default();
-    if !args.key.is_empty() {
-        params.key_points = args
-            .key
-            .iter()
-            .map(|k| KeyPoint {
-                master: k.master,
-                slave: k.slave,
-                curve: k.curve.unwrap_or(CurveType::ConstantAcceleration),
-                resolution: k.resolution,
-            })
-            .collect();
-    }
-    if let Some(r) = args.resolution {
-        params.total_resolution = r;
-    }
-    if let Some(s) = args.initial_slave {
-        params.initial_slave = s;
-    }
-    let generated = key_points::generate(&params)?;
+fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
+    let generated = key_points::generate(params)?;
     Ok(Generated {
         kinematics: Some(kinematics_along(&generated.table, &generated.profile)),
         table: generated.table,
@@ -683,55 +674,12 @@ fn key_points_table(args: &KeyPointArgs) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- function
 
-/// Parameters of `ecam table gen function`.
-#[derive(clap::Args, Clone, Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-pub struct FunctionArgs {
-    /// Slave position as a function of the master `x`, e.g. "1000*sin(2*pi*x/36000)".
-    #[arg(long)]
-    pub expr: Option<String>,
-    /// First master position (default 0).
-    #[arg(long, allow_hyphen_values = true)]
-    pub from: Option<i64>,
-    /// Last master position (default 36000).
-    #[arg(long, allow_hyphen_values = true)]
-    pub to: Option<i64>,
-    /// Number of points, both ends included (default 361).
-    #[arg(long)]
-    pub points: Option<usize>,
-    /// Read parameters from a TOML file (`expr`, `from`, `to`, `points`).
-    #[arg(long, value_name = "FILE.toml")]
-    #[serde(skip)]
-    pub params: Option<PathBuf>,
-    #[command(flatten)]
-    #[serde(skip)]
-    #[allow(missing_docs)]
-    pub output: Output,
-}
-
-impl Overlay for FunctionArgs {
-    fn over(&self, base: Self) -> Self {
-        Self {
-            expr: self.expr.clone().or(base.expr),
-            from: self.from.or(base.from),
-            to: self.to.or(base.to),
-            points: self.points.or(base.points),
-            params: self.params.clone(),
-            output: self.output.clone(),
-        }
-    }
-}
-
-fn function(args: &FunctionArgs) -> anyhow::Result<Generated> {
-    let expr = args
+fn function(params: &function::Params) -> anyhow::Result<Generated> {
+    let expr = params
         .expr
         .as_deref()
         .context("give the function with --expr, e.g. --expr \"1000*sin(2*pi*x/36000)\"")?;
-    let (from, to, points) = (
-        args.from.unwrap_or(0),
-        args.to.unwrap_or(36000),
-        args.points.unwrap_or(361),
-    );
+    let (from, to, points) = (params.from, params.to, params.points);
     let table = function_table(expr, from, to, points)?;
     let f = MasterFunction::parse(expr)?;
     // Central differences a quarter of the point spacing wide: small
@@ -843,9 +791,12 @@ mod tests {
         let k = parse_key("1500:2000:cycloid:20").unwrap();
         assert_eq!(
             (k.master, k.slave, k.curve, k.resolution),
-            (1500, 2000, Some(CurveType::Cycloid), 20)
+            (1500, 2000, CurveType::Cycloid, 20)
         );
-        assert_eq!(parse_key("600:0").unwrap().curve, None);
+        assert_eq!(
+            parse_key("600:0").unwrap().curve,
+            CurveType::ConstantAcceleration
+        );
         assert!(parse_key("600").is_err());
         assert!(parse_key("600:0:wobble").is_err());
     }

@@ -3,8 +3,8 @@
 //!
 //! Run with `cargo run -p ecam-core --example rotary_cut`.
 
-use ecam_core::generator::accel_curve::AccelCurve;
-use ecam_core::generator::placement::CamPlacement;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::rotary_cut::{Params, generate};
 
 fn main() -> Result<(), ecam_core::TableError> {

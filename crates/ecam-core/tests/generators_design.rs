@@ -4,9 +4,9 @@
 //! sync zone.
 #![allow(clippy::unwrap_used)]
 
-use ecam_core::generator::accel_curve::AccelCurve;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::design_curve::DesignCurve;
-use ecam_core::generator::placement::CamPlacement;
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
 use ecam_core::{CamCurve, PointTable};
 use proptest::prelude::*;

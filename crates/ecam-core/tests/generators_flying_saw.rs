@@ -4,11 +4,11 @@
 
 use std::f64::consts::PI;
 
-use ecam_core::generator::accel_curve::AccelCurve;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::flying_saw::{
     Generated, Params, Stroke, decode_cam_word, generate, generate_pair,
 };
-use ecam_core::generator::placement::CamPlacement;
 use ecam_core::{CamCurve, CamPoint, PointTable, TableError};
 
 /// The manual's demo: 1750 master, 2000 slave, 667 sync at 3π, max 10.

@@ -3,8 +3,8 @@
 //! increasing master and respects its speed limit.
 #![allow(clippy::unwrap_used)]
 
-use ecam_core::generator::accel_curve::AccelCurve;
-use ecam_core::generator::placement::CamPlacement;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
 use ecam_core::{CamCurve, CamPoint, PointTable};
 use proptest::prelude::*;

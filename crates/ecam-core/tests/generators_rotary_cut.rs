@@ -2,8 +2,8 @@
 //! regimes, every placement and curve, and the parameter checks.
 #![allow(clippy::unwrap_used)]
 
-use ecam_core::generator::accel_curve::AccelCurve;
-use ecam_core::generator::placement::CamPlacement;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::rotary_cut::{CutRegime, Generated, Params, generate};
 use ecam_core::{CamCurve, CamPoint, PointTable, TableError};
 

@@ -2,7 +2,7 @@
 //! parameter checks.
 #![allow(clippy::unwrap_used)]
 
-use ecam_core::generator::accel_curve::AccelCurve;
+use ecam_core::generator::AccelCurve;
 use ecam_core::generator::s_curve::{Params, generate};
 use ecam_core::{CamCurve, CamPoint, Cursor, PointTable};
 

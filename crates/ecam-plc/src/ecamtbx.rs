@@ -48,9 +48,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use ecam_core::generator::accel_curve::AccelCurve;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, MAX_KEY_POINTS};
-use ecam_core::generator::placement::CamPlacement;
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
 use ecam_core::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamPoint, TableError};
 

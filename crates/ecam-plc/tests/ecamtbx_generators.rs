@@ -2,8 +2,8 @@
 //! generators in ecam-core, and the error results.
 #![allow(clippy::unwrap_used)]
 
-use ecam_core::generator::accel_curve::AccelCurve;
-use ecam_core::generator::placement::CamPlacement;
+use ecam_core::generator::AccelCurve;
+use ecam_core::generator::CamPlacement;
 use ecam_core::generator::{flying_saw, key_points, rotary_cut, s_curve};
 use ecam_core::{CamCurve, CamPoint};
 use ecam_plc::devices::Devices;

@@ -1,10 +1,11 @@
 //! The designer page's JSON: motion laws sampled like `ecam law`, and cam
-//! tables from the generators of `ecam table gen` (same parameter names as
-//! its TOML `--params` files, same defaults: the documents' cases).
+//! tables from the generators of `ecam table gen`, whose parameters (names,
+//! labels, defaults: the documents' cases) come from
+//! [`ecam_core::generator::schema`], as its flags and TOML files do.
 
-use ecam_core::generator::design_curve::DesignCurve;
-use ecam_core::generator::key_points::{self, CurveType};
-use ecam_core::generator::{rotary_cut, s_curve};
+use ecam_core::generator::key_points::KeyPoint;
+use ecam_core::generator::schema;
+use ecam_core::generator::{DesignCurve, Field, FieldKind};
 use ecam_core::table::Summary;
 use ecam_core::{CamCurve, MotionLaw};
 use serde_json::{Value, json};
@@ -63,124 +64,65 @@ pub fn law_curves(name: &str, points: usize) -> Result<Value, String> {
     }))
 }
 
-fn field(key: &str, label: &str, kind: &str, default: Value) -> Value {
-    json!({"key": key, "label": label, "type": kind, "default": default})
-}
-
-fn choice(key: &str, label: &str, choices: &[&str], default: &str) -> Value {
-    json!({"key": key, "label": label, "type": "choice", "choices": choices, "default": default})
-}
-
-/// The generators and their parameters, for the page's form. Field types:
-/// `int`, `number` (arithmetic such as `5/3` allowed), `text`, `bool`,
-/// `choice`, and `keys` (key points, one `master slave curve [resolution]`
-/// per line, sent as the `key` array).
+/// The generators and their parameters, for the page's form, from
+/// [`schema`]: each field's key, label, type (`int`, `number` — arithmetic
+/// such as `5/3` allowed —, `text`, `bool`, `choice` with its `choices`, and
+/// `keys`: key points, one `master slave curve [resolution]` per line, read
+/// by `POST /api/keypoints` into the `key` array) and default.
 pub fn generators() -> Value {
-    let s = s_curve::Params::default();
-    let r = rotary_cut::Params::default();
-    let k = key_points::Params::default();
-    let accels = ["uniform", "uniform-acceleration", "b-type"];
-    let cut = |placements: &[&str]| {
-        vec![
-            field(
-                "master",
-                "P1 master length (pulses per cut)",
-                "int",
-                json!(r.master_length),
-            ),
-            field(
-                "slave",
-                "P2 slave length (pulses per turn / stroke)",
-                "int",
-                json!(r.slave_length),
-            ),
-            field(
-                "sync",
-                "P3 sync length (slave pulses)",
-                "int",
-                json!(r.sync_length),
-            ),
-            field(
-                "ratio",
-                "P4 sync ratio (slave/master)",
-                "number",
-                json!("5/3"),
-            ),
-            field(
-                "max_ratio",
-                "P5 max ratio (empty: 10 × P4)",
-                "number",
-                json!(""),
-            ),
-            choice("accel", "P6 acceleration curve", &accels, "uniform"),
-            choice("placement", "P6 cam placement", placements, "left"),
-            field("resolution", "P7 points", "int", json!(r.resolution)),
-        ]
-    };
-    let mut fly_saw = cut(&["left", "mid-all", "right"]);
-    fly_saw.push(field(
-        "cycle",
-        "whole cycle (forward + return)",
-        "bool",
-        json!(false),
-    ));
-    let key_lines: Vec<String> = k
-        .key_points
-        .iter()
-        .map(|p| format!("{} {} {}", p.master, p.slave, curve_name(p.curve)))
-        .collect();
-    json!([
-        {
-            "name": "s-curve",
-            "title": "S-curve point-to-point (ECAMTBX K0/K1)",
-            "fields": [
-                field("pulses", "P1 total pulses", "int", json!(s.total_pulses)),
-                field("max_speed", "P2 top speed (Hz)", "int", json!(s.max_speed_hz)),
-                field("accel_ms", "P4 acceleration time (ms)", "int", json!(s.accel_ms)),
-                field("decel_ms", "P5 deceleration time (ms)", "int", json!(s.decel_ms)),
-                field("resolution", "P6 points", "int", json!(s.resolution)),
-                choice("curve", "ramp shape", &accels, "uniform-acceleration"),
-            ],
-        },
-        {
-            "name": "rotary-cut",
-            "title": "Rotary cut (ECAMTBX K100)",
-            "fields": cut(&["left", "mid-all", "mid-begin", "mid-end", "right"]),
-        },
-        {
-            "name": "fly-saw",
-            "title": "Flying saw (ECAMTBX K101)",
-            "fields": fly_saw,
-        },
-        {
-            "name": "keypoints",
-            "title": "Key points (ECAMTBX K2)",
-            "fields": [
-                field("key", "key points: master slave curve [points] per line", "keys", json!(key_lines.join("\n"))),
-                field("resolution", "total points", "int", json!(k.total_resolution)),
-                field("initial_slave", "initial slave", "int", json!(k.initial_slave)),
-            ],
-        },
-        {
-            "name": "function",
-            "title": "Function of the master x",
-            "fields": [
-                field("expr", "slave(x) =", "text", json!("1000*sin(2*pi*x/36000)")),
-                field("from", "first master", "int", json!(0)),
-                field("to", "last master", "int", json!(36000)),
-                field("points", "points", "int", json!(361)),
-            ],
-        },
-    ])
+    Value::Array(
+        schema::GENERATORS
+            .iter()
+            .map(|g| {
+                let defaults = generate::default_values(g);
+                let fields: Vec<Value> = g
+                    .fields
+                    .iter()
+                    .map(|f| form_field(f, defaults.get(f.key)))
+                    .collect();
+                json!({"name": g.name, "title": g.title, "fields": fields})
+            })
+            .collect(),
+    )
 }
 
-const fn curve_name(curve: CurveType) -> &'static str {
-    match curve {
-        CurveType::ConstantAcceleration => "constant-acceleration",
-        CurveType::SType => "s-type",
-        CurveType::Cycloid => "cycloid",
-        CurveType::ConstantSpeed => "constant-speed",
+fn form_field(field: &Field, default: Option<&Value>) -> Value {
+    let default = match (field.shown_default, field.kind, default) {
+        (Some(text), _, _) => json!(text),
+        (None, FieldKind::Switch, _) => json!(false),
+        (None, FieldKind::KeyPoints, Some(keys)) => {
+            let keys: Vec<KeyPoint> = serde_json::from_value(keys.clone()).unwrap_or_default();
+            let lines: Vec<String> = keys.iter().map(KeyPoint::to_string).collect();
+            json!(lines.join("\n"))
+        }
+        (None, _, Some(value)) => value.clone(),
+        (None, _, None) => json!(""),
+    };
+    let mut value = json!({
+        "key": field.key,
+        "label": field.label(),
+        "type": field.kind.name(),
+        "default": default,
+    });
+    if let FieldKind::Choice(names) = field.kind {
+        value["choices"] = json!(names);
     }
+    value
+}
+
+/// The key points typed in the page's box (`{"lines": "600 0 cycloid\n…"}`),
+/// read as `ecam table gen keypoints --key` reads them: `{"key": [{"master",
+/// "slave", "curve", "resolution"}, …]}`, what `POST /api/table/gen` takes.
+///
+/// # Errors
+/// A body without `lines`, or the first bad line.
+pub fn key_points(body: &Value) -> Result<Value, String> {
+    let text = body
+        .get("lines")
+        .and_then(Value::as_str)
+        .ok_or("the body needs \"lines\", e.g. {\"lines\": \"600 0 cycloid\\n2000 0\"}")?;
+    let keys = generate::parse_key_lines(text)?;
+    Ok(json!({ "key": keys }))
 }
 
 /// Samples per piece of a design curve: enough for smooth ramps, and a
@@ -211,10 +153,7 @@ pub fn generate_table(body: &Value) -> Result<Value, String> {
         "the body needs \"generator\", e.g. {\"generator\": \"rotary-cut\", \"params\": {}}",
     )?;
     let params = body.get("params").cloned().unwrap_or_else(|| json!({}));
-    let params: toml::Table = serde_json::from_value(params).map_err(|e| {
-        format!("\"params\" must be an object of numbers, strings and booleans: {e}")
-    })?;
-    let g = generate::from_toml(name, params).map_err(|e| format!("{e:#}"))?;
+    let g = generate::from_json(name, params).map_err(|e| format!("{e:#}"))?;
     let points = g.table.points();
     let exact = g.kinematics.is_some();
     let kinematics = g
@@ -288,16 +227,9 @@ mod tests {
                 let key = f["key"].as_str().unwrap().to_string();
                 let value = match (f["type"].as_str().unwrap(), &f["default"]) {
                     (_, Value::String(s)) if s.is_empty() => continue,
-                    ("keys", Value::String(lines)) => Value::Array(
-                        lines
-                            .lines()
-                            .map(|line| {
-                                let w: Vec<&str> = line.split_whitespace().collect();
-                                json!({"master": w[0].parse::<i64>().unwrap(),
-                                       "slave": w[1].parse::<i64>().unwrap(), "curve": w[2]})
-                            })
-                            .collect(),
-                    ),
+                    ("keys", Value::String(lines)) => {
+                        key_points(&json!({ "lines": lines })).unwrap()["key"].clone()
+                    }
                     (_, v) => v.clone(),
                 };
                 params.insert(key, value);
@@ -350,5 +282,20 @@ mod tests {
         assert!(generate_table(&json!({"generator": "nope"})).is_err());
         assert!(generate_table(&json!({"params": {}})).is_err());
         assert!(generate_table(&json!({"generator": "s-curve", "params": {"bogus": 1}})).is_err());
+    }
+
+    #[test]
+    fn key_point_lines_are_read_by_the_server() {
+        let v = key_points(&json!({"lines": "600 0\n\n1500, 2000; cycloid 20"})).unwrap();
+        assert_eq!(
+            v["key"],
+            json!([
+                {"master": 600, "slave": 0, "curve": "constant-acceleration", "resolution": 0},
+                {"master": 1500, "slave": 2000, "curve": "cycloid", "resolution": 20},
+            ])
+        );
+        let err = key_points(&json!({"lines": "600 0\n700 x"})).unwrap_err();
+        assert_eq!(err, "key point line 2: slave \"x\" is not an integer");
+        assert!(key_points(&json!({})).is_err());
     }
 }

@@ -12,6 +12,7 @@
 //! | `GET /api/law/NAME?points=N` | `u, s, v, a, j` arrays of the normalised rise |
 //! | `GET /api/generators` | generator names, parameters, defaults |
 //! | `POST /api/table/gen` `{"generator": "rotary-cut", "params": {...}}` | a generated table with its curves |
+//! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
 //!
 //! Errors answer `{"error": "message"}` with status 400 (bad request), 404
 //! (unknown route) or 500 (the write could not be made durable).
@@ -65,6 +66,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
             get(|| async { json_value(StatusCode::OK, &design::generators()) }),
         )
         .route("/api/table/gen", post(table_gen))
+        .route("/api/keypoints", post(key_points))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
         .with_state(shared)
 }
@@ -141,9 +143,18 @@ async fn law(Path(name): Path<String>, Query(query): Query<HashMap<String, Strin
 }
 
 async fn table_gen(body: Bytes) -> Response {
-    let result = serde_json::from_slice::<Value>(&body)
+    json_call(&body, design::generate_table)
+}
+
+async fn key_points(body: Bytes) -> Response {
+    json_call(&body, design::key_points)
+}
+
+/// Answers `answer(body)`, or 400 with its error.
+fn json_call(body: &[u8], answer: fn(&Value) -> Result<Value, String>) -> Response {
+    let result = serde_json::from_slice::<Value>(body)
         .map_err(|e| format!("the body is not JSON: {e}"))
-        .and_then(|value| design::generate_table(&value));
+        .and_then(|value| answer(&value));
     match result {
         Ok(value) => json_value(StatusCode::OK, &value),
         Err(message) => error(StatusCode::BAD_REQUEST, &message),

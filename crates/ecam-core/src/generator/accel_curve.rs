@@ -23,7 +23,7 @@
 //! budget does not depend on the curve chosen.
 //!
 //! ```
-//! use ecam_core::generator::accel_curve::AccelCurve;
+//! use ecam_core::generator::AccelCurve;
 //!
 //! let c = AccelCurve::from_code(1)?;
 //! assert_eq!(c, AccelCurve::UniformAcceleration);
@@ -65,6 +65,30 @@ impl AccelCurve {
                 name: "acceleration curve (P6 low word)",
                 reason: "must be 0 (uniform), 1 (uniform acceleration) or 2 (B type)",
             }),
+        }
+    }
+
+    /// Every name and code [`AccelCurve::from_name`] accepts, for messages.
+    pub const NAMES: &'static str =
+        "uniform (0), uniform-acceleration (1, alias s-type), b-type (2)";
+
+    /// The curve's name in parameter files, flags and forms.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::UniformAcceleration => "uniform-acceleration",
+            Self::BType => "b-type",
+        }
+    }
+
+    /// The curve for a name, the alias `s-type`, or a P6 low-word code
+    /// written as text (`"1"`).
+    pub fn from_name(text: &str) -> Option<Self> {
+        match text {
+            "0" | "uniform" => Some(Self::Uniform),
+            "1" | "uniform-acceleration" | "s-type" => Some(Self::UniformAcceleration),
+            "2" | "b-type" => Some(Self::BType),
+            _ => None,
         }
     }
 
@@ -169,6 +193,8 @@ impl AccelCurve {
     }
 }
 
+super::schema::choice_serde!(AccelCurve, "acceleration curve");
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -178,7 +204,12 @@ mod tests {
     fn codes_round_trip_and_bad_code_is_6781() {
         for c in AccelCurve::ALL {
             assert_eq!(AccelCurve::from_code(c.code()), Ok(c));
+            assert_eq!(AccelCurve::from_name(c.name()), Some(c));
         }
+        assert_eq!(
+            AccelCurve::from_name("s-type"),
+            Some(AccelCurve::UniformAcceleration)
+        );
         assert_eq!(AccelCurve::from_code(3).unwrap_err().code(), 6781);
     }
 

@@ -2,7 +2,7 @@
 //!
 //! The S-curve, rotary-cut and flying-saw generators first design a smooth
 //! motion (constant-velocity pieces joined by ramps shaped by an
-//! [`AccelCurve`](super::accel_curve::AccelCurve)), then sample it into a
+//! [`AccelCurve`](super::AccelCurve)), then sample it into a
 //! [`PointTable`](crate::PointTable) of whole pulses. The table is what a PLC
 //! runs; the design is what a motion engineer reasons about: its velocity,
 //! acceleration and jerk are the motion law, where finite differences of the
@@ -158,7 +158,7 @@ impl DesignCurve {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-    use crate::generator::accel_curve::AccelCurve;
+    use crate::generator::AccelCurve;
     use crate::generator::motion_path::Ramp;
 
     fn trapezoid(curve: AccelCurve) -> DesignCurve {

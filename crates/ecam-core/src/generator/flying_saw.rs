@@ -14,7 +14,7 @@
 //! pulses (negative: return), `P3` sync length in slave pulses, `P4` slave
 //! pulses per master pulse in the sync zone (the demo's "slave pulses per mm
 //! over master pulses per mm" = 3π), `P5` the ratio cap, `P6` low word the
-//! [`AccelCurve`](super::accel_curve::AccelCurve), high word the [`CamPlacement`] (plus `H1000` for return),
+//! [`AccelCurve`](super::AccelCurve), high word the [`CamPlacement`] (plus `H1000` for return),
 //! `P7` points in the table.
 //!
 //! # Geometry

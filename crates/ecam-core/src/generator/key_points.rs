@@ -28,9 +28,10 @@ pub const MAX_KEY_POINTS: usize = 10;
 
 /// The four curve types a key point's segment can follow (`*1` in the
 /// appendix's parameter table).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum CurveType {
-    /// Code 0: constant acceleration (parabolic).
+    /// Code 0: constant acceleration (parabolic), what an unnamed curve means.
+    #[default]
     ConstantAcceleration,
     /// Code 1: S-type acceleration and deceleration (jerk-limited).
     SType,
@@ -51,6 +52,35 @@ impl CurveType {
             3 => Some(Self::ConstantSpeed),
             _ => None,
         }
+    }
+
+    /// All four, in code order.
+    pub const ALL: [CurveType; 4] = [
+        Self::ConstantAcceleration,
+        Self::SType,
+        Self::Cycloid,
+        Self::ConstantSpeed,
+    ];
+
+    /// Every name and code [`CurveType::from_name`] accepts, for messages.
+    pub const NAMES: &'static str =
+        "constant-acceleration (0), s-type (1), cycloid (2), constant-speed (3)";
+
+    /// The curve's name in key-point lines, parameter files and forms.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::ConstantAcceleration => "constant-acceleration",
+            Self::SType => "s-type",
+            Self::Cycloid => "cycloid",
+            Self::ConstantSpeed => "constant-speed",
+        }
+    }
+
+    /// The curve for a name or a code written as text (`"2"`).
+    pub fn from_name(text: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|c| c.name() == text || text.parse() == Ok(c.code()))
     }
 
     /// The parameter-block code.
@@ -74,18 +104,52 @@ impl CurveType {
     }
 }
 
+super::schema::choice_serde!(CurveType, "curve");
+
 /// One key point: where a segment ends and how the slave gets there.
+///
+/// In parameter files and HTTP bodies a key point is a table
+/// `{master, slave, curve, resolution}` (the last two optional); typed by
+/// hand it is one line, see [`KeyPoint::parse_line`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct KeyPoint {
     /// Master position (counts), greater than the previous key point's.
     pub master: i64,
     /// Slave position (pulses) before the initial offset is added.
     pub slave: i64,
     /// Curve from the previous key point to this one.
+    #[serde(default)]
     pub curve: CurveType,
     /// Points for this segment, 1–512; 0 shares what the total leaves.
+    #[serde(default)]
     pub resolution: u16,
 }
+
+/// What is wrong with a key-point line (see [`KeyPoint::parse_line`]); the
+/// front ends word the message, naming where the line came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineError<'a> {
+    /// Fewer than two fields.
+    TooFew,
+    /// More than four fields.
+    TooMany,
+    /// The master (`what = "master"`) or slave is not an integer.
+    NotInteger {
+        /// `"master"` or `"slave"`.
+        what: &'static str,
+        /// The field as written.
+        text: &'a str,
+    },
+    /// The curve is neither a name nor a code of [`CurveType`].
+    UnknownCurve(&'a str),
+    /// The resolution is not a number from 0 to 65535.
+    BadResolution(&'a str),
+}
+
+/// The separators between a key-point line's fields: `:`, `,`, `;` and
+/// white space (runs count as one).
+const LINE_SEPARATORS: [char; 3] = [':', ',', ';'];
 
 impl KeyPoint {
     /// A key point whose segment shares the resolution.
@@ -97,19 +161,135 @@ impl KeyPoint {
             resolution: 0,
         }
     }
+
+    /// Reads one key point typed as `MASTER SLAVE [CURVE [RESOLUTION]]`,
+    /// the fields separated by `:`, `,`, `;` or white space: the syntax of
+    /// `ecam table gen keypoints --key` and of the designer page's key-point
+    /// box. CURVE is a [`CurveType`] name or code (constant acceleration
+    /// when absent), RESOLUTION 0 (when absent) shares the total.
+    ///
+    /// ```
+    /// use ecam_core::generator::key_points::{CurveType, KeyPoint};
+    ///
+    /// let k = KeyPoint::parse_line("1500:2000:cycloid:20").unwrap();
+    /// assert_eq!((k.master, k.slave, k.curve, k.resolution), (1500, 2000, CurveType::Cycloid, 20));
+    /// assert_eq!(KeyPoint::parse_line("600 0").unwrap().to_string(), "600 0 constant-acceleration");
+    /// ```
+    ///
+    /// # Errors
+    /// A [`LineError`] saying which field is wrong.
+    pub fn parse_line(line: &str) -> Result<Self, LineError<'_>> {
+        let mut fields = line
+            .split(|c: char| c.is_whitespace() || LINE_SEPARATORS.contains(&c))
+            .filter(|f| !f.is_empty());
+        let (Some(master), Some(slave)) = (fields.next(), fields.next()) else {
+            return Err(LineError::TooFew);
+        };
+        let master = master.parse().map_err(|_| LineError::NotInteger {
+            what: "master",
+            text: master,
+        })?;
+        let slave = slave.parse().map_err(|_| LineError::NotInteger {
+            what: "slave",
+            text: slave,
+        })?;
+        let curve = match fields.next() {
+            Some(c) => CurveType::from_name(c).ok_or(LineError::UnknownCurve(c))?,
+            None => CurveType::default(),
+        };
+        let resolution = match fields.next() {
+            Some(r) => r.parse().map_err(|_| LineError::BadResolution(r))?,
+            None => 0,
+        };
+        if fields.next().is_some() {
+            return Err(LineError::TooMany);
+        }
+        Ok(Self {
+            master,
+            slave,
+            curve,
+            resolution,
+        })
+    }
 }
 
-/// The K2 parameter block (`S0 + 2` onwards).
+/// The line [`KeyPoint::parse_line`] reads back: `MASTER SLAVE CURVE`, and
+/// the resolution when it is not 0.
+impl core::fmt::Display for KeyPoint {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{} {} {}", self.master, self.slave, self.curve.name())?;
+        if self.resolution != 0 {
+            write!(f, " {}", self.resolution)?;
+        }
+        Ok(())
+    }
+}
+
+/// Reads key points typed one per line ([`KeyPoint::parse_line`]); blank
+/// lines are skipped.
+///
+/// # Errors
+/// The first bad line's number (1-based) and what is wrong with it.
+pub fn parse_lines(text: &str) -> Result<Vec<KeyPoint>, (usize, LineError<'_>)> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, line)| !line.trim().is_empty())
+        .map(|(i, line)| KeyPoint::parse_line(line).map_err(|e| (i + 1, e)))
+        .collect()
+}
+
+/// The K2 parameter block (`S0 + 2` onwards). Its serde form uses the keys
+/// of [`schema::KEY_POINTS`](super::schema::KEY_POINTS) (`key`,
+/// `resolution`, `initial_slave`); what it leaves out, or an empty `key`
+/// list, keeps the `Default`.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(from = "ParamsForm")]
 pub struct Params {
     /// Points in the table, 10–512 (`S0 + 2`).
+    #[serde(rename = "resolution")]
     pub total_resolution: u16,
     /// Up to ten key points (`S0 + 8` onwards, six words each); key point 0
     /// is implicit at master 0.
+    #[serde(rename = "key")]
     pub key_points: Vec<KeyPoint>,
     /// Initial slave position: added to every slave value, so the table
     /// starts there (the "starting offset of the slave").
     pub initial_slave: i64,
+}
+
+/// [`Params`] as written, before an empty key list means the default ones.
+#[derive(serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct ParamsForm {
+    key: Vec<KeyPoint>,
+    resolution: u16,
+    initial_slave: i64,
+}
+
+impl Default for ParamsForm {
+    fn default() -> Self {
+        let d = Params::default();
+        Self {
+            key: Vec::new(),
+            resolution: d.total_resolution,
+            initial_slave: d.initial_slave,
+        }
+    }
+}
+
+impl From<ParamsForm> for Params {
+    fn from(form: ParamsForm) -> Self {
+        let d = Params::default();
+        Self {
+            total_resolution: form.resolution,
+            key_points: if form.key.is_empty() {
+                d.key_points
+            } else {
+                form.key
+            },
+            initial_slave: form.initial_slave,
+        }
+    }
 }
 
 impl Default for Params {

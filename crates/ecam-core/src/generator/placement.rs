@@ -6,7 +6,7 @@
 //! accepts both; [`CamPlacement::code`] writes 5, the clean copy's value.
 //!
 //! ```
-//! use ecam_core::generator::placement::CamPlacement;
+//! use ecam_core::generator::CamPlacement;
 //!
 //! assert_eq!(CamPlacement::from_code(4)?, CamPlacement::RightCam);
 //! assert_eq!(CamPlacement::from_code(5)?, CamPlacement::RightCam);
@@ -63,6 +63,34 @@ impl CamPlacement {
         }
     }
 
+    /// Every name and code [`CamPlacement::from_name`] accepts, for messages.
+    pub const NAMES: &'static str =
+        "left (0), mid-all (1), mid-begin (2), mid-end (3), right (5; 4 also accepted)";
+
+    /// The placement's name in parameter files, flags and forms.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::LeftCam => "left",
+            Self::MidCamAll => "mid-all",
+            Self::MidCamBegin => "mid-begin",
+            Self::MidCamEnd => "mid-end",
+            Self::RightCam => "right",
+        }
+    }
+
+    /// The placement for a name or a P6 high-word code written as text
+    /// (`"4"` and `"5"` both mean rightCAM).
+    pub fn from_name(text: &str) -> Option<Self> {
+        match text {
+            "0" | "left" => Some(Self::LeftCam),
+            "1" | "mid-all" => Some(Self::MidCamAll),
+            "2" | "mid-begin" => Some(Self::MidCamBegin),
+            "3" | "mid-end" => Some(Self::MidCamEnd),
+            "4" | "5" | "right" => Some(Self::RightCam),
+            _ => None,
+        }
+    }
+
     /// The P6 high-word code (rightCAM as 5).
     pub const fn code(self) -> u16 {
         match self {
@@ -75,6 +103,8 @@ impl CamPlacement {
     }
 }
 
+super::schema::choice_serde!(CamPlacement, "placement");
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -84,7 +114,9 @@ mod tests {
     fn codes_round_trip() {
         for p in CamPlacement::ALL {
             assert_eq!(CamPlacement::from_code(p.code()), Ok(p));
+            assert_eq!(CamPlacement::from_name(p.name()), Some(p));
         }
+        assert_eq!(CamPlacement::from_name("4"), Some(CamPlacement::RightCam));
         assert_eq!(CamPlacement::from_code(4), Ok(CamPlacement::RightCam));
         assert_eq!(CamPlacement::from_code(6).unwrap_err().code(), 6781);
     }

@@ -15,7 +15,7 @@
 //! pulse moves 0.1π mm of material and one slave pulse 0.06π mm of blade, so
 //! equal surface speeds need 5/3 slave pulses per master pulse: the value is
 //! slave/master, and that is how `P4` is used. `P5` caps the ratio anywhere in
-//! the table. `P6` low word: [`AccelCurve`](super::accel_curve::AccelCurve); high word: [`CamPlacement`].
+//! the table. `P6` low word: [`AccelCurve`](super::AccelCurve); high word: [`CamPlacement`].
 //! `P7` resolution: points in the table (2 to 512).
 //!
 //! # Geometry

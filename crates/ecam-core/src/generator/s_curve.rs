@@ -60,12 +60,17 @@ pub const MIN_RESOLUTION: u16 = 51;
 pub const MAX_RESOLUTION: u16 = 512;
 
 /// ECAMTBX K0/K1 parameters. `Default` is the manual's calculation case
-/// (the register table gives no defaults).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// (the register table gives no defaults). The serde form uses the keys of
+/// [`schema::S_CURVE`](super::schema::S_CURVE); what it leaves out keeps
+/// the default.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Params {
     /// `P1`: pulses to move; negative moves backwards. At most ±2³¹−1 (a 32-bit register).
+    #[serde(rename = "pulses")]
     pub total_pulses: i64,
     /// `P2`: top speed in Hz, 1 to 150000.
+    #[serde(rename = "max_speed")]
     pub max_speed_hz: u32,
     /// `P4`: time from rest to top speed, ms, 0 to 32767.
     pub accel_ms: u16,

@@ -169,7 +169,7 @@ pub(crate) fn peak_ratio(table: &PointTable) -> f64 {
 mod tests {
     use super::*;
     use crate::CamCurve;
-    use crate::generator::accel_curve::AccelCurve;
+    use crate::generator::AccelCurve;
     use crate::generator::motion_path::Ramp;
 
     #[test]
