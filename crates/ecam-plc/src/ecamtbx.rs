@@ -49,21 +49,24 @@
 //! ```
 
 use ecam_core::generator::AccelCurve;
-use ecam_core::generator::CamPlacement;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, MAX_KEY_POINTS};
+use ecam_core::generator::{CamPlacement, CutParams, Field, schema};
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
-use ecam_core::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamPoint, TableError};
+use ecam_core::{
+    CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamPoint, PointTable, TableError,
+    register_image,
+};
 
 use crate::decam::offsets::{TABLE_END, TABLE_END_REPEAT, TABLE_END_STOP};
 use crate::devices::{D_COUNT, Devices};
 use crate::operation_error::OperationError;
 
 /// Offset of the point count in the target block (`D1 + 38`).
-pub const TABLE_SECTIONS: u16 = 38;
+pub const TABLE_SECTIONS: u16 = crate::decam::offsets::SECTIONS;
 /// Offset of the first point (`D1 + 40`).
-pub const TABLE_START: u16 = 40;
+pub const TABLE_START: u16 = crate::decam::offsets::TABLE;
 /// Most points a DECAM table holds.
-pub const MAX_POINTS: usize = 512;
+pub const MAX_POINTS: usize = register_image::MAX_SECTIONS;
 
 /// The table kinds S1 selects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -324,6 +327,9 @@ fn check_block(base: u16, words: u16) -> Result<(), Failure> {
 /// slave (32-bit), curve type, resolution.
 fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failure> {
     check_block(base, 8)?;
+    let at = |key| register(schema::KEY_POINTS, key);
+    // S0+3, the key point count, has no field of its own in the schema:
+    // it is the length of the key point list, whose entries start at S0+8.
     let count = word(devices, base, 3);
     let count = usize::try_from(count)
         .ok()
@@ -337,7 +343,7 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
     check_block(base, 8 + 6 * count as u16)?;
     let mut key_points = Vec::with_capacity(count);
     for i in 0..count as u16 {
-        let at = 8 + 6 * i;
+        let at = at("key") + 6 * i;
         let number = i + 1;
         let code = word(devices, base, at + 4);
         let curve = CurveType::from_code(i32::from(code)).ok_or_else(|| {
@@ -366,7 +372,7 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
             resolution,
         });
     }
-    let total = word(devices, base, 2);
+    let total = word(devices, base, at("resolution"));
     let params = key_points::Params {
         total_resolution: u16::try_from(total).map_err(|_| {
             Failure::parameter(
@@ -375,7 +381,7 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
             )
         })?,
         key_points,
-        initial_slave: i64::from(dword(devices, base, 4)),
+        initial_slave: i64::from(dword(devices, base, at("initial_slave"))),
     };
     let generated = key_points::generate(&params).map_err(|e| Failure::from_table(&e))?;
     Ok(generated.table.into_points())
@@ -393,13 +399,19 @@ fn s_curve_table(devices: &Devices, base: u16) -> Result<Generated, Failure> {
             Failure::parameter(offset, format!("{name} (NO.{offset}) must not be negative"))
         })
     };
+    let at = |key| register(schema::S_CURVE, key);
     let params = s_curve::Params {
-        total_pulses: i64::from(dword(devices, base, 0)),
-        max_speed_hz: u32::try_from(dword(devices, base, 2))
-            .map_err(|_| Failure::parameter(2, "max speed (P2, NO.2) must not be negative"))?,
-        accel_ms: unsigned(6, "acceleration time P4")?,
-        decel_ms: unsigned(7, "deceleration time P5")?,
-        resolution: unsigned(8, "resolution P6")?,
+        total_pulses: i64::from(dword(devices, base, at("pulses"))),
+        max_speed_hz: u32::try_from(dword(devices, base, at("max_speed"))).map_err(|_| {
+            let offset = at("max_speed");
+            Failure::parameter(
+                offset,
+                format!("max speed (P2, NO.{offset}) must not be negative"),
+            )
+        })?,
+        accel_ms: unsigned(at("accel_ms"), "acceleration time P4")?,
+        decel_ms: unsigned(at("decel_ms"), "deceleration time P5")?,
+        resolution: unsigned(at("resolution"), "resolution P6")?,
         curve: AccelCurve::UniformAcceleration,
     };
     let generated = s_curve::generate(&params).map_err(|e| Failure::from_table(&e))?;
@@ -435,8 +447,15 @@ struct CutBlock {
     resolution: u16,
 }
 
-/// Resolution used when P7 is 0 (the manual's demos leave it unset).
-pub const DEFAULT_CUT_RESOLUTION: u16 = 100;
+/// The word offset of parameter `key` in a generator's ECAMTBX block: the
+/// schema in `ecam_core::generator::schema` is the one home of the layout.
+fn register(fields: &[Field], key: &str) -> u16 {
+    fields
+        .iter()
+        .find(|f| f.key == key)
+        .and_then(|f| f.register)
+        .unwrap_or(u16::MAX)
+}
 
 fn cut_block(devices: &Devices, base: u16) -> Result<CutBlock, Failure> {
     check_block(base, 20)?;
@@ -454,20 +473,28 @@ fn cut_block(devices: &Devices, base: u16) -> Result<CutBlock, Failure> {
             ))
         }
     };
-    let resolution = match word(devices, base, 12) {
-        0 => DEFAULT_CUT_RESOLUTION,
-        r => u16::try_from(r)
-            .map_err(|_| Failure::parameter(12, "resolution (P7, NO.12) must not be negative"))?,
+    // Rotary cut and flying saw share the block (the manual's P1-P7).
+    let at = |key| register(schema::ROTARY_CUT, key);
+    let resolution = match word(devices, base, at("resolution")) {
+        // The manual's demos leave P7 unset: the generator's default.
+        0 => CutParams::default().resolution,
+        r => u16::try_from(r).map_err(|_| {
+            let offset = at("resolution");
+            Failure::parameter(
+                offset,
+                format!("resolution (P7, NO.{offset}) must not be negative"),
+            )
+        })?,
     };
     Ok(CutBlock {
-        master_length: i64::from(dword(devices, base, 0)),
-        slave_length: i64::from(dword(devices, base, 2)),
-        sync_length: i64::from(dword(devices, base, 4)),
-        sync_ratio: float(6, "sync ratio P4")?,
-        max_ratio: float(8, "max ratio P5")?,
-        accel_curve: AccelCurve::from_code(word(devices, base, 10) as u16)
+        master_length: i64::from(dword(devices, base, at("master"))),
+        slave_length: i64::from(dword(devices, base, at("slave"))),
+        sync_length: i64::from(dword(devices, base, at("sync"))),
+        sync_ratio: float(at("ratio"), "sync ratio P4")?,
+        max_ratio: float(at("max_ratio"), "max ratio P5")?,
+        accel_curve: AccelCurve::from_code(word(devices, base, at("accel")) as u16)
             .map_err(|e| Failure::from_table(&e))?,
-        cam_word: word(devices, base, 11) as u16,
+        cam_word: word(devices, base, at("placement")) as u16,
         resolution,
     })
 }
@@ -543,24 +570,19 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
             new_table: None,
         });
     }
-    let mut words = Vec::with_capacity(points.len());
-    for (i, p) in points.iter().enumerate() {
-        let (Ok(m), Ok(s)) = (i32::try_from(p.master), i32::try_from(p.slave)) else {
-            return Err(Failure {
-                code: CODE_TABLE,
-                message: format!("table point {i} does not fit 32-bit registers"),
-                position: u16::try_from(i).unwrap_or(u16::MAX),
-                new_table: None,
-            });
-        };
-        words.push((m, s));
-    }
-    let _ = devices.set_word(base + TABLE_SECTIONS, words.len() as i16);
-    let _ = devices.set_word(base + TABLE_SECTIONS + 1, TABLE_START as i16);
-    for (i, (m, s)) in words.into_iter().enumerate() {
-        let at = base + TABLE_START + 4 * i as u16;
-        let _ = devices.set_dword(at, m);
-        let _ = devices.set_dword(at + 2, s);
+    // The image (count, offset 40, the points) has its home in ecam-core.
+    let table = PointTable::new(points.to_vec()).map_err(|e| Failure::from_table(&e))?;
+    let words = register_image::table_words(&table).map_err(|e| match e {
+        TableError::ValueOutOfRange { section } => Failure {
+            code: CODE_TABLE,
+            message: format!("table point {section} does not fit 32-bit registers"),
+            position: u16::try_from(section).unwrap_or(u16::MAX),
+            new_table: None,
+        },
+        other => Failure::from_table(&other),
+    })?;
+    for (i, word) in words.into_iter().enumerate() {
+        let _ = devices.set_word(base + TABLE_SECTIONS + i as u16, word);
     }
     Ok(())
 }
@@ -569,6 +591,39 @@ fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_register_the_instruction_reads_is_in_the_schema() {
+        let reads: [(&[Field], &[&str]); 3] = [
+            (
+                schema::S_CURVE,
+                &["pulses", "max_speed", "accel_ms", "decel_ms", "resolution"],
+            ),
+            (
+                schema::ROTARY_CUT,
+                &[
+                    "master",
+                    "slave",
+                    "sync",
+                    "ratio",
+                    "max_ratio",
+                    "accel",
+                    "placement",
+                    "resolution",
+                ],
+            ),
+            (schema::KEY_POINTS, &["key", "resolution", "initial_slave"]),
+        ];
+        for (fields, keys) in reads {
+            for key in keys {
+                assert_ne!(register(fields, key), u16::MAX, "{key}");
+            }
+        }
+        // The flying saw reads the rotary cut's block.
+        for f in schema::FLY_SAW.iter().filter(|f| f.register.is_some()) {
+            assert_eq!(Some(register(schema::ROTARY_CUT, f.key)), f.register);
+        }
+    }
 
     #[test]
     fn kinds_decode_as_the_manual_lists_them() {

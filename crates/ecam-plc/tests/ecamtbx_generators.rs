@@ -51,7 +51,7 @@ fn rotary_cut_demo_k100() {
         max_ratio: f64::from(50.0f32 / 3.0),
         accel_curve: AccelCurve::Uniform,
         placement: CamPlacement::LeftCam,
-        resolution: ecamtbx::DEFAULT_CUT_RESOLUTION,
+        resolution: ecam_core::generator::CutParams::default().resolution,
     })
     .unwrap();
     let got = table(&dev);
@@ -76,7 +76,7 @@ fn flying_saw_demo_k101_forward_and_return() {
             max_ratio: 10.0,
             accel_curve: AccelCurve::Uniform,
             placement: CamPlacement::LeftCam,
-            resolution: ecamtbx::DEFAULT_CUT_RESOLUTION,
+            resolution: ecam_core::generator::CutParams::default().resolution,
         })
         .unwrap();
         assert_eq!(got, expected.table.points());
