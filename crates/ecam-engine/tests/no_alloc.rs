@@ -1,5 +1,8 @@
 //! `tick` allocates nothing: a counting global allocator watches this
 //! thread while axes of every mode run, start, stop and fault.
+//!
+//! Its own test binary: a `#[global_allocator]` replaces the allocator of
+//! the whole binary it is linked into, so it stays out of `tests/it`.
 #![allow(unsafe_code)] // the GlobalAlloc wrapper below; test-only
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 

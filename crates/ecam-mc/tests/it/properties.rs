@@ -18,7 +18,7 @@ fn table() -> impl Strategy<Value = PointTable> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(64)))]
 
     /// One table span further along the master, a Repeat cam's slave is
     /// exactly one stroke further, in either direction.

@@ -226,7 +226,7 @@ fn s_curve_designs() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(200)))]
 
     #[test]
     fn every_rotary_cut_point_is_on_its_design(

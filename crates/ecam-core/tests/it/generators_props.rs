@@ -40,7 +40,7 @@ fn placement() -> impl Strategy<Value = CamPlacement> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(300)))]
 
     #[test]
     fn s_curve_tables_are_well_formed(

@@ -66,7 +66,7 @@ fn within_limit(out: &TickOutput, hz: u64, dt_us: u32) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(48)))]
 
     #[test]
     fn zero_drift_over_a_billion_counts_across_a_counter_wrap(
@@ -282,7 +282,7 @@ fn any_op() -> impl Strategy<Value = Op> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(200)))]
 
     #[test]
     fn tick_never_panics_and_keeps_its_books(

@@ -21,14 +21,6 @@ use ecam_engine::{
 };
 use proptest::prelude::*;
 
-/// Case count: `PROPTEST_CASES` when set (a long CI pass), else `default`.
-fn cases(default: u32) -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
-
 const TICK_US: u32 = 100;
 
 /// How the master reaches the axis.
@@ -199,7 +191,7 @@ fn fresh_command(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(cases(64)))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(64)))]
 
     #[test]
     fn a_drive_can_follow_every_command(

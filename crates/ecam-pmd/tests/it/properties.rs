@@ -19,7 +19,7 @@ fn cam_processor(values: &[i64], counts: i64) -> MotionProcessor {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(64)))]
 
     /// Started at input 0 from commanded 0, the output at input k·CamCounts
     /// is exactly k·(last − first), whatever path the input took there.
