@@ -4,9 +4,9 @@
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use ecam_plc::hardware::Wire;
+use ecam_plc::Plc;
+use ecam_plc::Wire;
 use ecam_plc::il::parse;
-use ecam_plc::scan::Plc;
 use ecam_plc::sim::{RunLength, Timing, run};
 
 const LOOPBACK: &str = "LD M8000\nOUT C231 K2147483647\nDPLSY K100000 K0 Y1\nLD C231\nOUT Y7\n";

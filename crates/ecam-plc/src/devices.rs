@@ -120,7 +120,7 @@ impl Device {
     /// What this device holds through a power cycle (see [`Retention`]).
     ///
     /// ```
-    /// use ecam_plc::devices::{Device, Retention};
+    /// use ecam_plc::{Device, Retention};
     /// assert_eq!(Device::D(100).retention(), Retention::Cleared);
     /// assert_eq!(Device::D(2000).retention(), Retention::Latched);
     /// assert_eq!(Device::M(8145).retention(), Retention::Special);

@@ -29,7 +29,7 @@
 //! only moves words in and out.
 //!
 //! ```
-//! use ecam_plc::devices::Devices;
+//! use ecam_plc::Devices;
 //! use ecam_plc::ecamtbx;
 //!
 //! // Document 000's key-point case: 5 key points, total resolution 100.

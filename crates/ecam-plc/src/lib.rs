@@ -10,25 +10,42 @@
 //! a thin layer over [`sim::run`]); it is not a real-time controller.
 //!
 //! ```
-//! use ecam_plc::{il, scan::Plc, sim};
+//! use ecam_plc::{Plc, il, sim};
 //! // Y1 drives 1000 pulses at 10 kHz into X0, counted by C235.
 //! let source = "LD M8000\nOUT C235 K1000\nDPLSY K10000 K1000 Y1\nLD C235\nOUT Y7\n";
 //! let mut plc = Plc::new(il::parse(source, "loop.il").unwrap()).unwrap();
-//! plc.hardware_mut().add_wire(ecam_plc::hardware::Wire::parse("Y1:X0").unwrap());
+//! plc.hardware_mut().add_wire(ecam_plc::Wire::parse("Y1:X0").unwrap());
 //! sim::run(&mut plc, sim::Timing::default(), sim::RunLength::Millis(200), |_| {}).unwrap();
 //! assert_eq!(plc.devices().counter(235), Ok(1000));
-//! assert_eq!(plc.devices().bit(ecam_plc::devices::Device::Y(7)), Ok(true));
+//! assert_eq!(plc.devices().bit(ecam_plc::Device::Y(7)), Ok(true));
 //! ```
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
+// The faces a user programs against keep their namespaces (the DECAM
+// register block, ECAMTBX, the instruction list, simulated time, the
+// special devices); the machinery behind them is private and what a user
+// needs of it is re-exported below.
 pub mod decam;
-pub mod devices;
 pub mod ecamtbx;
-pub mod hardware;
 pub mod il;
-pub mod interpreter;
-pub mod operation_error;
-pub mod scan;
 pub mod sim;
 pub mod special;
-pub mod view;
+
+mod devices;
+mod hardware;
+mod interpreter;
+mod operation_error;
+mod scan;
+mod view;
+
+pub use devices::{
+    C_32BIT_FIRST, C_COUNT, C_LATCHED, D_COUNT, D_LATCHED, Device, DeviceError, Devices, M_COUNT,
+    M_LATCHED, Retention, SPECIAL_FIRST, XY_COUNT,
+};
+pub use hardware::{
+    Counters, HIGH_SPEED_COUNTERS, Hardware, OutputOwner, PULSE_OUTPUTS, PulseTrain, Wire,
+    WireError, record_pulses,
+};
+pub use operation_error::{CODE_DEVICE_RANGE, CODE_OPERAND, OperationError};
+pub use scan::Plc;
+pub use view::{Value, View, ViewError};

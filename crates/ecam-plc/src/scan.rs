@@ -35,7 +35,7 @@ impl Plc {
     ///
     /// ```
     /// let program = ecam_plc::il::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
-    /// let mut plc = ecam_plc::scan::Plc::new(program).unwrap();
+    /// let mut plc = ecam_plc::Plc::new(program).unwrap();
     /// plc.scan();
     /// assert_eq!(plc.devices().word(0), Ok(7));
     /// ```

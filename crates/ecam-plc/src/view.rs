@@ -72,7 +72,7 @@ impl View {
     /// Unknown or out-of-range device.
     ///
     /// ```
-    /// use ecam_plc::view::View;
+    /// use ecam_plc::View;
     /// assert_eq!(View::parse("dd2019").unwrap().to_string(), "DD2019");
     /// assert!(View::parse("DD8511").is_err());
     /// ```

@@ -95,8 +95,8 @@ pub fn answer_request(shared: &Shared, request: &Request) -> Result<Response, Ex
 mod tests {
     use super::*;
     use crate::state::ServeInfo;
-    use ecam_plc::devices::Device;
-    use ecam_plc::scan::Plc;
+    use ecam_plc::Device;
+    use ecam_plc::Plc;
 
     fn shared() -> Shared {
         let program = ecam_plc::il::parse("", "empty.il").unwrap();

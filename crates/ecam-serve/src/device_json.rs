@@ -6,8 +6,8 @@
 use std::collections::HashSet;
 use std::fmt::Write as _;
 
-use ecam_plc::devices::{Device, Devices};
-use ecam_plc::view::View;
+use ecam_plc::View;
+use ecam_plc::{Device, Devices};
 use serde_json::Value;
 
 use crate::write::WriteBatch;

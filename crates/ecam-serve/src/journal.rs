@@ -30,7 +30,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
 
-use ecam_plc::devices::Devices;
+use ecam_plc::Devices;
 
 use crate::retain;
 use crate::write::{Slot, WriteBatch};
@@ -380,7 +380,7 @@ fn write_snapshot(dir: &Path, values: &BTreeMap<Slot, i32>) -> Result<(), Journa
 #[allow(clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::*;
-    use ecam_plc::devices::Device;
+    use ecam_plc::Device;
 
     fn scratch(name: &str) -> PathBuf {
         let dir = std::env::temp_dir().join(format!("ecam-journal-{}-{name}", std::process::id()));

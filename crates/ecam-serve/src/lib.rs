@@ -21,7 +21,7 @@
 //! the server as a user sees it.
 //!
 //! ```
-//! use ecam_plc::{il, scan::Plc, sim::Timing};
+//! use ecam_plc::{Plc, il, sim::Timing};
 //! use ecam_serve::{Response, ServeInfo, Shared, answer_request, encode_response, parse_request};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -12,7 +12,7 @@
 //! (exception 02). Writing a Y coil is exception 02 as well: for this
 //! server a read-only address is not an allowable address *for writing*.
 
-use ecam_plc::devices::{D_COUNT, Device, M_COUNT, XY_COUNT};
+use ecam_plc::{D_COUNT, Device, M_COUNT, XY_COUNT};
 
 use crate::pdu::Exception;
 

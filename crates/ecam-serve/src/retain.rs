@@ -1,5 +1,5 @@
 //! What `--state` keeps, as a PLC with a battery would (the ranges are
-//! [`ecam_plc::devices::Retention`], the FX3U defaults):
+//! [`ecam_plc::Retention`], the FX3U defaults):
 //!
 //! - **Special devices** (D8000–D8511, M8000–M8511) are the PLC's own: it
 //!   sets them up at start (M8000, clocks, pulse counters) and acts on them
@@ -24,7 +24,7 @@ use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use ecam_plc::devices::{C_COUNT, C_LATCHED, D_LATCHED, Device, Devices, M_LATCHED, Retention};
+use ecam_plc::{C_COUNT, C_LATCHED, D_LATCHED, Device, Devices, M_LATCHED, Retention};
 
 use crate::state::{Event, Shared};
 use crate::write::{Slot, WriteBatch};

@@ -16,8 +16,8 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use ecam_plc::devices::Devices;
-use ecam_plc::scan::Plc;
+use ecam_plc::Devices;
+use ecam_plc::Plc;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 

@@ -13,7 +13,7 @@
 use core::fmt;
 use std::fmt::Write as _;
 
-use ecam_plc::devices::{C_32BIT_FIRST, Device, Devices};
+use ecam_plc::{C_32BIT_FIRST, Device, Devices};
 
 /// One device whose value can be kept: a data register, a writable bit, or
 /// a counter's value.

@@ -9,10 +9,10 @@ use std::io::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context as _, bail};
-use ecam_plc::hardware::Wire;
-use ecam_plc::scan::Plc;
+use ecam_plc::Plc;
+use ecam_plc::View;
+use ecam_plc::Wire;
 use ecam_plc::sim::{self, RunLength, Timing};
-use ecam_plc::view::View;
 
 /// Subcommands of `ecam plc`.
 #[derive(clap::Subcommand)]

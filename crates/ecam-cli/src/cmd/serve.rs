@@ -10,8 +10,8 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Context as _;
-use ecam_plc::hardware::Wire;
-use ecam_plc::scan::Plc;
+use ecam_plc::Plc;
+use ecam_plc::Wire;
 use ecam_plc::sim::{self, Timing};
 use ecam_serve::{Event, Journal, LatchedImage, Recovery, ServeInfo, Shared, Slot};
 use tokio::net::TcpListener;

@@ -25,8 +25,8 @@
 //!
 //! ```
 //! use ecam_plc::decam::{Decam, DecamOperands, MasterOperand};
-//! use ecam_plc::devices::{Device, Devices};
-//! use ecam_plc::hardware::Hardware;
+//! use ecam_plc::{Device, Devices};
+//! use ecam_plc::Hardware;
 //!
 //! let mut dev = Devices::new();
 //! let mut hw = Hardware::new();

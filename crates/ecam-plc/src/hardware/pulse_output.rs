@@ -17,8 +17,8 @@ use crate::special::{D_PULSE_COUNT, M_BUSY};
 /// from this output: a one-phase counter input sees pulses, not direction.
 ///
 /// ```
-/// use ecam_plc::devices::Devices;
-/// use ecam_plc::hardware::{record_pulses, Hardware, OutputOwner};
+/// use ecam_plc::Devices;
+/// use ecam_plc::{record_pulses, Hardware, OutputOwner};
 /// let mut devices = Devices::new();
 /// let mut hardware = Hardware::new();
 /// let (cam, plsy) = (OutputOwner::Cam(1), OutputOwner::PulseTrain(4));

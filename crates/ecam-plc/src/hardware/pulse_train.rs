@@ -20,7 +20,7 @@ impl PulseTrain {
     /// A train of `count` pulses (`0` = endless) at `frequency_hz`.
     ///
     /// ```
-    /// let mut train = ecam_plc::hardware::PulseTrain::new(3, 0);
+    /// let mut train = ecam_plc::PulseTrain::new(3, 0);
     /// let pulses: u64 = (0..10_000).map(|_| train.advance(100)).sum();
     /// assert_eq!(pulses, 3);
     /// ```

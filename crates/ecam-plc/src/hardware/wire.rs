@@ -49,9 +49,9 @@ impl Wire {
     /// A malformed text, or what [`Wire::new`] refuses.
     ///
     /// ```
-    /// let wire = ecam_plc::hardware::Wire::parse("Y1:X0").unwrap();
+    /// let wire = ecam_plc::Wire::parse("Y1:X0").unwrap();
     /// assert_eq!((wire.output(), wire.input()), (1, 0));
-    /// assert!(ecam_plc::hardware::Wire::parse("Y1-X0").is_err());
+    /// assert!(ecam_plc::Wire::parse("Y1-X0").is_err());
     /// ```
     pub fn parse(text: &str) -> Result<Self, WireError> {
         let malformed = || {

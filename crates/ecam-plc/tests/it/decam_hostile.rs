@@ -3,13 +3,11 @@
 //! register (offset 2) and the error flag bits 4/5 agree.
 #![allow(clippy::unwrap_used)]
 
-mod decam_support;
-
-use decam_support::Rig;
+use crate::decam_support::Rig;
 use proptest::prelude::*;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(256)))]
     #[test]
     fn any_block_and_master_motion_is_survived(
         words in prop::collection::vec((0u16..60, any::<i16>()), 0..40),
@@ -30,7 +28,7 @@ proptest! {
             if i % 10 == 0 {
                 r.scan();
             }
-            r.set_bit(decam_support::START, edges >> (i % 64) & 1 == 1);
+            r.set_bit(crate::decam_support::START, edges >> (i % 64) & 1 == 1);
             r.tick(*step);
             let flags = r.flags();
             let error = r.reg(2);

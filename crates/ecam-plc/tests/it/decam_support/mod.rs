@@ -3,10 +3,10 @@
 //! start signal M100, scans every 1 ms and hardware ticks of 100 µs.
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
 
+use ecam_plc::Hardware;
+use ecam_plc::OperationError;
 use ecam_plc::decam::{Decam, DecamOperands, MasterOperand};
-use ecam_plc::devices::{Device, Devices};
-use ecam_plc::hardware::Hardware;
-use ecam_plc::operation_error::OperationError;
+use ecam_plc::{Device, Devices};
 
 pub const BLOCK: u16 = 2000;
 pub const MASTER: u16 = 10;

@@ -6,7 +6,7 @@ use ecam_core::generator::AccelCurve;
 use ecam_core::generator::CamPlacement;
 use ecam_core::generator::{flying_saw, key_points, rotary_cut, s_curve};
 use ecam_core::{CamCurve, CamPoint};
-use ecam_plc::devices::Devices;
+use ecam_plc::Devices;
 use ecam_plc::ecamtbx;
 
 const P: u16 = 100; // parameter block S0
@@ -273,9 +273,9 @@ fn bad_parameters_give_negative_results() {
 
 #[test]
 fn a_generated_table_drives_decam() {
+    use ecam_plc::Device;
+    use ecam_plc::Hardware;
     use ecam_plc::decam::{Decam, DecamOperands, MasterOperand};
-    use ecam_plc::devices::Device;
-    use ecam_plc::hardware::Hardware;
     let mut dev = Devices::new();
     key_point_block(&mut dev, 100, K2_CASE);
     ecamtbx::execute(&mut dev, P, 2, T, R).unwrap();

@@ -2,9 +2,7 @@
 //! the flags, the running cam left unchanged, everything cleared once fixed.
 #![allow(clippy::unwrap_used)]
 
-mod decam_support;
-
-use decam_support::Rig;
+use crate::decam_support::Rig;
 
 const GOOD: &[(i32, i32)] = &[(0, 0), (500, 500), (1000, 1000)];
 
@@ -60,7 +58,7 @@ fn unwritten_points_after_the_table_are_a_table_error() {
 #[test]
 fn a_table_that_does_not_fit_below_d8512_is_6783() {
     use ecam_plc::decam::{Decam, DecamOperands, MasterOperand};
-    use ecam_plc::devices::{Device, Devices};
+    use ecam_plc::{Device, Devices};
     let ops = DecamOperands::new(
         MasterOperand::Register(10),
         8400,
@@ -212,7 +210,7 @@ fn a_table_changed_while_running_takes_over_at_the_next_seam() {
 
 #[test]
 fn a_start_edge_while_the_block_is_bad_is_ignored() {
-    use decam_support::START;
+    use crate::decam_support::START;
     let mut r = Rig::new(GOOD);
     r.set(3, 0b10_0000); // external start
     r.start(1);

@@ -1,11 +1,9 @@
 //! Every register offset of the DECAM block, driven through the library API.
 #![allow(clippy::unwrap_used)]
 
-mod decam_support;
-
-use decam_support::{Rig, START};
+use crate::decam_support::{Rig, START};
+use ecam_plc::Device;
 use ecam_plc::decam::MasterOperand;
-use ecam_plc::devices::Device;
 
 const TRIANGLE: &[(i32, i32)] = &[(0, 0), (500, 100), (1000, 0)];
 const LINE: &[(i32, i32)] = &[(0, 0), (1000, 100)];
@@ -472,7 +470,7 @@ fn disabling_the_instruction_stops_the_cam() {
 #[test]
 fn pulse_counter_equals_slave_position() {
     use proptest::prelude::*;
-    let config = ProptestConfig::with_cases(24);
+    let config = ProptestConfig::with_cases(crate::cases(24));
     proptest!(config, |(steps in proptest::collection::vec(-40i64..40, 1..300))| {
         let mut r = Rig::new(&[(0, 0), (300, 250), (600, -100), (1000, 0)]);
         r.start(1);

@@ -1,10 +1,10 @@
 //! Every IL instruction, executed through the scan cycle.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::devices::Device;
-use ecam_plc::hardware::Wire;
+use ecam_plc::Device;
+use ecam_plc::Plc;
+use ecam_plc::Wire;
 use ecam_plc::il::parse;
-use ecam_plc::scan::Plc;
 use ecam_plc::sim::{RunLength, Timing, run};
 
 fn plc(src: &str) -> Plc {

@@ -48,7 +48,7 @@ const WORDS: &[&str] = &[
 ];
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(600))]
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(600)))]
 
     #[test]
     fn arbitrary_text(text in "\\PC{0,200}") {
@@ -67,7 +67,7 @@ proptest! {
     fn parsed_programs_run(tokens in proptest::collection::vec(proptest::sample::select(WORDS), 0..40)) {
         let text = tokens.join(" ");
         if let Ok(program) = ecam_plc::il::parse(&text, "fuzz.il") {
-            if let Ok(mut plc) = ecam_plc::scan::Plc::new(program) {
+            if let Ok(mut plc) = ecam_plc::Plc::new(program) {
                 for _ in 0..3 {
                     plc.scan();
                     plc.hardware_tick(100);

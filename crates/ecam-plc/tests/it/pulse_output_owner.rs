@@ -2,9 +2,9 @@
 //! DECAM, PLSY or DPLSY on a busy output waits and takes it once released.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::devices::Device;
+use ecam_plc::Device;
+use ecam_plc::Plc;
 use ecam_plc::il::parse;
-use ecam_plc::scan::Plc;
 
 fn plc(src: &str) -> Plc {
     Plc::new(parse(src, "t.il").unwrap()).unwrap()

@@ -1,7 +1,7 @@
 //! The IL parser: accepted forms, and errors that name file:line and what was expected.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::devices::Device;
+use ecam_plc::Device;
 use ecam_plc::il::{
     ArithOp, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Width, ZoneDevice, parse,
 };
