@@ -20,11 +20,11 @@
 //! let mut axis = McCamAxis::new(table)?;
 //! axis.select(CamTableSelect { periodic: true, ..CamTableSelect::default() })?;
 //! axis.cam_in(&CamIn::default())?;
-//! let status = axis.cycle(250, 1000);
+//! let status = axis.tick(250, 1000);
 //! assert!(status.in_sync && status.busy);
 //! assert_eq!(status.output.slave, 100);
 //! axis.cam_out(CamOut);
-//! assert!(!axis.cycle(300, 1000).busy);
+//! assert!(!axis.tick(300, 1000).busy);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -217,7 +217,7 @@ impl<C: CamCurve> McCamAxis<C> {
     }
 
     /// One control cycle with the master at `master`, `dt_us` after the last.
-    pub fn cycle(&mut self, master: i64, dt_us: u32) -> CamStatus {
+    pub fn tick(&mut self, master: i64, dt_us: u32) -> CamStatus {
         let output = self.axis.tick(&TickInput::at(master, dt_us));
         CamStatus {
             in_sync: output.following,

@@ -48,7 +48,7 @@ struct Channel {
 ///
 /// Positions are command positions in pulses. A single-turn axis keeps its
 /// position in `[0, turn)`; a master that is single-turn is unwrapped by the
-/// engine, so between two [`MotionController::update`]s it must move less
+/// engine, so between two [`MotionController::tick`]s it must move less
 /// than half a turn.
 #[derive(Clone, Debug)]
 pub struct MotionController {
@@ -151,7 +151,7 @@ impl MotionController {
     }
 
     /// Moves an axis (e.g. the master) to `position`, wrapped into its turn
-    /// if single-turn. Cams follow at the next [`MotionController::update`].
+    /// if single-turn. Cams follow at the next [`MotionController::tick`].
     ///
     /// # Errors
     /// Unknown axis, or the axis is a running E-CAM's slave.
@@ -248,7 +248,7 @@ impl MotionController {
     /// A cam the engine stops with a fault (e.g. a slave position that
     /// would overflow) ends here: the slave keeps its last command
     /// position, becomes free again, and [`MotionController::fault`] says why.
-    pub fn update(&mut self) {
+    pub fn tick(&mut self) {
         let axes = &mut self.axes;
         self.cams.retain_mut(|channel| {
             let master = axes.get(channel.master).map_or(0, |a| a.position);
@@ -268,7 +268,7 @@ impl MotionController {
     }
 
     /// Why the E-CAM that drove `slave_axis` stopped by itself (an engine
-    /// fault in [`MotionController::update`]); cleared when a cam is started
+    /// fault in [`MotionController::tick`]); cleared when a cam is started
     /// on that axis again.
     ///
     /// # Errors
@@ -289,7 +289,7 @@ impl MotionController {
         slave_axis: usize,
     ) -> Result<i64, McError> {
         self.set_position(master_axis, position)?;
-        self.update();
+        self.tick();
         self.position(slave_axis)
     }
 }

@@ -6,7 +6,7 @@
 //! `CamCounts`, `CamStartCount`, `CamSource` and the read-only offsets,
 //! the `StartCam` breakpoint/event action, abrupt and smooth stops, and the
 //! status words. The cam itself runs on `ecam-engine` (repeat coupling,
-//! bumpless start). Time is simulated: one [`MotionProcessor::cycle`] per
+//! bumpless start). Time is simulated: one [`MotionProcessor::tick`] per
 //! processor cycle.
 //!
 //! Use [`MotionProcessor`] from Rust, or [`ScriptRunner`] to run the
@@ -34,7 +34,7 @@
 //! p.run(100);
 //! assert_eq!(p.commanded_position(0)?, 200);
 //! p.move_to(1, 101, 1)?;
-//! p.cycle();
+//! p.tick();
 //! assert_eq!(p.commanded_position(0)?, 202);
 //! # Ok::<(), ecam_pmd::PmdError>(())
 //! ```

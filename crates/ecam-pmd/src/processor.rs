@@ -1,6 +1,6 @@
 //! The motion processor: axes, buffer memory, time, and the commands of document 002.
 //!
-//! Commands apply between cycles; [`MotionProcessor::cycle`] runs one
+//! Commands apply between cycles; [`MotionProcessor::tick`] runs one
 //! processor cycle: simulated moves, then breakpoints, then cams (in axis
 //! order, so a cam sourcing a lower-numbered cam axis sees this cycle's
 //! position). Every command checks everything before it writes anything,
@@ -560,7 +560,7 @@ impl MotionProcessor {
     }
 
     /// Runs one processor cycle.
-    pub fn cycle(&mut self) {
+    pub fn tick(&mut self) {
         self.time = self.time.saturating_add(1);
         for a in &mut self.axes {
             if let Some(m) = a.moving.as_mut() {
@@ -582,7 +582,7 @@ impl MotionProcessor {
     /// Runs `count` cycles.
     pub fn run(&mut self, count: u64) {
         for _ in 0..count {
-            self.cycle();
+            self.tick();
         }
     }
 
@@ -637,7 +637,7 @@ impl MotionProcessor {
         let Some(cam) = a.running.as_mut() else {
             return;
         };
-        let out = cam.cycle(input);
+        let out = cam.tick(input);
         a.commanded = out.commanded;
         a.actual = out.commanded;
         a.cam.output_offset = out.output_offset;

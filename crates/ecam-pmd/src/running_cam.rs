@@ -54,7 +54,7 @@ impl core::fmt::Debug for RunningCam {
 
 impl RunningCam {
     /// Arms a cam on `table` starting at table input `start_count` from the
-    /// commanded position `commanded`; it engages on the next [`RunningCam::cycle`].
+    /// commanded position `commanded`; it engages on the next [`RunningCam::tick`].
     ///
     /// # Errors
     /// The engine's refusal, as text (e.g. an empty cycle).
@@ -94,7 +94,7 @@ impl RunningCam {
     }
 
     /// Runs one processor cycle with the cam input `input`.
-    pub fn cycle(&mut self, input: i64) -> CamCycle {
+    pub fn tick(&mut self, input: i64) -> CamCycle {
         self.take_buffer_writes();
         let out = self.axis.tick(&TickInput {
             master: input,
@@ -135,7 +135,7 @@ impl RunningCam {
     }
 
     /// Whether the cam is still active: false once a stop took effect,
-    /// even before the next [`RunningCam::cycle`] reports it.
+    /// even before the next [`RunningCam::tick`] reports it.
     pub fn active(&self) -> bool {
         self.axis.state().is_active()
     }

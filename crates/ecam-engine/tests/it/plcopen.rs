@@ -22,12 +22,12 @@ fn relative_master_starts_the_table_at_its_beginning() {
     .unwrap();
     axis.set_slave_position(50).unwrap();
     axis.cam_in(&CamIn::default()).unwrap();
-    let s = axis.cycle(12_345, 1000);
+    let s = axis.tick(12_345, 1000);
     assert!(s.active && s.in_sync && s.busy);
     assert_eq!(s.output.slave, 50);
-    assert_eq!(axis.cycle(12_745, 1000).output.slave, 150);
+    assert_eq!(axis.tick(12_745, 1000).output.slave, 150);
     // Periodic with a stroke: one full table later the slave has moved 600.
-    let s = axis.cycle(13_345, 1000);
+    let s = axis.tick(13_345, 1000);
     assert!(s.end_of_profile);
     assert_eq!(s.output.slave, 650);
 }
@@ -44,7 +44,7 @@ fn absolute_offsets_and_scaling() {
     };
     axis.cam_in(&params).unwrap();
     // master 1200 → table input 600 + 400 = 1000 → table 600 → ×2 + 7.
-    assert_eq!(axis.cycle(1200, 1_000_000).output.slave, 1207);
+    assert_eq!(axis.tick(1200, 1_000_000).output.slave, 1207);
 }
 
 #[test]
@@ -57,12 +57,12 @@ fn non_periodic_table_ends_the_coupling() {
     })
     .unwrap();
     axis.cam_in(&CamIn::default()).unwrap();
-    assert!(axis.cycle(0, 1_000_000).active);
-    let s = axis.cycle(1000, 1_000_000);
+    assert!(axis.tick(0, 1_000_000).active);
+    let s = axis.tick(1000, 1_000_000);
     assert!(s.end_of_profile);
     assert!(!s.active && !s.busy);
     assert_eq!(s.output.slave, 600);
-    assert_eq!(axis.cycle(3000, 1_000_000).output.slave, 600);
+    assert_eq!(axis.tick(3000, 1_000_000).output.slave, 600);
 }
 
 #[test]
@@ -75,13 +75,13 @@ fn ramp_in_reports_in_sync_when_done_and_cam_out_holds() {
         ..CamIn::default()
     })
     .unwrap();
-    assert!(!axis.cycle(500, 1_000_000).in_sync);
-    assert!(!axis.cycle(550, 1_000_000).in_sync);
-    let s = axis.cycle(600, 1_000_000);
+    assert!(!axis.tick(500, 1_000_000).in_sync);
+    assert!(!axis.tick(550, 1_000_000).in_sync);
+    let s = axis.tick(600, 1_000_000);
     assert!(s.in_sync);
     assert!(axis.cam_in(&CamIn::default()).is_err());
     axis.cam_out(CamOut);
-    let held = axis.cycle(700, 1_000_000);
+    let held = axis.tick(700, 1_000_000);
     assert!(!held.active && !held.in_sync);
     assert_eq!(held.output.slave, s.output.slave);
 }
