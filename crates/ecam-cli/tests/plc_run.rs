@@ -1,4 +1,4 @@
-//! `ecam plc run`: the command-line contract (ARCHITECTURE.md), driven through the real binary.
+//! `ecam plc run`: the command-line contract (docs/architecture.md), driven through the real binary.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::PathBuf;

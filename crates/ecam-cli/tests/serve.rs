@@ -1,4 +1,4 @@
-//! `ecam serve`: Modbus TCP (the address-map contract of ARCHITECTURE.md)
+//! `ecam serve`: Modbus TCP (the address-map contract of docs/architecture.md)
 //! and HTTP, driven against the real binary on ephemeral loopback ports.
 //! Every wait is bounded, and every server is killed when its test ends.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
