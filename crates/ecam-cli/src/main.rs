@@ -5,18 +5,13 @@
 //! `simulate` are contracts (see `docs/cli.md`).
 
 mod cmd;
-mod expr;
 mod generate;
 mod plot;
 mod progress;
-mod scenario;
 mod serve;
-mod table_source;
 mod trace;
 
 use clap::{Parser, Subcommand};
-// `serve::design` estimates derivatives through `crate::derivatives`.
-use ecam_core::table::derivatives;
 
 /// Electronic cam design, simulation and PLC / motion-processor emulation.
 #[derive(Parser)]

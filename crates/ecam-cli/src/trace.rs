@@ -18,32 +18,12 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use anyhow::Context;
-use ecam_engine::{AxisState, TickOutput};
+use ecam_engine::TickOutput;
+use ecam_sim::{Row, state_name};
 
 /// The trace header line.
 pub const HEADER: &str =
     "t,master,slave,velocity,pulses,emitted,backlog,master_in_cycle,cycle,state,sync,flags";
-
-/// One trace row in memory (also what the trace plot draws).
-#[derive(Clone, Copy, Debug)]
-pub struct Row {
-    /// Seconds since the start.
-    pub t: f64,
-    /// Master input of the tick.
-    pub master: i64,
-    /// Commanded slave position.
-    pub slave: i64,
-    /// Commanded slave velocity, pulses per second.
-    pub velocity: f64,
-    /// Pulses this tick.
-    pub pulses: i64,
-    /// Emitted position.
-    pub emitted: i64,
-    /// Commanded minus emitted.
-    pub backlog: i64,
-    /// Whether any sync window was on.
-    pub in_sync: bool,
-}
 
 /// Writes trace rows to a CSV file.
 pub struct TraceWriter {
@@ -94,18 +74,6 @@ impl TraceWriter {
     pub fn finish(mut self) -> anyhow::Result<()> {
         self.out.flush()?;
         Ok(())
-    }
-}
-
-/// The engine state as a lower-case word.
-pub fn state_name(state: AxisState) -> &'static str {
-    match state {
-        AxisState::Idle => "idle",
-        AxisState::Armed => "armed",
-        AxisState::Delaying => "delaying",
-        AxisState::Running => "running",
-        AxisState::Stopping => "stopping",
-        AxisState::Finished => "finished",
     }
 }
 

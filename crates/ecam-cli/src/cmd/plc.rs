@@ -1,6 +1,6 @@
 //! `ecam plc run`: runs an instruction-list program in simulated time and
 //! prints the dumped devices as one JSON object (the **contract** in
-//! docs/architecture.md: key order = order of `--dump`, words signed 16-bit,
+//! `docs/architecture.md`: key order = order of `--dump`, words signed 16-bit,
 //! `DDn` signed 32-bit, `DEn` float, bits 0/1, counters their value).
 
 use std::collections::{BTreeSet, HashSet};

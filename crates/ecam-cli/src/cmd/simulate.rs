@@ -13,18 +13,18 @@
 //!   with a sync window on; `ticks`, `time_s`: how much was simulated;
 //! - `input_offset`, `output_offset`: document 002's CamInputOffset and
 //!   CamOutputOffset at the end; `fault`: the engine's runtime fault, if any.
+//!
+//! The run itself, and every field of the summary, is [`ecam_sim`]'s; this
+//! writes what it reports.
 
 use std::io::Write;
-
 use std::path::PathBuf;
 
-use ecam_engine::{CamAxis, TickInput};
-use serde::Serialize;
+use ecam_plot::{Figure, Panel, Series};
+use ecam_sim::{Row, Scenario, simulate};
 
 use crate::progress::Progress;
-use crate::scenario::Scenario;
-use crate::trace::{Row, TraceWriter, state_name};
-use ecam_plot::{Figure, Panel, Series};
+use crate::trace::TraceWriter;
 
 /// Arguments of `ecam simulate`.
 #[derive(clap::Args, Debug)]
@@ -39,33 +39,6 @@ pub struct Args {
     pub plot: Option<PathBuf>,
 }
 
-/// The one-line JSON summary.
-#[derive(Serialize, Debug)]
-struct Summary {
-    final_master: i64,
-    final_slave: i64,
-    final_emitted: i64,
-    pulses: i64,
-    pulses_forward: u64,
-    pulses_reverse: u64,
-    cycles: i64,
-    max_backlog: u64,
-    state: &'static str,
-    engaged_at_s: Option<f64>,
-    sync_ticks: u64,
-    ticks: u64,
-    time_s: f64,
-    input_offset: i64,
-    output_offset: i64,
-    /// Seams where a periodic table's slave jumped (spread under the ceiling).
-    seam_jumps: u64,
-    /// Most pulses in one tick (the drive's peak frequency × tick).
-    max_pulses_per_tick: u64,
-    /// Times the emitted direction turned round.
-    direction_changes: u64,
-    fault: Option<String>,
-}
-
 /// Most points a trace plot draws (about two per pixel); longer runs are
 /// thinned evenly.
 const PLOT_POINTS: usize = 2_000;
@@ -77,8 +50,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let scenario = Scenario::load(&args.scenario)?;
     let mut trace = args.trace.as_deref().map(TraceWriter::create).transpose()?;
-    let ticks = scenario.duration_us.div_ceil(u64::from(scenario.tick_us));
+    let ticks = scenario.ticks();
     let mut plotted = args.plot.as_ref().map(|_| PlotRows::new(ticks));
+    // Made at the first tick, once the engine has accepted the scenario.
+    let mut progress = None;
+    let mut done = 0u64;
     let summary = simulate(&scenario, |row, out, traced| {
         if traced {
             if let Some(t) = trace.as_mut() {
@@ -88,8 +64,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if let Some(p) = plotted.as_mut() {
             p.add(row);
         }
+        progress
+            .get_or_insert_with(|| Progress::new(ticks))
+            .tick(done);
+        done += 1;
         Ok(())
     })?;
+    if let Some(progress) = progress {
+        progress.finish();
+    }
     if let Some(t) = trace {
         t.finish()?;
     }
@@ -103,143 +86,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         serde_json::to_string(&summary)?
     )?;
     Ok(())
-}
-
-/// Runs the scenario tick by tick; `record` sees every tick, and whether
-/// the trace keeps it (`trace_every`).
-fn simulate(
-    scenario: &Scenario,
-    mut record: impl FnMut(&Row, &ecam_engine::TickOutput, bool) -> anyhow::Result<()>,
-) -> anyhow::Result<Summary> {
-    let curve: &dyn ecam_core::CamCurve = scenario.curve.as_ref();
-    let mut axis = CamAxis::new(curve, scenario.config).map_err(|e| {
-        // Name the numbers the engine compared, so the user sees what to change.
-        let turn = match scenario.config.single_turn {
-            Some(t) => format!(", single_turn = {t}"),
-            None => String::new(),
-        };
-        anyhow::anyhow!(
-            "the engine refuses the scenario: {e} (table master {} .. {}{turn})",
-            curve.master_first(),
-            curve.master_last()
-        )
-    })?;
-    axis.set_slave_position(scenario.slave_start)
-        .map_err(|e| anyhow::anyhow!("cannot set the start slave position: {e}"))?;
-    axis.arm()
-        .map_err(|e| anyhow::anyhow!("cannot arm the cam: {e}"))?;
-
-    let tick_us = u64::from(scenario.tick_us);
-    let ticks = scenario.duration_us.div_ceil(tick_us);
-    let progress = Progress::new(ticks);
-    let mut stop_pending = scenario.stop;
-    let mut prev_slave = scenario.slave_start;
-    let mut summary = Summary {
-        final_master: scenario.master_start,
-        final_slave: scenario.slave_start,
-        final_emitted: scenario.slave_start,
-        pulses: 0,
-        pulses_forward: 0,
-        pulses_reverse: 0,
-        cycles: 0,
-        max_backlog: 0,
-        state: "idle",
-        engaged_at_s: None,
-        sync_ticks: 0,
-        ticks: 0,
-        time_s: 0.0,
-        input_offset: 0,
-        output_offset: 0,
-        seam_jumps: 0,
-        max_pulses_per_tick: 0,
-        direction_changes: 0,
-        fault: None,
-    };
-    let mut last_direction = 0i64;
-    // Tick 0 is the state at t = 0; the last tick lands on the duration.
-    for k in 0..=ticks {
-        let t_us = k.saturating_mul(tick_us).min(scenario.duration_us);
-        let master = scenario.master_read_at(t_us);
-        if let Some(stop) = stop_pending {
-            if stop.fires(t_us, master) {
-                axis.stop(stop.kind);
-                stop_pending = None;
-            }
-        }
-        let master_input = scenario.master_input(master);
-        let input = TickInput {
-            master: master_input,
-            master_fraction: 0,
-            start_input: scenario.start_input_at(t_us),
-            watch: master,
-            dt_us: scenario.tick_us,
-            output_enabled: true,
-        };
-        let out = axis.tick(&input);
-        // Dividing by the exact power of ten keeps `t` free of float noise
-        // (0.101, not 0.10099999999999999).
-        let t = t_us as f64 / 1e6;
-        // Tick 0 has no interval before it: a jump at engage is not a speed.
-        let velocity = if k == 0 {
-            0.0
-        } else {
-            (out.slave.saturating_sub(prev_slave)) as f64 * 1e6 / tick_us as f64
-        };
-        prev_slave = out.slave;
-        summary.pulses = summary.pulses.saturating_add(out.pulses);
-        if out.pulses > 0 {
-            summary.pulses_forward = summary
-                .pulses_forward
-                .saturating_add(out.pulses.unsigned_abs());
-        } else {
-            summary.pulses_reverse = summary
-                .pulses_reverse
-                .saturating_add(out.pulses.unsigned_abs());
-        }
-        summary.max_backlog = summary.max_backlog.max(out.backlog.unsigned_abs());
-        summary.max_pulses_per_tick = summary.max_pulses_per_tick.max(out.pulses.unsigned_abs());
-        if out.pulses != 0 {
-            if last_direction != 0 && out.pulses.signum() != last_direction {
-                summary.direction_changes += 1;
-            }
-            last_direction = out.pulses.signum();
-        }
-        if out.events.seam_jump {
-            summary.seam_jumps += 1;
-        }
-        if out.in_sync {
-            summary.sync_ticks += 1;
-        }
-        if out.events.engaged && summary.engaged_at_s.is_none() {
-            summary.engaged_at_s = Some(t);
-        }
-        if let Some(fault) = out.fault {
-            summary.fault.get_or_insert_with(|| fault.to_string());
-        }
-        let row = Row {
-            t,
-            master: master_input,
-            slave: out.slave,
-            velocity,
-            pulses: out.pulses,
-            emitted: out.emitted,
-            backlog: out.backlog,
-            in_sync: out.in_sync,
-        };
-        record(&row, &out, k % scenario.trace_every == 0 || k == ticks)?;
-        summary.final_master = master;
-        summary.final_slave = out.slave;
-        summary.final_emitted = out.emitted;
-        summary.cycles = out.cycle;
-        summary.state = state_name(out.state);
-        summary.input_offset = out.input_offset;
-        summary.output_offset = out.output_offset;
-        summary.ticks = k + 1;
-        summary.time_s = t;
-        progress.tick(k);
-    }
-    progress.finish();
-    Ok(summary)
 }
 
 /// What the trace plot keeps of a run: at most about [`PLOT_POINTS`]
@@ -393,29 +239,5 @@ mod tests {
             fig.shaded,
             vec![(1000.0, 1005.0), ((ticks - 2) as f64, ticks as f64)]
         );
-    }
-
-    #[test]
-    fn document_002_linear_table_gives_202_at_input_101() {
-        let s = Scenario::parse(
-            r#"
-            tick_us = 1000
-            [table]
-            uniform = [0, 100, 200]
-            counts = 100
-            [cam]
-            kind = "repeat"
-            [start]
-            slave_align = "relative"
-            [master]
-            moves = [[0.101, 101]]
-            "#,
-            std::path::Path::new("."),
-        )
-        .unwrap();
-        let summary = simulate(&s, |_, _, _| Ok(())).unwrap();
-        assert_eq!(summary.final_master, 101);
-        assert_eq!(summary.final_slave, 202);
-        assert_eq!(summary.pulses, 202);
     }
 }

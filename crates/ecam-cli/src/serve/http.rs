@@ -29,8 +29,6 @@ use axum::routing::{get, post};
 use ecam_serve::{Shared, devices_to_json, parse_device_names, parse_device_sets};
 use serde_json::{Value, json};
 
-use super::design;
-
 const INDEX_HTML: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/index.html"));
 const APP_JS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/app.js"));
 const STYLE_CSS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/style.css"));
@@ -58,12 +56,12 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/api/devices", get(get_devices).post(post_devices))
         .route(
             "/api/laws",
-            get(|| async { json_value(StatusCode::OK, &design::laws()) }),
+            get(|| async { json_value(StatusCode::OK, &ecam_design::laws_json()) }),
         )
         .route("/api/law/{name}", get(law))
         .route(
             "/api/generators",
-            get(|| async { json_value(StatusCode::OK, &design::generators()) }),
+            get(|| async { json_value(StatusCode::OK, &ecam_design::generators_json()) }),
         )
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
@@ -130,24 +128,24 @@ async fn post_devices(State(shared): State<Arc<Shared>>, body: Bytes) -> Respons
 
 async fn law(Path(name): Path<String>, Query(query): Query<HashMap<String, String>>) -> Response {
     let points = match query.get("points") {
-        None => Ok(design::DEFAULT_LAW_POINTS),
+        None => Ok(ecam_design::DEFAULT_LAW_POINTS),
         Some(text) => text
             .trim()
             .parse::<usize>()
             .map_err(|_| format!("points must be a whole number, not `{text}`")),
     };
-    match points.and_then(|points| design::law_curves(&name, points)) {
+    match points.and_then(|points| ecam_design::law_curves_json(&name, points)) {
         Ok(value) => json_value(StatusCode::OK, &value),
         Err(message) => error(StatusCode::BAD_REQUEST, &message),
     }
 }
 
 async fn table_gen(body: Bytes) -> Response {
-    json_call(&body, design::generate_table)
+    json_call(&body, ecam_design::generate_json)
 }
 
 async fn key_points(body: Bytes) -> Response {
-    json_call(&body, design::key_points)
+    json_call(&body, ecam_design::key_points_json)
 }
 
 /// Answers `answer(body)`, or 400 with its error.

@@ -2,9 +2,8 @@
 //! [`ecam_serve`], which holds everything they decide.
 //!
 //! - [`modbus`]: the Modbus TCP listener (one task per client),
-//! - [`http`]: the HTTP API and the designer page,
-//! - [`design`]: the designer's JSON endpoints.
+//! - [`http`]: the HTTP API and the designer page (whose JSON answers are
+//!   [`ecam_design`]'s).
 
-pub mod design;
 pub mod http;
 pub mod modbus;

@@ -4,14 +4,14 @@
 //! `expr` (with `from`, `to`, `points`) or `generator` (with that
 //! generator's parameters, as `ecam table gen` takes them).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use ecam_core::table::UniformTable;
 use ecam_core::{CamCurve, PointTable};
 use serde::Deserialize;
 
-use crate::{generate, scenario};
+use crate::generate;
 
 const SOURCES: [&str; 5] = ["points", "uniform", "file", "expr", "generator"];
 
@@ -34,7 +34,8 @@ struct File {
     file: String,
 }
 
-/// Builds the cam a `[table]` describes; `base` resolves relative files.
+/// Builds the cam a scenario's `[table]` describes; `base` is the folder
+/// relative table files are in.
 ///
 /// # Errors
 /// No or several source keys, keys that do not belong to the source, or a
@@ -65,7 +66,7 @@ pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve
         }
         "file" => {
             let f: File = value.try_into()?;
-            let path = scenario::resolve(base, &f.file);
+            let path = resolve(base, &f.file);
             ecam_core::io::read(&path)?.into_curve()
         }
         // Exactly `ecam table gen function`'s keys and defaults (from 0,
@@ -80,6 +81,12 @@ pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve
             Box::new(generate::from_toml(&name, params)?.table)
         }
     })
+}
+
+/// Resolves a table file path written in a scenario against its folder.
+pub fn resolve(base: &Path, file: &str) -> PathBuf {
+    let p = PathBuf::from(file);
+    if p.is_absolute() { p } else { base.join(p) }
 }
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
-//! Arithmetic the user types: cam functions of the master and numeric flags.
+//! Arithmetic the user types: cam functions of the master and numeric
+//! parameters.
 //!
 //! Expressions are parsed by `exmex` (floats: `+ - * / ^`, `sin`, `cos`,
 //! `tan`, `exp`, `ln`, `sqrt`, `abs`, …). The master is the variable `x`;
@@ -173,11 +174,6 @@ fn expand_exponents(text: &str) -> anyhow::Result<String> {
 pub fn number(text: &str) -> anyhow::Result<f64> {
     let f = MasterFunction::with_variables(text, false)?;
     f.at(0.0).with_context(|| format!("in {text:?}"))
-}
-
-/// clap value parser for numeric flags that accept arithmetic.
-pub fn parse_number(text: &str) -> Result<f64, String> {
-    number(text).map_err(|e| format!("{e:#}"))
 }
 
 #[cfg(test)]

@@ -2,15 +2,20 @@
 //! tables from the generators of `ecam table gen`, whose parameters (names,
 //! labels, defaults: the documents' cases) come from
 //! [`ecam_core::generator::schema`], as its flags and TOML files do.
+//!
+//! JSON in, JSON out, no sockets: `ecam serve`'s HTTP routes call these and
+//! only turn the result into a response. They live here rather than in
+//! `ecam-serve` because they are about designing cams (generators, laws,
+//! key points), not about serving the PLC; `ecam-serve` stays free of the
+//! generators and the expression language.
 
 use ecam_core::generator::key_points::KeyPoint;
 use ecam_core::generator::schema;
 use ecam_core::generator::{DesignCurve, Field, FieldKind};
-use ecam_core::table::Summary;
+use ecam_core::table::{Summary, derivatives};
 use ecam_core::{CamCurve, MotionLaw};
 use serde_json::{Value, json};
 
-use crate::derivatives;
 use crate::generate;
 
 /// Points of `GET /api/law/NAME` when none are asked for (as `ecam law`).
@@ -19,7 +24,7 @@ pub const DEFAULT_LAW_POINTS: usize = 1001;
 pub const MAX_LAW_POINTS: usize = 100_001;
 
 /// Every motion law with its characteristic values (∞ as `null`).
-pub fn laws() -> Value {
+pub fn laws_json() -> Value {
     Value::Array(
         MotionLaw::ALL
             .iter()
@@ -43,7 +48,7 @@ pub fn laws() -> Value {
 ///
 /// # Errors
 /// An unknown law, or fewer than 2 / more than [`MAX_LAW_POINTS`] points.
-pub fn law_curves(name: &str, points: usize) -> Result<Value, String> {
+pub fn law_curves_json(name: &str, points: usize) -> Result<Value, String> {
     let law = MotionLaw::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = MotionLaw::ALL.iter().map(|l| l.name()).collect();
         format!("unknown motion law `{name}`; known: {}", names.join(", "))
@@ -69,7 +74,7 @@ pub fn law_curves(name: &str, points: usize) -> Result<Value, String> {
 /// such as `5/3` allowed —, `text`, `bool`, `choice` with its `choices`, and
 /// `keys`: key points, one `master slave curve [resolution]` per line, read
 /// by `POST /api/keypoints` into the `key` array) and default.
-pub fn generators() -> Value {
+pub fn generators_json() -> Value {
     Value::Array(
         schema::GENERATORS
             .iter()
@@ -116,7 +121,7 @@ fn form_field(field: &Field, default: Option<&Value>) -> Value {
 ///
 /// # Errors
 /// A body without `lines`, or the first bad line.
-pub fn key_points(body: &Value) -> Result<Value, String> {
+pub fn key_points_json(body: &Value) -> Result<Value, String> {
     let text = body
         .get("lines")
         .and_then(Value::as_str)
@@ -148,7 +153,7 @@ fn design_samples(design: &DesignCurve) -> Value {
 /// # Errors
 /// A body of the wrong shape, an unknown generator or parameter, or
 /// parameters the generator refuses (with the PLC's error code).
-pub fn generate_table(body: &Value) -> Result<Value, String> {
+pub fn generate_json(body: &Value) -> Result<Value, String> {
     let name = body.get("generator").and_then(Value::as_str).ok_or(
         "the body needs \"generator\", e.g. {\"generator\": \"rotary-cut\", \"params\": {}}",
     )?;
@@ -175,7 +180,7 @@ pub fn generate_table(body: &Value) -> Result<Value, String> {
         "acceleration": kinematics.iter().map(|k| k.a).collect::<Vec<_>>(),
         "jerk": kinematics.iter().map(|k| k.j).collect::<Vec<_>>(),
         // false: slopes of the table's straight sections, each holding
-        // from its point to the next (see `crate::derivatives`).
+        // from its point to the next (see `ecam_core::table::derivatives`).
         "exact_kinematics": exact,
         // The exact curve the generator designed before rounding it into
         // the table, sampled densely: a long section of the table (a dwell)
@@ -205,18 +210,18 @@ mod tests {
 
     #[test]
     fn a_law_rises_from_zero_to_one() {
-        let v = law_curves("cycloid", 5).unwrap();
+        let v = law_curves_json("cycloid", 5).unwrap();
         assert_eq!(v["u"], json!([0.0, 0.25, 0.5, 0.75, 1.0]));
         assert_eq!(v["s"][0], json!(0.0));
         assert_eq!(v["s"][4], json!(1.0));
         assert_eq!(v["v"][2], json!(2.0)); // cycloid: Cv = 2 at u = 1/2
-        assert!(law_curves("nope", 5).is_err());
-        assert!(law_curves("cycloid", 1).is_err());
+        assert!(law_curves_json("nope", 5).is_err());
+        assert!(law_curves_json("cycloid", 1).is_err());
     }
 
     #[test]
     fn every_listed_generator_runs_with_its_defaults() {
-        let Value::Array(list) = generators() else {
+        let Value::Array(list) = generators_json() else {
             panic!("an array");
         };
         for g in list {
@@ -228,13 +233,13 @@ mod tests {
                 let value = match (f["type"].as_str().unwrap(), &f["default"]) {
                     (_, Value::String(s)) if s.is_empty() => continue,
                     ("keys", Value::String(lines)) => {
-                        key_points(&json!({ "lines": lines })).unwrap()["key"].clone()
+                        key_points_json(&json!({ "lines": lines })).unwrap()["key"].clone()
                     }
                     (_, v) => v.clone(),
                 };
                 params.insert(key, value);
             }
-            let out = generate_table(&json!({"generator": name, "params": params})).unwrap();
+            let out = generate_json(&json!({"generator": name, "params": params})).unwrap();
             let n = out["points"].as_u64().unwrap() as usize;
             assert!(n >= 2, "{name}");
             for key in ["master", "slave", "velocity", "acceleration", "jerk"] {
@@ -245,7 +250,7 @@ mod tests {
 
     #[test]
     fn a_generated_table_carries_its_dense_design_curve() {
-        let v = generate_table(&json!({"generator": "rotary-cut", "params": {}})).unwrap();
+        let v = generate_json(&json!({"generator": "rotary-cut", "params": {}})).unwrap();
         let design = &v["design"];
         let master: Vec<f64> = serde_json::from_value(design["master"].clone()).unwrap();
         let a: Vec<f64> = serde_json::from_value(design["a"].clone()).unwrap();
@@ -257,7 +262,7 @@ mod tests {
                 assert_eq!(*a, 0.0, "acceleration at master {m}");
             }
         }
-        let kp = generate_table(&json!({"generator": "keypoints", "params": {}})).unwrap();
+        let kp = generate_json(&json!({"generator": "keypoints", "params": {}})).unwrap();
         assert!(
             kp["design"].is_null(),
             "key points are drawn from their exact points"
@@ -266,8 +271,8 @@ mod tests {
 
     #[test]
     fn rotary_cut_defaults_span_the_cut() {
-        let out = generate_table(&json!({"generator": "rotary-cut", "params": {"ratio": "5/3"}}))
-            .unwrap();
+        let out =
+            generate_json(&json!({"generator": "rotary-cut", "params": {"ratio": "5/3"}})).unwrap();
         assert_eq!(out["master"][0], json!(0));
         assert_eq!(out["master"].as_array().unwrap().last(), Some(&json!(3000)));
         assert_eq!(out["slave"].as_array().unwrap().last(), Some(&json!(1000)));
@@ -276,17 +281,17 @@ mod tests {
 
     #[test]
     fn bad_parameters_say_what_is_wrong() {
-        let err = generate_table(&json!({"generator": "s-curve", "params": {"resolution": 5}}))
+        let err = generate_json(&json!({"generator": "s-curve", "params": {"resolution": 5}}))
             .unwrap_err();
         assert!(err.contains("6781") || err.contains("resolution"), "{err}");
-        assert!(generate_table(&json!({"generator": "nope"})).is_err());
-        assert!(generate_table(&json!({"params": {}})).is_err());
-        assert!(generate_table(&json!({"generator": "s-curve", "params": {"bogus": 1}})).is_err());
+        assert!(generate_json(&json!({"generator": "nope"})).is_err());
+        assert!(generate_json(&json!({"params": {}})).is_err());
+        assert!(generate_json(&json!({"generator": "s-curve", "params": {"bogus": 1}})).is_err());
     }
 
     #[test]
     fn key_point_lines_are_read_by_the_server() {
-        let v = key_points(&json!({"lines": "600 0\n\n1500, 2000; cycloid 20"})).unwrap();
+        let v = key_points_json(&json!({"lines": "600 0\n\n1500, 2000; cycloid 20"})).unwrap();
         assert_eq!(
             v["key"],
             json!([
@@ -294,8 +299,8 @@ mod tests {
                 {"master": 1500, "slave": 2000, "curve": "cycloid", "resolution": 20},
             ])
         );
-        let err = key_points(&json!({"lines": "600 0\n700 x"})).unwrap_err();
+        let err = key_points_json(&json!({"lines": "600 0\n700 x"})).unwrap_err();
         assert_eq!(err, "key point line 2: slave \"x\" is not an integer");
-        assert!(key_points(&json!({})).is_err());
+        assert!(key_points_json(&json!({})).is_err());
     }
 }

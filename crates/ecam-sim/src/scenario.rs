@@ -1,12 +1,12 @@
-//! Scenario files for `ecam simulate`: a cam, a master motion, a start and
-//! a stop, written in TOML. Every key is described in `docs/simulate.md`.
+//! Scenario files: a cam, a master motion, a start and a stop, written in
+//! TOML. Every key is described in `docs/simulate.md`.
 //!
 //! Parsing is strict (unknown keys are errors, so a typo cannot silently fall
 //! back to a default) and turns the file into engine types up front: a bad
 //! scenario fails before the first tick.
 
 use std::num::{NonZeroU32, NonZeroU64};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{Context, bail};
 use ecam_core::CamCurve;
@@ -274,7 +274,7 @@ impl Scenario {
             bail!("trace_every must be at least 1 (1 writes every tick)");
         }
         unused_keys(&raw.cam, &raw.start)?;
-        let curve = crate::table_source::load(&raw.table, base).context("in [table]")?;
+        let curve = ecam_design::load_table(&raw.table, base).context("in [table]")?;
         let moves = raw
             .master
             .moves
@@ -415,6 +415,12 @@ impl Scenario {
             Some(every) => self.master_at(t_us - t_us % every.get()),
             None => self.master_at(t_us),
         }
+    }
+
+    /// Ticks after tick 0 (the state at t = 0) until the duration: the
+    /// last tick lands on it.
+    pub fn ticks(&self) -> u64 {
+        self.duration_us.div_ceil(u64::from(self.tick_us))
     }
 
     /// Master position (unwrapped) at `t_us`: linear within each move.
@@ -624,12 +630,6 @@ fn zoom(ratio: Option<[u16; 2]>, what: &str) -> anyhow::Result<Zoom> {
             Zoom::new(num, den).map_err(|e| anyhow::anyhow!("[cam] {what} = [{num}, {den}]: {e}"))
         }
     }
-}
-
-/// Resolves a table file path written in a scenario.
-pub fn resolve(base: &Path, file: &str) -> PathBuf {
-    let p = PathBuf::from(file);
-    if p.is_absolute() { p } else { base.join(p) }
 }
 
 #[cfg(test)]

@@ -1,0 +1,486 @@
+//! Running a table generator by name: the generators of `ecam table gen`,
+//! with their parameters as key/value pairs from flags, a TOML file, a
+//! scenario's `[table]` or the designer's JSON.
+//!
+//! Every parameter starts at the document's default (the `Default` of the
+//! generator's `Params` in `ecam_core::generator`); the values given
+//! override what they set. Numeric ratios accept arithmetic (`5/3`, `3*pi`).
+
+use anyhow::{Context, bail};
+use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
+use ecam_core::generator::schema;
+use ecam_core::generator::{
+    CutParams, DesignCurve, Generator as Schema, flying_saw, function, rotary_cut, s_curve,
+};
+use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
+use serde::de::DeserializeSeed;
+use serde_json::Value;
+
+use crate::expr::MasterFunction;
+use crate::params::{Param, Values, ValuesSeed, typed};
+
+/// A generated table and what else the generator reported.
+pub struct Generated {
+    /// The table.
+    pub table: PointTable,
+    /// Master range of the synchronised zone, where the generator has one.
+    pub sync: Option<(i64, i64)>,
+    /// The generator's name as `ecam table gen` spells it.
+    pub name: &'static str,
+    /// Extra results (e.g. the S-curve's P8–P11), as label and value
+    /// (`ecam table gen` prints them to stderr).
+    pub outputs: Vec<(&'static str, String)>,
+    /// Exact velocity, acceleration and jerk at each point, from the curve
+    /// the table samples (the points themselves are rounded to whole pulses).
+    pub kinematics: Option<Vec<Kinematics>>,
+    /// The exact motion the S-curve, rotary-cut and flying-saw generators
+    /// designed before rounding it into the table (what `--plot` draws).
+    pub design: Option<DesignCurve>,
+}
+
+/// The design curve's derivatives at each point of `table`, keeping the
+/// table's (rounded) positions.
+fn design_along(table: &PointTable, design: &DesignCurve) -> Vec<Kinematics> {
+    table
+        .points()
+        .iter()
+        .map(|p| Kinematics {
+            s: p.slave as f64,
+            ..design.eval(p.master as f64)
+        })
+        .collect()
+}
+
+/// The exact curve's derivatives at each point of `table`, keeping the
+/// table's (rounded) positions.
+fn kinematics_along(table: &PointTable, curve: &impl CamCurve) -> Vec<Kinematics> {
+    let mut cursor = Cursor::new();
+    table
+        .points()
+        .iter()
+        .map(|p| Kinematics {
+            s: p.slave as f64,
+            ..curve.eval(p.master as f64, &mut cursor)
+        })
+        .collect()
+}
+
+/// Generates from a scenario's `[table]` (without the `generator` key).
+///
+/// # Errors
+/// Unknown generator names or parameters, or bad values.
+pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
+    let generator = find(name)?;
+    let values = ValuesSeed::new(generator, false)
+        .deserialize(toml::Value::Table(params))
+        .with_context(|| format!("parameters of generator {name:?}"))?;
+    generate(generator, values)
+}
+
+/// Generates from the `params` object of the designer's HTTP request.
+///
+/// # Errors
+/// As [`from_toml`]; a value that is not an object.
+pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Generated> {
+    let generator = find(name)?;
+    if !params.is_object() {
+        let error = ValuesSeed::new(generator, true)
+            .deserialize(params)
+            .err()
+            .map_or_else(String::new, |e| e.to_string());
+        bail!("\"params\" must be an object of numbers, strings and booleans: {error}");
+    }
+    let values = ValuesSeed::new(generator, true)
+        .deserialize(params)
+        .with_context(|| format!("parameters of generator {name:?}"))?;
+    generate(generator, values)
+}
+
+/// The generator called `name` (or one of its aliases).
+///
+/// # Errors
+/// An unknown name; the message lists the known ones.
+pub fn find(name: &str) -> anyhow::Result<&'static Schema> {
+    schema::find(name).with_context(|| {
+        let known: Vec<&str> = schema::GENERATORS.iter().map(|g| g.name).collect();
+        format!("unknown generator {name:?}; known: {}", known.join(", "))
+    })
+}
+
+/// Runs `generator` with `values`; parameters not among them keep their
+/// defaults.
+///
+/// # Errors
+/// Values of the wrong kind or name, or parameters the generator refuses
+/// (with the PLC's error code).
+pub fn generate(generator: &Schema, mut values: Values) -> anyhow::Result<Generated> {
+    match generator.name {
+        "s-curve" => s_curve_table(&typed(values)?),
+        "rotary-cut" => rotary_cut_table(&typed(values)?),
+        "fly-saw" => {
+            let cycle = matches!(values.remove("cycle"), Some(Param::Bool(true)));
+            fly_saw_table(&typed(values)?, cycle)
+        }
+        "keypoints" => key_points_table(&typed(values)?),
+        _ => function(&typed(values)?),
+    }
+}
+
+/// The default of every field of `g` as its `Params` writes it (choices as
+/// names, key points as tables); a switch is off.
+pub fn default_values(g: &Schema) -> serde_json::Map<String, Value> {
+    let value = match g.name {
+        "s-curve" => serde_json::to_value(s_curve::Params::default()),
+        "rotary-cut" | "fly-saw" => serde_json::to_value(CutParams::default()),
+        "keypoints" => serde_json::to_value(key_points::Params::default()),
+        _ => serde_json::to_value(function::Params::default()),
+    };
+    match value {
+        Ok(Value::Object(map)) => map,
+        _ => serde_json::Map::new(),
+    }
+}
+
+// ---------------------------------------------------------------- s-curve
+
+fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
+    let g = s_curve::generate(params)?;
+    Ok(Generated {
+        outputs: vec![
+            (
+                "duration (master counts = ms at 1 kHz)",
+                g.duration.to_string(),
+            ),
+            ("P8 last section master", g.last_section_master.to_string()),
+            ("P9 last section slave", g.last_section_slave.to_string()),
+            ("P10 uniform time", g.uniform_time.to_string()),
+            ("P11 max speed (Hz)", g.max_speed_hz.to_string()),
+        ],
+        kinematics: Some(design_along(&g.table, &g.design)),
+        table: g.table,
+        sync: g.sync,
+        name: "s-curve",
+        design: Some(g.design),
+    })
+}
+
+// ---------------------------------------------------------------- rotary cut, flying saw
+
+fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
+    let g = rotary_cut::generate(params)?;
+    Ok(Generated {
+        outputs: vec![
+            ("regime", format!("{:?}", g.regime)),
+            (
+                "sync zone",
+                format!(
+                    "master {}, slave {} .. {}, ratio {}",
+                    g.sync
+                        .map_or_else(|| "none".to_string(), |(lo, hi)| format!("{lo} .. {hi}")),
+                    g.sync_slave.0,
+                    g.sync_slave.1,
+                    g.sync_ratio
+                ),
+            ),
+            ("peak ratio", g.peak_ratio.to_string()),
+            ("capped at max ratio", g.capped_at_max.to_string()),
+        ],
+        kinematics: Some(design_along(&g.table, &g.design)),
+        table: g.table,
+        sync: g.sync,
+        name: "rotary-cut",
+        design: Some(g.design),
+    })
+}
+
+fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
+    if !cycle {
+        let g = flying_saw::generate(params)?;
+        return Ok(Generated {
+            outputs: vec![
+                ("stroke", format!("{:?}", g.stroke)),
+                (
+                    "constant-speed zone (master)",
+                    format!("{} .. {}", g.constant_zone.0, g.constant_zone.1),
+                ),
+                ("peak ratio", g.peak_ratio.to_string()),
+            ],
+            kinematics: Some(design_along(&g.table, &g.design)),
+            table: g.table,
+            sync: g.sync,
+            name: "fly-saw",
+            design: Some(g.design),
+        });
+    }
+    let (forward, back) = flying_saw::generate_pair(params)?;
+    let (m_end, s_end) = (forward.table.master_last(), forward.table.slave_last());
+    let mut points = forward.table.points().to_vec();
+    for q in back.table.points().iter().skip(1) {
+        let master = q.master.checked_add(m_end).context("master overflow")?;
+        let slave = q.slave.checked_add(s_end).context("slave overflow")?;
+        points.push(CamPoint::new(master, slave));
+    }
+    let table = PointTable::new(points)?;
+    let design = forward.design.followed_by(&back.design);
+    Ok(Generated {
+        outputs: vec![(
+            "peak ratio",
+            forward.peak_ratio.max(back.peak_ratio).to_string(),
+        )],
+        kinematics: Some(design_along(&table, &design)),
+        table,
+        sync: forward.sync,
+        name: "fly-saw",
+        design: Some(design),
+    })
+}
+
+// ---------------------------------------------------------------- keypoints
+
+/// Reads one `--key` value of `ecam table gen keypoints`: the key-point
+/// line syntax (`MASTER:SLAVE[:CURVE[:RESOLUTION]]`), errors worded for
+/// that flag.
+///
+/// # Errors
+/// What is wrong with `text`, naming the flag.
+pub fn parse_key(text: &str) -> Result<KeyPoint, String> {
+    KeyPoint::parse_line(text).map_err(|e| match e {
+        LineError::TooFew => format!("--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]"),
+        LineError::TooMany => format!("--key {text:?}: too many fields"),
+        LineError::NotInteger { what, text: field } => {
+            format!("{what} {field:?} in --key {text:?} is not an integer")
+        }
+        LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+        LineError::BadResolution(r) => {
+            format!("resolution {r:?} in --key {text:?} must be 0..=512")
+        }
+    })
+}
+
+/// Reads the designer page's key-point box, one key point per line.
+///
+/// # Errors
+/// The first bad line, by number, and what is wrong with it.
+pub fn parse_key_lines(text: &str) -> Result<Vec<KeyPoint>, String> {
+    key_points::parse_lines(text).map_err(|(line, e)| {
+        let what = match e {
+            LineError::TooFew => "expected MASTER SLAVE [CURVE [RESOLUTION]]".to_string(),
+            LineError::TooMany => "too many fields".to_string(),
+            LineError::NotInteger { what, text } => format!("{what} {text:?} is not an integer"),
+            LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+            LineError::BadResolution(r) => format!("resolution {r:?} must be 0..=512"),
+        };
+        format!("key point line {line}: {what}")
+    })
+}
+
+fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
+    let generated = key_points::generate(params)?;
+    Ok(Generated {
+        kinematics: Some(kinematics_along(&generated.table, &generated.profile)),
+        table: generated.table,
+        sync: generated.sync,
+        name: "keypoints",
+        design: None,
+        outputs: vec![(
+            "segment resolutions",
+            generated
+                .resolutions
+                .iter()
+                .map(u16::to_string)
+                .collect::<Vec<_>>()
+                .join(","),
+        )],
+    })
+}
+
+// ---------------------------------------------------------------- function
+
+fn function(params: &function::Params) -> anyhow::Result<Generated> {
+    let expr = params
+        .expr
+        .as_deref()
+        .context("give the function with --expr, e.g. --expr \"1000*sin(2*pi*x/36000)\"")?;
+    let (from, to, points) = (params.from, params.to, params.points);
+    let table = function_table(expr, from, to, points)?;
+    let f = MasterFunction::parse(expr)?;
+    // Central differences a quarter of the point spacing wide: small
+    // against the curve's features, large against f64 round-off.
+    let h = (to as f64 - from as f64) / (points.max(2) - 1) as f64 / 4.0;
+    let kinematics = table
+        .points()
+        .iter()
+        .map(|p| {
+            let k = f.kinematics(p.master as f64, h)?;
+            Ok(Kinematics {
+                s: p.slave as f64,
+                ..k
+            })
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    Ok(Generated {
+        table,
+        sync: None,
+        name: "function",
+        outputs: Vec::new(),
+        kinematics: Some(kinematics),
+        design: None,
+    })
+}
+
+/// Samples `expr` (a function of `x`) at `points` masters from `from` to `to`.
+///
+/// # Errors
+/// Parse or evaluation errors (naming the master where it failed), or a
+/// table the core refuses.
+pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::Result<PointTable> {
+    let f = MasterFunction::parse(expr)?;
+    // The core reports this as a non-increasing last point (6782), which
+    // names a section the user never wrote; say which settings clash.
+    if to <= from {
+        bail!(
+            "table error ({}): the last master position ({to}) must be greater than the first ({from})",
+            ecam_core::CODE_TABLE
+        );
+    }
+    let first_error = std::cell::RefCell::new(None);
+    let sampled = ecam_core::table::sample_function(
+        |x| match f.at(x) {
+            Ok(y) => y,
+            Err(e) => {
+                first_error.borrow_mut().get_or_insert(e);
+                f64::NAN
+            }
+        },
+        from,
+        to,
+        points,
+    );
+    if let Some(e) = first_error.into_inner() {
+        return Err(e);
+    }
+    Ok(sampled?)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use ecam_core::CamCurve;
+
+    #[test]
+    fn the_rotary_cut_demo() {
+        let t: toml::Table = toml::from_str(
+            "master = 3183\nslave = 1000\nsync = 333\nratio = \"5/3\"\nmax_ratio = \"50/3\"",
+        )
+        .unwrap();
+        let g = from_toml("rotary-cut", t).unwrap();
+        assert_eq!((g.table.master_last(), g.table.slave_last()), (3183, 1000));
+        assert!(g.sync.is_some());
+    }
+
+    #[test]
+    fn the_fly_saw_demo_as_a_whole_cycle() {
+        let t: toml::Table = toml::from_str(
+            "master = 1750\nslave = 2000\nsync = 667\nratio = \"3*pi\"\nmax_ratio = 10\ncycle = true",
+        )
+        .unwrap();
+        let g = from_toml("fly-saw", t).unwrap();
+        assert_eq!((g.table.master_last(), g.table.slave_last()), (3500, 0));
+        let peak = g.table.points().iter().map(|p| p.slave).max().unwrap();
+        assert_eq!(peak, 2000);
+    }
+
+    #[test]
+    fn the_s_curve_example() {
+        let g = from_toml("s-curve", toml::Table::new()).unwrap();
+        assert_eq!(g.table.slave_last(), 10000);
+        assert_eq!(g.table.master_last(), 300);
+    }
+
+    #[test]
+    fn unknown_names_are_refused() {
+        let t: toml::Table = toml::from_str("accel = \"wobbly\"").unwrap();
+        let err = from_toml("rotary-cut", t).err().unwrap();
+        assert!(format!("{err:#}").contains("wobbly"));
+        assert!(from_toml("laser", toml::Table::new()).is_err());
+        let t: toml::Table = toml::from_str("colour = 3").unwrap();
+        assert!(from_toml("rotary-cut", t).is_err());
+    }
+
+    #[test]
+    fn key_flags_parse() {
+        let k = parse_key("1500:2000:cycloid:20").unwrap();
+        assert_eq!(
+            (k.master, k.slave, k.curve, k.resolution),
+            (1500, 2000, CurveType::Cycloid, 20)
+        );
+        assert_eq!(
+            parse_key("600:0").unwrap().curve,
+            CurveType::ConstantAcceleration
+        );
+        assert!(parse_key("600").is_err());
+        assert!(parse_key("600:0:wobble").is_err());
+    }
+
+    #[test]
+    fn key_points_default_is_the_appendix_case() {
+        let g = from_toml("keypoints", toml::Table::new()).unwrap();
+        assert_eq!(g.table.points().len(), 100);
+        assert_eq!(g.table.master_last(), 2000);
+    }
+
+    #[test]
+    fn key_points_from_toml() {
+        let t: toml::Table = toml::from_str(
+            "resolution = 20\n[[key]]\nmaster = 100\nslave = 50\ncurve = \"cycloid\"\n",
+        )
+        .unwrap();
+        let g = from_toml("keypoints", t).unwrap();
+        assert_eq!(g.table.points().len(), 20);
+        assert_eq!(g.table.slave_last(), 50);
+    }
+
+    #[test]
+    fn the_sine_example() {
+        let t = function_table("1000*sin(2*pi*x/36000)", 0, 36000, 361).unwrap();
+        assert_eq!(t.points().len(), 361);
+        assert_eq!(t.points()[90].slave, 1000);
+        assert_eq!(t.points()[270].slave, -1000);
+    }
+
+    #[test]
+    fn generated_tables_carry_exact_derivatives() {
+        let t: toml::Table = toml::from_str("expr = \"x*x\"\nto = 100\npoints = 11").unwrap();
+        let g = from_toml("function", t).unwrap();
+        let k = g.kinematics.unwrap();
+        assert!((k[5].v - 100.0).abs() < 1e-9);
+        assert!((k[5].a - 2.0).abs() < 1e-9);
+        assert!(k[5].j.abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_reversed_function_range_names_both_ends() {
+        let e = function_table("x", 10, 10, 11).err().unwrap().to_string();
+        assert!(
+            e.contains("(10) must be greater than the first (10)"),
+            "{e}"
+        );
+        assert!(function_table("x", 10, 0, 11).is_err());
+    }
+
+    #[test]
+    fn function_errors_name_the_master() {
+        let err = function_table("1/(x-50)", 0, 100, 11).unwrap_err();
+        assert!(format!("{err:#}").contains("x = 50"), "{err:#}");
+    }
+
+    #[test]
+    fn numbers_take_arithmetic() {
+        use crate::params::Number;
+        let n: Number = toml::Value::String("50/3".into()).try_into().unwrap();
+        assert!((n.0 - 50.0 / 3.0).abs() < 1e-12);
+        let n: Number = toml::Value::Integer(3).try_into().unwrap();
+        assert_eq!(n.0, 3.0);
+    }
+}

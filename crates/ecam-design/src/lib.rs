@@ -1,0 +1,61 @@
+//! # ecam-design: cam tables from generators, expressions and files
+//!
+//! The design side of ecam, as its front ends (the `ecam` command line, the
+//! designer page behind `ecam serve`, scenario files) use it:
+//!
+//! - run a table generator **by name** with its parameters as key/value
+//!   pairs ([`from_toml`], [`from_json`], or [`find`] + [`generate`] with
+//!   [`Values`] read by [`read_toml`] or built from flags), getting a
+//!   [`Generated`] table with its exact derivatives, sync zone and extra
+//!   outputs; every parameter's key, kind and default come from
+//!   [`ecam_core::generator::schema`];
+//! - the arithmetic users type: cam functions of the master `x`
+//!   ([`MasterFunction`], [`function_table`]) and numbers such as `5/3` or
+//!   `3*pi` ([`number`], [`Number`]);
+//! - the `[table]` of a scenario file ([`load_table`]): points, an evenly
+//!   spaced table, a table file, an expression or a generator;
+//! - the designer page's JSON API ([`laws_json`], [`law_curves_json`],
+//!   [`generators_json`], [`key_points_json`], [`generate_json`]): JSON in,
+//!   JSON out, no sockets.
+//!
+//! When not to use it: to generate a table from typed parameters, call
+//! the generators of [`ecam_core::generator`] directly (no allocation of
+//! key/value maps, no `std`, no error strings); to run a cam, use
+//! `ecam-engine`; to simulate a scenario, `ecam-sim`.
+//!
+//! ```
+//! use ecam_core::CamCurve;
+//! use serde_json::json;
+//!
+//! // The rotary-cut demo: a 1000-pulse knife over a 3183-count sheet.
+//! let g = ecam_design::from_json(
+//!     "rotary-cut",
+//!     json!({"master": 3183, "slave": 1000, "sync": 333, "ratio": "5/3"}),
+//! )?;
+//! assert_eq!(g.name, "rotary-cut");
+//! assert_eq!((g.table.master_last(), g.table.slave_last()), (3183, 1000));
+//! assert!(g.sync.is_some());
+//!
+//! // The PLC editor's sine cam, sampled at 361 masters.
+//! let sine = ecam_design::function_table("1000*sin(2*pi*x/36000)", 0, 36000, 361)?;
+//! assert_eq!(sine.points()[90].slave, 1000);
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+
+mod designer;
+mod expr;
+mod generate;
+mod params;
+mod table_source;
+
+pub use designer::{
+    DEFAULT_LAW_POINTS, MAX_LAW_POINTS, generate_json, generators_json, key_points_json,
+    law_curves_json, laws_json,
+};
+pub use expr::{MasterFunction, number};
+pub use generate::{
+    Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,
+    parse_key_lines,
+};
+pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
+pub use table_source::{load as load_table, resolve};

@@ -1,0 +1,55 @@
+//! # ecam-sim: the engine run in simulated time
+//!
+//! A scenario file names a cam (any `[table]` source of `ecam-design`), the
+//! engine's configuration, a master motion, a start and a stop
+//! ([`Scenario`], every key in `docs/simulate.md`). [`simulate`] ticks an
+//! [`ecam_engine::CamAxis`] through it at the scenario's control cycle,
+//! hands each tick's [`Row`] and engine output to the caller (to write a
+//! trace, draw a plot, or check an invariant) and returns a [`Summary`].
+//!
+//! This is what `ecam simulate` runs; the command line only reads its
+//! arguments and writes the summary, trace CSV and plot.
+//!
+//! When not to use it: to drive a real axis, call `ecam-engine`'s `tick`
+//! from your own control loop (the simulation holds the whole master
+//! motion up front and allocates); to emulate the PLC or motion-processor
+//! faces, use `ecam-plc` or `ecam-pmd`.
+//!
+//! ```
+//! use std::path::Path;
+//! use ecam_sim::{Scenario, simulate};
+//!
+//! // Document 002's linear table: input 101 gives output 202.
+//! let scenario = Scenario::parse(
+//!     r#"
+//!     tick_us = 1000
+//!     [table]
+//!     uniform = [0, 100, 200]
+//!     counts = 100
+//!     [cam]
+//!     kind = "repeat"
+//!     [start]
+//!     slave_align = "relative"
+//!     [master]
+//!     moves = [[0.101, 101]]
+//!     "#,
+//!     Path::new("."),
+//! )?;
+//! let mut rows = 0;
+//! let summary = simulate(&scenario, |_row, _out, _traced| {
+//!     rows += 1;
+//!     Ok(())
+//! })?;
+//! assert_eq!((summary.final_master, summary.final_slave), (101, 202));
+//! assert_eq!(summary.state, "running");
+//! assert_eq!(rows, summary.ticks);
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+
+mod scenario;
+mod simulate;
+mod trace;
+
+pub use scenario::{MasterMove, Scenario, StopAt, StopTrigger};
+pub use simulate::{Summary, simulate};
+pub use trace::{Row, state_name};
