@@ -2,16 +2,14 @@
 //! examples, plots, and errors.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{ecam, fails, ok};
+use crate::common::{ecam, fails, ok};
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// A fresh scratch folder per test.
 fn scratch(name: &str) -> PathBuf {
-    common::scratch_dir(&format!("table-{name}"))
+    crate::common::scratch_dir(&format!("table-{name}"))
 }
 
 fn s(p: &Path) -> &str {

@@ -3,14 +3,12 @@
 //! derivatives estimated from its points, and says so.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{ecam, ok};
+use crate::common::{ecam, ok};
 
 use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
-    common::scratch_dir(&format!("table-design-{name}"))
+    crate::common::scratch_dir(&format!("table-design-{name}"))
 }
 
 /// Rows of `master,slave,velocity,acceleration,jerk`.

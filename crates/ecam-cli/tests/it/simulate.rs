@@ -2,9 +2,7 @@
 //! the numbers of its document, the trace and summary formats, and errors.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::ecam;
+use crate::common::ecam;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -19,7 +17,7 @@ fn scenario(name: &str) -> PathBuf {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    common::scratch_dir(&format!("simulate-{name}"))
+    crate::common::scratch_dir(&format!("simulate-{name}"))
 }
 
 /// A trace, column by name.

@@ -1,9 +1,7 @@
 //! `ecam law`: the contract output (names, CSV header, row count, ends) and errors.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::ecam;
+use crate::common::ecam;
 
 use std::process::Output;
 

@@ -2,11 +2,9 @@
 //! drive can follow from `ecam plc run` and `ecam simulate`.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{ecam, ok, scratch_dir};
+use crate::common::{ecam, ok, scratch_dir};
 use serde_json::Value;
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {

@@ -1,0 +1,16 @@
+//! Integration tests of the `ecam` binary, one test binary (one link):
+//! each module drives the real binary for one area, as a user would.
+#![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+mod law;
+mod plc_examples;
+mod plc_rotary_knife;
+mod plc_run;
+mod pmd_run;
+mod safe_motion;
+mod serve;
+mod simulate;
+mod table;
+mod table_design;
