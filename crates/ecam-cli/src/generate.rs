@@ -16,7 +16,19 @@ use ecam_core::generator::schema::{self, Field, FieldKind, Storage};
 use ecam_design::{Generated, Param, Values, default_values, parse_key};
 use serde_json::Value;
 
-use crate::cmd::table::Output;
+/// Output options shared by every generator.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct Output {
+    /// Write the table here (CSV or JSON by extension); CSV on stdout when absent.
+    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json")]
+    pub output: Option<PathBuf>,
+    /// Also plot the table (SVG or PNG by extension).
+    #[arg(long, value_name = "FILE.svg|png")]
+    pub plot: Option<PathBuf>,
+    /// Write only the `master,slave` columns.
+    #[arg(long)]
+    pub minimal: bool,
+}
 
 /// `ecam table gen NAME …`: the generator chosen, the parameters its flags
 /// set, its `--params` file and the output options. The flags are built

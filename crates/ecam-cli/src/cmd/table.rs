@@ -39,20 +39,6 @@ pub struct GenArgs {
     pub generator: GenCommand,
 }
 
-/// Output options shared by every generator.
-#[derive(clap::Args, Debug, Clone, Default)]
-pub struct Output {
-    /// Write the table here (CSV or JSON by extension); CSV on stdout when absent.
-    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json")]
-    pub output: Option<PathBuf>,
-    /// Also plot the table (SVG or PNG by extension).
-    #[arg(long, value_name = "FILE.svg|png")]
-    pub plot: Option<PathBuf>,
-    /// Write only the `master,slave` columns.
-    #[arg(long)]
-    pub minimal: bool,
-}
-
 /// Arguments of `ecam table show`.
 #[derive(clap::Args, Debug)]
 pub struct ShowArgs {
