@@ -21,7 +21,7 @@
 //!   pieces between values at `k · CamCounts / (N − 1)`, drawn as a plain
 //!   point table is (the spacing may be a fraction of a count).
 
-use ecam_core::generator::design_curve::DesignCurve;
+use ecam_core::generator::DesignCurve;
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, SegmentProfile, UniformTable};
 
 use ecam_core::io::TableFile;

@@ -10,7 +10,7 @@
 
 mod accel_curve;
 mod cut_params;
-pub mod design_curve;
+mod design_curve;
 pub mod flying_saw;
 pub mod function;
 pub mod key_points;

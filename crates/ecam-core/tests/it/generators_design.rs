@@ -6,7 +6,7 @@
 
 use ecam_core::generator::AccelCurve;
 use ecam_core::generator::CamPlacement;
-use ecam_core::generator::design_curve::DesignCurve;
+use ecam_core::generator::DesignCurve;
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
 use ecam_core::{CamCurve, PointTable};
 use proptest::prelude::*;
