@@ -1,42 +1,44 @@
-//! The three acceleration curves of the rotary-cut and flying-saw generators
-//! (ECAMTBX K100/K101, parameter P6 low word), also used for the ramps of the
-//! S-curve generator.
-//!
-//! A curve shapes how the velocity ratio changes from `v0` to `v1` over a
-//! ramp: `v(u) = v0 + (v1 − v0)·h(u)` for the normalised ramp position
-//! `u ∈ [0, 1]`, with `h(0) = 0` and `h(1) = 1`.
-//!
-//! The manual names the codes only ("0: uniform curve, 1: uniform
-//! acceleration curve, 2: B type curve"). Our reading, chosen so that every
-//! curve keeps the velocity continuous (a generator whose velocity jumped at
-//! the sync boundaries would defeat its purpose):
-//! - **0 uniform**: the velocity changes uniformly (linearly), i.e. constant
-//!   acceleration inside the ramp — the trapezoidal velocity profile;
-//! - **1 uniform acceleration**: the acceleration rises and falls uniformly
-//!   (linearly), i.e. the jerk-limited S-type ramp. The same manual's key-point
-//!   appendix (K2) calls its S-type curve "uniform acceleration" too;
-//! - **2 B type**: a bell-shaped acceleration `1 − cos 2πu` (cycloidal ramp):
-//!   acceleration and jerk both start and end at zero.
-//!
-//! Every `h` is point-symmetric, `h(u) + h(1 − u) = 1`, so a ramp always covers
-//! `(v0 + v1)/2 · length`, whatever the curve: the generators' distance
-//! budget does not depend on the curve chosen.
-//!
-//! ```
-//! use ecam_core::generator::AccelCurve;
-//!
-//! let c = AccelCurve::from_code(1)?;
-//! assert_eq!(c, AccelCurve::UniformAcceleration);
-//! assert!((c.velocity(0.5) - 0.5).abs() < 1e-12);
-//! assert!((c.distance(1.0) - 0.5).abs() < 1e-12);
-//! # Ok::<(), ecam_core::TableError>(())
-//! ```
+//! The acceleration curves of the cut generators ([`AccelCurve`]).
 
 use core::f64::consts::PI;
 
 use crate::TableError;
 
 /// How a ramp's velocity ratio goes from its start value to its end value.
+///
+/// The three acceleration curves of the rotary-cut and flying-saw generators
+/// (ECAMTBX K100/K101, parameter P6 low word), also used for the ramps of the
+/// S-curve generator.
+///
+/// A curve shapes how the velocity ratio changes from `v0` to `v1` over a
+/// ramp: `v(u) = v0 + (v1 − v0)·h(u)` for the normalised ramp position
+/// `u ∈ [0, 1]`, with `h(0) = 0` and `h(1) = 1`.
+///
+/// The manual names the codes only ("0: uniform curve, 1: uniform
+/// acceleration curve, 2: B type curve"). Our reading, chosen so that every
+/// curve keeps the velocity continuous (a generator whose velocity jumped at
+/// the sync boundaries would defeat its purpose):
+/// - **0 uniform**: the velocity changes uniformly (linearly), i.e. constant
+///   acceleration inside the ramp — the trapezoidal velocity profile;
+/// - **1 uniform acceleration**: the acceleration rises and falls uniformly
+///   (linearly), i.e. the jerk-limited S-type ramp. The same manual's key-point
+///   appendix (K2) calls its S-type curve "uniform acceleration" too;
+/// - **2 B type**: a bell-shaped acceleration `1 − cos 2πu` (cycloidal ramp):
+///   acceleration and jerk both start and end at zero.
+///
+/// Every `h` is point-symmetric, `h(u) + h(1 − u) = 1`, so a ramp always covers
+/// `(v0 + v1)/2 · length`, whatever the curve: the generators' distance
+/// budget does not depend on the curve chosen.
+///
+/// ```
+/// use ecam_core::generator::AccelCurve;
+///
+/// let c = AccelCurve::from_code(1)?;
+/// assert_eq!(c, AccelCurve::UniformAcceleration);
+/// assert!((c.velocity(0.5) - 0.5).abs() < 1e-12);
+/// assert!((c.distance(1.0) - 0.5).abs() < 1e-12);
+/// # Ok::<(), ecam_core::TableError>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum AccelCurve {
     /// Code 0: velocity changes linearly (constant acceleration).

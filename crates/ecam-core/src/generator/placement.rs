@@ -1,22 +1,24 @@
-//! Where the synchronised zone sits inside the generated table (ECAMTBX
-//! K100/K101, parameter P6 high word, "cam curve").
-//!
-//! The two copies of the manual disagree on rightCAM's number: the LX3VP copy
-//! lists it as 5, the LX3VE copy as 4 (and has no 5). [`CamPlacement::from_code`]
-//! accepts both; [`CamPlacement::code`] writes 5, the clean copy's value.
-//!
-//! ```
-//! use ecam_core::generator::CamPlacement;
-//!
-//! assert_eq!(CamPlacement::from_code(4)?, CamPlacement::RightCam);
-//! assert_eq!(CamPlacement::from_code(5)?, CamPlacement::RightCam);
-//! assert_eq!(CamPlacement::RightCam.code(), 5);
-//! # Ok::<(), ecam_core::TableError>(())
-//! ```
+//! Where the synchronised zone sits ([`CamPlacement`]).
 
 use crate::TableError;
 
 /// Position of the synchronised zone in one cycle of the table.
+///
+/// Where the synchronised zone sits inside the generated table (ECAMTBX
+/// K100/K101, parameter P6 high word, "cam curve").
+///
+/// The two copies of the manual disagree on rightCAM's number: the LX3VP copy
+/// lists it as 5, the LX3VE copy as 4 (and has no 5). [`CamPlacement::from_code`]
+/// accepts both; [`CamPlacement::code`] writes 5, the clean copy's value.
+///
+/// ```
+/// use ecam_core::generator::CamPlacement;
+///
+/// assert_eq!(CamPlacement::from_code(4)?, CamPlacement::RightCam);
+/// assert_eq!(CamPlacement::from_code(5)?, CamPlacement::RightCam);
+/// assert_eq!(CamPlacement::RightCam.code(), 5);
+/// # Ok::<(), ecam_core::TableError>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum CamPlacement {
     /// Code 0: the table starts with the sync zone ("sync area on the left").
