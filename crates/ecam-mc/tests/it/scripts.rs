@@ -270,3 +270,60 @@ fn an_engine_fault_shows_in_the_status() {
     assert!(!running);
     assert_eq!(*fault, Some(ecam_engine::EngineError::MasterStep));
 }
+
+mod never_panics {
+    use ecam_mc::script::{Script, ScriptRunner};
+    use proptest::prelude::*;
+
+    fn number() -> impl Strategy<Value = String> {
+        prop_oneof![
+            Just(i64::MIN.to_string()),
+            Just(i64::MAX.to_string()),
+            Just("-1".to_owned()),
+            Just("0".to_owned()),
+            Just("30000".to_owned()),
+            Just("99999999999999999999".to_owned()),
+            Just("x".to_owned()),
+            (-100_000i64..100_000).prop_map(|n| n.to_string()),
+        ]
+    }
+
+    fn line() -> impl Strategy<Value = String> {
+        let axis = prop_oneof![Just("0"), Just("1"), Just("2"), Just("-1")];
+        (0usize..12, axis, number(), number(), 0u8..4).prop_map(|(k, axis, a, b, small)| match k {
+            0 => format!("SetSingleTurn {axis} {a}"),
+            1 => format!("SetUserUnit {axis} {a}"),
+            2 => format!("SetMaxMasterStep {axis} {a}"),
+            3 => format!("SetCommandPosition {axis} {a}"),
+            4 => format!("MoveTo {axis} {a} {small}"),
+            5 => format!("ECAMTable t 0 {a}, {b} {a}, 40000 {b}"),
+            6 => format!("StartECAM 0 {axis} Repeat t"),
+            7 => format!("StartECAM {axis} 1 Periodic t"),
+            8 => format!("StopECAM {axis}"),
+            9 => format!("Tick {small}"),
+            10 => format!("GetECAMStatus {axis}"),
+            _ => format!("GetCommandPosition {axis}"),
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(crate::cases(256)))]
+
+        /// Any script, however wrong, is parsed or refused with a message,
+        /// and runs or stops at a line: never a panic.
+        #[test]
+        fn random_scripts_never_panic(lines in prop::collection::vec(line(), 1..24)) {
+            let text = format!("ECAMTable t 0 0, 30000 1500\n{}", lines.join("\n"));
+            match Script::parse(&text, "fuzz.mc") {
+                Ok(script) => {
+                    let mut runner = ScriptRunner::new(script.axis_count());
+                    let mut printed = 0usize;
+                    if let Err(e) = runner.run(&script, |_| printed += 1) {
+                        prop_assert!(e.line.is_some_and(|l| l >= 2), "{e}");
+                    }
+                }
+                Err(e) => prop_assert!(!e.message.is_empty() && e.line.is_some(), "{e}"),
+            }
+        }
+    }
+}
