@@ -60,6 +60,27 @@ pub use runner::ScriptRunner;
 /// `on_report` as it is made: what `ecam mc run SCRIPT` does, printing
 /// [`Report::to_json`] lines.
 ///
+/// ```
+/// use std::io::Write;
+///
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/mc/single_turn_start.mc");
+/// let mut out = Vec::new(); // `std::io::stdout().lock()` in `ecam mc run`
+/// let mut written = Ok(());
+/// let result = ecam_mc::script::run_file_with(path, |report| {
+///     if written.is_ok() {
+///         written = writeln!(out, "{report}");
+///     }
+/// });
+/// result?; // on error: `SCRIPT:LINE: message`
+/// written?;
+/// let text = String::from_utf8(out)?;
+/// assert_eq!(
+///     text.lines().next(),
+///     Some(r#"{"cmd":"GetCommandPosition","axis":1,"value":-2000}"#)
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
 /// # Errors
 /// The script cannot be read, a line is not a valid command (nothing ran),
 /// or a command was refused (the run ended there; earlier reports were
