@@ -66,6 +66,11 @@ impl MotionController {
         }
     }
 
+    /// How many axes the controller has (numbered from 0).
+    pub fn axis_count(&self) -> usize {
+        self.axes.len()
+    }
+
     fn axis(&self, axis: usize) -> Result<&Axis, McError> {
         self.axes.get(axis).ok_or(McError::NoSuchAxis {
             axis,

@@ -10,7 +10,8 @@
 //! starts at the nearest equivalent slave position, and a table that does
 //! not cover the turn is extended with its end values.
 //!
-//! Use it to run document 001-style cams from Rust; for the PLC or
+//! Use it to run document 001-style cams from Rust, or from a text script
+//! ([`script`], what `ecam mc run` runs); for the PLC or
 //! motion-processor faces see `ecam-plc` and `ecam-pmd`.
 //!
 //! ```
@@ -32,6 +33,7 @@
 mod cam_type;
 mod controller;
 mod error;
+pub mod script;
 mod units;
 
 pub use cam_type::CamType;

@@ -5,6 +5,7 @@
 mod document_001;
 mod faults;
 mod properties;
+mod scripts;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.
