@@ -1,8 +1,8 @@
 //! `ecam`: the command line of the ecam electronic cam system.
 //!
 //! Thin glue: every subcommand parses its arguments and calls into the
-//! library crates. The output formats of `law`, `plc run`, `pmd run` and
-//! `simulate` are contracts (see `docs/cli.md`).
+//! library crates. The output formats of `law`, `plc run`, `pmd run`,
+//! `mc run` and `simulate` are contracts (see `docs/architecture.md`).
 
 mod cmd;
 mod generate;
@@ -36,6 +36,9 @@ enum Command {
     /// The motion-processor face: run command scripts.
     #[command(subcommand)]
     Pmd(cmd::pmd::Command),
+    /// The motion-controller face (Normal / Periodic / Repeat cams): run scripts.
+    #[command(subcommand)]
+    Mc(cmd::mc::Command),
     /// Run the PLC in real time behind Modbus TCP and HTTP (API + designer page).
     Serve(cmd::serve::Args),
 }
@@ -48,6 +51,7 @@ fn main() -> std::process::ExitCode {
         Command::Simulate(args) => cmd::simulate::run(args),
         Command::Plc(command) => cmd::plc::run(command),
         Command::Pmd(command) => cmd::pmd::run(command),
+        Command::Mc(command) => cmd::mc::run(command),
         Command::Serve(args) => cmd::serve::run(args),
     };
     match result {

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod law;
+pub mod mc;
 pub mod plc;
 pub mod pmd;
 pub mod serve;
