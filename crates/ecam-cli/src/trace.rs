@@ -11,7 +11,8 @@
 //! - `master_in_cycle`, `cycle`: the table input and the completed cycles;
 //! - `state`: the engine state; `sync`: bit i set while sync window i is on;
 //! - `flags`: `|`-separated: `delayed` (backlog), `engaged`, `cycle`,
-//!   `finished`, `stopped` (this tick's events), `fault`.
+//!   `finished`, `stopped`, `switched` (a queued table took over), `jump`
+//!   (a periodic seam jump) (this tick's events), `fault`.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -85,6 +86,8 @@ fn flags(out: &TickOutput) -> String {
         (e.cycle_completed, "cycle"),
         (e.finished, "finished"),
         (e.stopped, "stopped"),
+        (e.table_switched, "switched"),
+        (e.seam_jump, "jump"),
         (out.fault.is_some(), "fault"),
     ];
     named

@@ -35,6 +35,19 @@ struct RawScenario {
     #[serde(default)]
     sync: Vec<RawSync>,
     master: RawMaster,
+    #[serde(default)]
+    switch: Vec<RawSwitch>,
+}
+
+/// `[[switch]]`: another table takes over at the next seam once the
+/// trigger fires.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RawSwitch {
+    at_s: Option<f64>,
+    master_at_least: Option<i64>,
+    master_at_most: Option<i64>,
+    table: toml::Table,
 }
 
 fn default_tick_us() -> u32 {
@@ -204,12 +217,30 @@ pub struct StopAt {
 impl StopAt {
     /// Whether the stop fires on a tick at `t_us` with the master at `master`.
     pub fn fires(&self, t_us: u64, master: i64) -> bool {
-        match self.trigger {
-            StopTrigger::Time(at) => t_us >= at,
-            StopTrigger::MasterAtLeast(p) => master >= p,
-            StopTrigger::MasterAtMost(p) => master <= p,
+        self.trigger.fires(t_us, master)
+    }
+}
+
+impl StopTrigger {
+    /// Whether the trigger fires on a tick at `t_us` with the master at `master`.
+    pub fn fires(&self, t_us: u64, master: i64) -> bool {
+        match *self {
+            Self::Time(at) => t_us >= at,
+            Self::MasterAtLeast(p) => master >= p,
+            Self::MasterAtMost(p) => master <= p,
         }
     }
+}
+
+/// A table that takes over from the running one at the next seam (cycle
+/// boundary) the master crosses after `trigger` fired: the slave continues
+/// from where it stands there (`CamAxis::queue_curve`).
+pub struct TableSwitch {
+    /// When the switch is requested (the time or master position of the
+    /// request, not of the seam).
+    pub trigger: StopTrigger,
+    /// The new table.
+    pub curve: Box<dyn CamCurve>,
 }
 
 /// A checked scenario, ready to run.
@@ -236,6 +267,8 @@ pub struct Scenario {
     pub start_input: Vec<(u64, u64)>,
     /// Optional stop.
     pub stop: Option<StopAt>,
+    /// Table switches, in the order they are requested.
+    pub switches: Vec<TableSwitch>,
 }
 
 /// Seconds → microseconds, refusing negatives, NaN and absurd lengths.
@@ -339,6 +372,23 @@ impl Scenario {
                 })
             })
             .transpose()?;
+        let switches = raw
+            .switch
+            .iter()
+            .enumerate()
+            .map(|(i, s)| -> anyhow::Result<TableSwitch> {
+                let what = format!("[[switch]] {}", i + 1);
+                let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
+                    (Some(t), None, None) => StopTrigger::Time(micros(t, &format!("{what} at_s"))?),
+                    (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
+                    (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
+                    _ => bail!("{what} needs exactly one of at_s, master_at_least, master_at_most"),
+                };
+                let curve = ecam_design::load_table(&s.table, base)
+                    .with_context(|| format!("in {what} table"))?;
+                Ok(TableSwitch { trigger, curve })
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
         if raw.sync.len() > 4 {
             bail!("at most 4 [[sync]] windows, got {}", raw.sync.len());
         }
@@ -405,6 +455,7 @@ impl Scenario {
             moves,
             start_input,
             stop,
+            switches,
         })
     }
 

@@ -43,6 +43,8 @@ pub struct Summary {
     pub output_offset: i64,
     /// Seams where a periodic table's slave jumped (spread under the ceiling).
     pub seam_jumps: u64,
+    /// Tables that took over at a seam (`[[switch]]`).
+    pub table_switches: u64,
     /// Most pulses in one tick (the drive's peak frequency × tick).
     pub max_pulses_per_tick: u64,
     /// Times the emitted direction turned round.
@@ -83,6 +85,7 @@ pub fn simulate(
     let tick_us = u64::from(scenario.tick_us);
     let ticks = scenario.ticks();
     let mut stop_pending = scenario.stop;
+    let mut switches = scenario.switches.iter().enumerate().peekable();
     let mut prev_slave = scenario.slave_start;
     let mut summary = Summary {
         final_master: scenario.master_start,
@@ -101,6 +104,7 @@ pub fn simulate(
         input_offset: 0,
         output_offset: 0,
         seam_jumps: 0,
+        table_switches: 0,
         max_pulses_per_tick: 0,
         direction_changes: 0,
         fault: None,
@@ -115,6 +119,17 @@ pub fn simulate(
                 axis.stop(stop.kind);
                 stop_pending = None;
             }
+        }
+        while let Some((i, switch)) = switches.next_if(|(_, s)| s.trigger.fires(t_us, master)) {
+            let curve: &dyn ecam_core::CamCurve = switch.curve.as_ref();
+            axis.queue_curve(curve).map_err(|e| {
+                anyhow::anyhow!(
+                    "[[switch]] {}: the engine refuses the table: {e} (table master {} .. {})",
+                    i + 1,
+                    curve.master_first(),
+                    curve.master_last()
+                )
+            })?;
         }
         let master_input = scenario.master_input(master);
         let input = TickInput {
@@ -156,6 +171,9 @@ pub fn simulate(
         }
         if out.events.seam_jump {
             summary.seam_jumps += 1;
+        }
+        if out.events.table_switched {
+            summary.table_switches += 1;
         }
         if out.in_sync {
             summary.sync_ticks += 1;

@@ -445,3 +445,43 @@ fn a_table_outside_the_turn_names_both() {
         "{err}"
     );
 }
+
+#[test]
+fn a_rotary_knife_changes_cut_length_twice_while_running() {
+    let dir = scratch("switch");
+    let trace_file = dir.join("trace.csv");
+    let out = ecam(&[
+        "simulate",
+        scenario("rotary-knife-switch.toml").to_str().unwrap(),
+        "--trace",
+        trace_file.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["table_switches"], 2);
+    assert_eq!(
+        summary["direction_changes"], 0,
+        "the knife never turns back"
+    );
+    // 4 cuts of 3183, 5 of 2500 (the first seam after the request at master
+    // 25000 is 25232), then 4000-pulse cuts: 3 whole ones by master 40000.
+    assert_eq!(summary["cycles"], 12);
+    assert_eq!(summary["input_offset"], -25232);
+    assert_eq!(summary["max_backlog"], 0);
+    let trace = Trace::read(&trace_file);
+    // Continuous: between two traced rows (1 ms apart) the knife moves at
+    // most the table's top speed (50/3 × 10 counts) and never back.
+    let mut last = None;
+    for row in &trace.rows {
+        let slave = trace.int(row, "slave");
+        if let Some(prev) = last {
+            let step = slave - prev;
+            assert!((0..=167).contains(&step), "step {step} at t={}", row[0]);
+        }
+        last = Some(slave);
+    }
+}
