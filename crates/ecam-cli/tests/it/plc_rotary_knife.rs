@@ -98,3 +98,61 @@ fn the_knife_turns_forward_cut_after_cut_and_the_counter_follows() {
     assert!((6 * REVOLUTION..7 * REVOLUTION).contains(&last[1]));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_knife_changes_cut_length_twice_without_stepping_or_turning_back() {
+    let dir = std::env::temp_dir().join(format!("ecam-knife-switch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let trace = dir.join("trace.csv");
+    let program = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/plc/rotary_knife_switch.il"
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(["plc", "run", program, "--wire", "Y1:X0", "--wire", "Y1:X1"])
+        .args(["--ms", "4000", "--dump", "DD8140", "--dump", "D2001"])
+        .arg("--trace")
+        .arg(&trace)
+        .args([
+            "--trace-dev",
+            "DD8140",
+            "--trace-dev",
+            "C231",
+            "--trace-dev",
+            "Y4",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let dump: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        dump["D2001"].as_i64().unwrap() & 0b1_0011_1000,
+        0,
+        "no error"
+    );
+    // 4 cuts of 3183, 5 of 2500 (the first seam after the second table was
+    // written at 10000 is 12732; after the third, at 25000, it is 25232),
+    // then 3 of 4000 and 2768 pulses into the next: 12 revolutions and the
+    // 4000 table's value at 2768 - the same as ecam simulate's
+    // rotary-knife-switch scenario.
+    assert_eq!(dump["DD8140"], 12668);
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let mut previous: Option<i64> = None;
+    for line in text.lines().skip(1) {
+        let row: Vec<i64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        let (slave, feed, direction) = (row[1], row[2], row[3]);
+        if let Some(p) = previous {
+            // 1 ms scans at 10 feed pulses each: at most 50/3 × 10 knife pulses.
+            assert!((0..=167).contains(&(slave - p)), "step at feed {feed}");
+        }
+        if slave > 0 {
+            assert_eq!(direction, 1, "direction output forward at feed {feed}");
+        }
+        previous = Some(slave);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
