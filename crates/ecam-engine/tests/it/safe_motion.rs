@@ -10,7 +10,9 @@
 //! - once the master rests, the commanded slave is exactly the cam of the
 //!   master (zero drift) and every pulse has gone out;
 //! - at constant speed, pulses per tick follow the cam's velocity within
-//!   one pulse once the tracker has settled.
+//!   one pulse once the tracker has settled;
+//! - on any table (periodic seams that jump included) each tick's pulses
+//!   move the output towards the command and never past it.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 use core::num::{NonZeroU32, NonZeroU64};
@@ -260,6 +262,54 @@ proptest! {
         prop_assert_eq!(last.emitted, last.slave);
         let total: i64 = r.outputs.iter().map(|o| o.pulses).sum::<i64>() + drained;
         prop_assert_eq!(total, last.slave);
+    }
+
+    #[test]
+    fn pulses_never_overshoot_the_command_on_any_table(
+        points in prop::collection::vec((1i64..400, -900i64..900), 1..10),
+        coupling in prop_oneof![
+            Just(Coupling::Periodic),
+            Just(Coupling::Repeat { min_stroke: 1 }),
+            (0u16..3).prop_map(|repeats| Coupling::OneShot { repeats }),
+            Just(Coupling::Normal),
+        ],
+        master_zoom in any_zoom(),
+        slave_zoom in any_zoom(),
+        hz in prop_oneof![Just(200_000i64), 1_000i64..200_000],
+        source in any_source(),
+        motion in any_motion(),
+    ) {
+        // Any table, seams that jump included: each tick's pulses move the
+        // output towards the command and never past it, so the output turns
+        // only when the command asks, and the ceiling holds.
+        let mut pairs = vec![(0i64, 0i64)];
+        let mut m = 0;
+        for (dm, s) in points {
+            m += dm;
+            pairs.push((m, s));
+        }
+        let table = PointTable::from_pairs(&pairs).unwrap();
+        let config = AxisConfig {
+            coupling,
+            master_zoom,
+            slave_zoom,
+            max_frequency_hz: hz,
+            master_filter: filter_for(source),
+            ..AxisConfig::default()
+        };
+        let mut axis = CamAxis::new(table, config).unwrap();
+        axis.arm().unwrap();
+        let r = run(&mut axis, source, &motion, 200);
+        let ceiling = u128::from(hz.unsigned_abs()) * u128::from(TICK_US);
+        let mut emitted = 0i64;
+        for (i, out) in r.outputs.iter().enumerate() {
+            prop_assert!(u128::from(out.pulses.unsigned_abs()) * 1_000_000 < ceiling + 1_000_000);
+            let (low, high) = (emitted.min(out.slave), emitted.max(out.slave));
+            prop_assert!((low..=high).contains(&out.emitted),
+                "tick {i}: emitted {} outside [{low}, {high}]", out.emitted);
+            prop_assert_eq!(out.emitted, emitted + out.pulses);
+            emitted = out.emitted;
+        }
     }
 
     #[test]
