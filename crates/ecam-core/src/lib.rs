@@ -51,6 +51,7 @@ pub mod generator;
 pub mod io;
 mod kinematics;
 pub mod law;
+pub mod limits;
 pub mod register_image;
 pub mod table;
 

@@ -34,6 +34,14 @@ impl MasterFunction {
     }
 
     fn with_variables(text: &str, master_allowed: bool) -> anyhow::Result<Self> {
+        // Parsing time grows faster than the length: bound it.
+        let limit = ecam_core::limits::MAX_EXPRESSION_LEN;
+        if text.len() > limit {
+            return Err(anyhow!(
+                "the expression is {} bytes long; the limit is {limit}",
+                text.len()
+            ));
+        }
         let plain = expand_exponents(text)?;
         let expr = exmex::parse::<f64>(&plain)
             .map_err(|e| anyhow!("cannot parse expression {text:?}: {e}"))?;

@@ -334,6 +334,16 @@ fn function(params: &function::Params) -> anyhow::Result<Generated> {
 /// Parse or evaluation errors (naming the master where it failed), or a
 /// table the core refuses.
 pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::Result<PointTable> {
+    use ecam_core::limits::{MAX_EXPRESSION_LEN, MAX_TABLE_POINTS};
+    if points > MAX_TABLE_POINTS {
+        bail!("points {points} is above the limit of {MAX_TABLE_POINTS} points per table");
+    }
+    if expr.len() > MAX_EXPRESSION_LEN {
+        bail!(
+            "the expression is {} bytes long; the limit is {MAX_EXPRESSION_LEN}",
+            expr.len()
+        );
+    }
     let f = MasterFunction::parse(expr)?;
     // The core reports this as a non-increasing last point (6782), which
     // names a section the user never wrote; say which settings clash.

@@ -351,11 +351,15 @@ impl Parser {
             "tick" => {
                 a.expect(&["N"])?;
                 let n = a.number(0)?;
-                let n = u64::try_from(n).map_err(|_| {
-                    a.error(format!(
-                        "Tick: {n} is out of range: the cycle count must be 0 or more"
-                    ))
-                })?;
+                let limit = ecam_core::limits::MAX_SIMULATED_TICKS;
+                let n = u64::try_from(n)
+                    .ok()
+                    .filter(|&n| n <= limit)
+                    .ok_or_else(|| {
+                        a.error(format!(
+                            "Tick: {n} is out of range: the cycle count must be 0 to {limit}"
+                        ))
+                    })?;
                 Command::Tick(n)
             }
             _ => return Err(a.error(format!("unknown command '{cmd}'"))),

@@ -340,6 +340,14 @@ impl Scenario {
         if duration_us == 0 {
             bail!("nothing to simulate: give [master] moves or duration_s");
         }
+        let ticks = duration_us.div_ceil(u64::from(raw.tick_us.max(1)));
+        let limit = ecam_core::limits::MAX_SIMULATED_TICKS;
+        if ticks > limit {
+            bail!(
+                "the scenario runs {ticks} ticks of {} us; the limit is {limit}: shorten duration_s or the moves, or lengthen tick_us",
+                raw.tick_us
+            );
+        }
         let start_input = raw
             .start
             .input

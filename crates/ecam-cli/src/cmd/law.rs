@@ -43,6 +43,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 /// Writes `points` rows of `law` as CSV `u,s,v,a,j`.
 fn write_csv(law: MotionLaw, points: usize, out: &mut impl Write) -> anyhow::Result<()> {
+    if points > ecam_core::limits::MAX_TABLE_POINTS {
+        bail!(
+            "--points {points} is above the limit of {} points",
+            ecam_core::limits::MAX_TABLE_POINTS
+        );
+    }
     if points < 2 {
         bail!("--points must be at least 2 (both ends of u = 0..1), got {points}");
     }

@@ -97,6 +97,19 @@ fn run_program(args: &RunArgs) -> anyhow::Result<()> {
         scan_us: args.scan_us,
         tick_us: args.tick_us,
     };
+    // Bounded work: the run's hardware ticks stay within the shared limit.
+    let run_us = match length {
+        RunLength::Scans(n) => u128::from(n) * u128::from(timing.scan_us),
+        RunLength::Millis(ms) => u128::from(ms) * 1000,
+    };
+    let ticks = run_us / u128::from(timing.tick_us.max(1));
+    let limit = ecam_core::limits::MAX_SIMULATED_TICKS;
+    if ticks > u128::from(limit) {
+        bail!(
+            "the run would take {ticks} hardware ticks of {} us; the limit is {limit}: ask for less simulated time",
+            timing.tick_us
+        );
+    }
 
     let mut trace = String::new();
     if args.trace.is_some() {

@@ -5,6 +5,7 @@
 mod common;
 
 mod law;
+mod limits;
 mod mc_run;
 mod plc_examples;
 mod plc_rotary_knife;

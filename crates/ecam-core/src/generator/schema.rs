@@ -448,7 +448,7 @@ pub const FUNCTION: &[Field] = &[
         name: "points",
         help: "number of points, both ends included",
         unit: "",
-        kind: int(Storage::Usize, 2, i64::MAX),
+        kind: int(Storage::Usize, 2, crate::limits::MAX_TABLE_POINTS as i64),
         shown_default: None,
         register: None,
     },

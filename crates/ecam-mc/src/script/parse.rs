@@ -409,7 +409,8 @@ impl Parser<'_> {
             }
             "tick" => {
                 a.expect(&["N"])?;
-                let n = a.bounded(0, "the cycle count", 0, i64::MAX)?;
+                let limit = ecam_core::limits::MAX_SIMULATED_TICKS as i64;
+                let n = a.bounded(0, "the cycle count", 0, limit)?;
                 Command::Tick(u64::try_from(n).unwrap_or_default())
             }
             "getcommandposition" => {
@@ -534,7 +535,7 @@ mod tests {
         assert_eq!(error("Tick"), "t.mc:1: Tick takes N, got 0 arguments");
         assert_eq!(
             error("Tick -1"),
-            "t.mc:1: Tick: the cycle count -1 is out of range: 0 to 9223372036854775807"
+            "t.mc:1: Tick: the cycle count -1 is out of range: 0 to 100000000"
         );
         assert!(error("Tick 99999999999999999999").contains("out of range"));
         assert!(error("SetCommandPosition 0 1.5").contains("'1.5' is not a whole number"));

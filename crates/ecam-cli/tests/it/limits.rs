@@ -1,0 +1,83 @@
+//! Bounded work: requests for more than the shared limits
+//! (`ecam_core::limits`) are refused at once with a clear error, whatever
+//! the face.
+
+use std::time::{Duration, Instant};
+
+use crate::common::{ecam, fails, scratch_dir};
+
+/// Refused, quickly, with a message naming the limit.
+fn refused(args: &[&str], needle: &str) {
+    let start = Instant::now();
+    let err = fails(ecam(args));
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "{args:?} took too long"
+    );
+}
+
+#[test]
+fn huge_point_counts_are_refused() {
+    refused(&["law", "cycloid", "--points", "100000000000"], "limit");
+    refused(
+        &[
+            "table",
+            "gen",
+            "function",
+            "--expr",
+            "x",
+            "--points",
+            "100000000000",
+        ],
+        "limit",
+    );
+}
+
+#[test]
+fn huge_expressions_are_refused() {
+    let long = vec!["x"; 5000].join("+");
+    refused(
+        &["table", "gen", "function", "--expr", &long],
+        "limit is 4096",
+    );
+}
+
+#[test]
+fn huge_runs_are_refused() {
+    let dir = scratch_dir("limits");
+    let program = dir.join("p.il");
+    std::fs::write(&program, "LD M8000\nOUT Y0\n").unwrap();
+    refused(
+        &[
+            "plc",
+            "run",
+            program.to_str().unwrap(),
+            "--ms",
+            "18446744073709551615",
+        ],
+        "limit is 100000000",
+    );
+    let script = dir.join("s.pmd");
+    std::fs::write(&script, "Tick 9223372036854775807\n").unwrap();
+    let out = ecam(&["pmd", "run", script.to_str().unwrap(), "--strict"]);
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(text.contains("0 to 100000000"), "{text}");
+    let mc = dir.join("s.mc");
+    std::fs::write(&mc, "Tick 9223372036854775807\n").unwrap();
+    refused(&["mc", "run", mc.to_str().unwrap()], "0 to 100000000");
+    let scenario = dir.join("s.toml");
+    std::fs::write(
+        &scenario,
+        "duration_s = 100000\n[table]\npoints = [[0, 0], [10, 10]]\n[master]\nmoves = []\n",
+    )
+    .unwrap();
+    refused(
+        &["simulate", scenario.to_str().unwrap()],
+        "the limit is 100000000",
+    );
+}

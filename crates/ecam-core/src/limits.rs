@@ -1,0 +1,17 @@
+//! The bounds on the work one request may ask for, shared by the command
+//! line, parameter and scenario files, scripts and the HTTP API, so that no
+//! input can make ecam allocate without limit or run for ever. Each is far
+//! above any real cam and documented in `docs/cli.md` ("Limits").
+
+/// Most points a sampled or generated table may have (`ecam law --points`,
+/// the `function` generator). A DECAM table holds 512; a design table of a
+/// million points is already far finer than any drive can follow.
+pub const MAX_TABLE_POINTS: usize = 1_000_000;
+
+/// Longest expression the `function` generator parses, in bytes.
+pub const MAX_EXPRESSION_LEN: usize = 4_096;
+
+/// Most control cycles one simulated run may take: `ecam plc run`'s
+/// hardware ticks, a script's `Tick`s in total, a scenario's ticks. 10⁸
+/// ticks are 2.8 hours of 100 µs cycles.
+pub const MAX_SIMULATED_TICKS: u64 = 100_000_000;
