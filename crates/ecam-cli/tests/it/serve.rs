@@ -606,6 +606,14 @@ fn http_api_and_designer_page() {
         Some(r#"{"generator": "s-curve", "params": {"max_speed": 0}}"#),
     );
     assert_eq!(status, 400, "{body}");
+    // Bounded work: 10^11 points is refused at once, not allocated.
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/gen",
+        Some(r#"{"generator": "function", "params": {"expr": "x", "points": 100000000000}}"#),
+    );
+    assert_eq!(status, 400, "{body}");
+    assert!(body.contains("limit"), "{body}");
 }
 
 /// The example of document 003, section 4.1.3: a cyclic cam on Y0, its
