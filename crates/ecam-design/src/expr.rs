@@ -43,8 +43,12 @@ impl MasterFunction {
             ));
         }
         let plain = expand_exponents(text)?;
-        let expr = exmex::parse::<f64>(&plain)
-            .map_err(|e| anyhow!("cannot parse expression {text:?}: {e}"))?;
+        let expr = exmex::parse::<f64>(&plain).map_err(|e| {
+            anyhow!(
+                "cannot parse expression {text:?}: {}",
+                plain_error(&e.to_string())
+            )
+        })?;
         let slots = expr
             .var_names()
             .iter()
@@ -182,6 +186,22 @@ fn expand_exponents(text: &str) -> anyhow::Result<String> {
 pub fn number(text: &str) -> anyhow::Result<f64> {
     let f = MasterFunction::with_variables(text, false)?;
     f.at(0.0).with_context(|| format!("in {text:?}"))
+}
+
+/// The parser's message without its internal dumps: some name the Rust
+/// operator structs, function addresses included, which say nothing to
+/// the author of the expression.
+fn plain_error(message: &str) -> String {
+    match message
+        .find(" Operator {")
+        .or_else(|| message.find("Operator {"))
+    {
+        Some(at) => {
+            let head = message[..at].trim_end_matches([',', ' ']);
+            format!("{head} (two operators in a row)")
+        }
+        None => message.to_string(),
+    }
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ mod common;
 mod law;
 mod limits;
 mod mc_run;
+mod messages;
 mod plc_examples;
 mod plc_rotary_knife;
 mod plc_run;

@@ -6,7 +6,7 @@
 
 use std::fmt;
 use std::path::PathBuf;
-use std::string::String;
+use std::string::{String, ToString};
 
 use crate::TableError;
 
@@ -160,4 +160,23 @@ impl std::error::Error for FileError {
             Self::Format { source, .. } => Some(source),
         }
     }
+}
+
+/// A serde_json error in the words of the file's author: Rust type names
+/// (`i64`, `f64`, `u16`…) become what they mean.
+pub(crate) fn plain_json_message(e: &serde_json::Error) -> String {
+    let mut text = e.to_string();
+    for (rust, plain) in [
+        ("expected i64", "expected a whole number"),
+        ("expected i32", "expected a whole number"),
+        ("expected u64", "expected a whole number, 0 or more"),
+        ("expected u32", "expected a whole number, 0 or more"),
+        ("expected u16", "expected a whole number, 0 or more"),
+        ("expected usize", "expected a whole number, 0 or more"),
+        ("expected f64", "expected a number"),
+        ("expected f32", "expected a number"),
+    ] {
+        text = text.replace(rust, plain);
+    }
+    text
 }

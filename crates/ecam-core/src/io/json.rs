@@ -20,6 +20,6 @@ pub fn to_json(table: &CamTable) -> String {
 /// its constructor refuses (the message carries the error code and section).
 pub fn from_json(text: &str) -> Result<CamTable, FormatError> {
     serde_json::from_str(text).map_err(|e| FormatError::Json {
-        message: e.to_string(),
+        message: super::error::plain_json_message(&e),
     })
 }

@@ -137,6 +137,13 @@ impl AnyTable {
     /// [`FormatError::SyncZone`] or [`FormatError::Table`] for an invalid
     /// zone or table.
     pub fn from_json(text: &str) -> Result<Self, FormatError> {
+        // A syntax error is reported as one, not as whichever shape the
+        // broken text failed to match first.
+        if let Err(e) = serde_json::from_str::<serde::de::IgnoredAny>(text) {
+            return Err(FormatError::Json {
+                message: super::error::plain_json_message(&e),
+            });
+        }
         let json: JsonTable = match serde_json::from_str(text) {
             Ok(json) => json,
             Err(ours) => return other_kind(text, &ours),
@@ -237,7 +244,7 @@ fn other_kind(text: &str, ours: &serde_json::Error) -> Result<AnyTable, FormatEr
         // ours would only complain about a missing `points` key.
         Err(core) if has_kind_key(text) => Err(core),
         Err(_) => Err(FormatError::NotATable {
-            message: ours.to_string(),
+            message: super::error::plain_json_message(ours),
         }),
     }
 }

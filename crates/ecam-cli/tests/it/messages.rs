@@ -1,0 +1,37 @@
+//! Errors a user can cause name the input and the place, never Rust types
+//! or addresses.
+
+use crate::common::{ecam, fails, scratch_dir};
+
+#[test]
+fn expression_errors_show_no_internals() {
+    for expr in ["1 + * 2", "x ^ ^ 2", "(((x", "foo(x)"] {
+        let err = fails(ecam(&["table", "gen", "function", "--expr", expr]));
+        assert!(err.contains(expr), "{err}");
+        for internal in ["0x", "Operator {", "BinOp", "apply:"] {
+            assert!(!err.contains(internal), "{expr}: {err}");
+        }
+    }
+}
+
+#[test]
+fn json_errors_say_what_is_wrong_in_the_authors_words() {
+    let dir = scratch_dir("messages");
+    // A syntax error inside a uniform table is a syntax error, not an
+    // "unknown variant".
+    let broken = dir.join("broken.json");
+    std::fs::write(&broken, r#"{"kind":"uniform","values":[1,2,}"#).unwrap();
+    let err = fails(ecam(&["table", "show", broken.to_str().unwrap()]));
+    assert!(err.contains("line 1 column"), "{err}");
+    assert!(!err.contains("variant"), "{err}");
+    // A wrong value type names what was expected, not a Rust type.
+    let typed = dir.join("typed.json");
+    std::fs::write(
+        &typed,
+        r#"{"kind":"points","points":[{"master":"a","slave":0}]}"#,
+    )
+    .unwrap();
+    let err = fails(ecam(&["table", "show", typed.to_str().unwrap()]));
+    assert!(err.contains("whole number"), "{err}");
+    assert!(!err.contains("i64"), "{err}");
+}
