@@ -8,14 +8,16 @@ use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
-use anyhow::Context as _;
+use anyhow::{Context as _, bail};
 use ecam_plc::Plc;
 use ecam_plc::Wire;
 use ecam_plc::sim::{self, Timing};
 use ecam_serve::{Event, Journal, LatchedImage, Recovery, ServeInfo, Shared, Slot};
 use tokio::net::TcpListener;
 
+use crate::serve::limits::ConnectionLimits;
 use crate::serve::{http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
@@ -52,6 +54,26 @@ pub struct Args {
     /// Wire a pulse output to a counter input, e.g. Y1:X0.
     #[arg(long = "wire", value_name = "Yn:Xm")]
     pub wires: Vec<String>,
+    /// Most connections each listener (Modbus, HTTP) keeps at once; at the
+    /// cap the newest is refused and the others go on.
+    #[arg(long, value_name = "N", default_value_t = 64,
+          value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub max_connections: u32,
+    /// Seconds a Modbus connection may stay without a request before it is
+    /// closed; also the longest wait for the rest of a half-sent Modbus
+    /// frame or HTTP header (at most 10 s).
+    #[arg(long, value_name = "S", default_value_t = 60,
+          value_parser = clap::value_parser!(u32).range(1..=86_400))]
+    pub idle_timeout: u32,
+    /// Another name the HTTP face answers to (the `Host` header), e.g. the
+    /// machine's name when it listens beyond loopback; repeatable. The bound
+    /// address, localhost and 127.0.0.1 are always accepted.
+    #[arg(long = "http-name", value_name = "NAME")]
+    pub http_names: Vec<String>,
+    /// A file holding a token that HTTP writes must present
+    /// (`Authorization: Bearer TOKEN`): use it when listening beyond loopback.
+    #[arg(long, value_name = "FILE")]
+    pub token_file: Option<PathBuf>,
 }
 
 /// Runs `ecam serve` until Ctrl-C or SIGTERM.
@@ -86,6 +108,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("ecam serve: no --state DIR: writes are not kept across restarts");
             (None, None)
         }
+    };
+    let token = match &args.token_file {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("--token-file {}", path.display()))?;
+            let token = text.trim().to_string();
+            if token.len() < 16 {
+                bail!(
+                    "--token-file {}: the token must be at least 16 characters",
+                    path.display()
+                );
+            }
+            Some(token)
+        }
+        None => None,
     };
     let timing = Timing {
         scan_us: args.scan_us,
@@ -144,11 +181,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
             None => None,
         };
-        let served = tokio::select! {
-            () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),
-            served = axum::serve(http_listener, http::router(Arc::clone(&shared))) => {
-                served.context("http server")
-            }
+        let access = http::Access::new(shared.info.http, &args.http_names, token.clone());
+        let idle = Duration::from_secs(u64::from(args.idle_timeout));
+        let limits = || {
+            ConnectionLimits::new(
+                args.max_connections as usize,
+                idle,
+                idle.min(Duration::from_secs(10)),
+            )
+        };
+        let served: anyhow::Result<()> = tokio::select! {
+            () = modbus::serve(modbus_listener, Arc::clone(&shared), limits()) => Ok(()),
+            () = http::serve(http_listener, http::router(Arc::clone(&shared), access), limits()) => Ok(()),
             () = shutdown_signal() => Ok(()),
         };
         stop.store(true, Ordering::Relaxed);

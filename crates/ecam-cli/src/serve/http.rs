@@ -22,19 +22,162 @@ use std::sync::Arc;
 
 use axum::Router;
 use axum::body::Bytes;
+use axum::extract::Request;
 use axum::extract::{Path, Query, State};
 use axum::http::{StatusCode, header};
+use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use ecam_serve::{Shared, devices_to_json, parse_device_names, parse_device_sets};
+use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
+use tokio::net::TcpListener;
+use tower::Service as _;
+
+use super::limits::ConnectionLimits;
 
 const INDEX_HTML: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/index.html"));
 const APP_JS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/app.js"));
 const STYLE_CSS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/style.css"));
 
-/// The router of `ecam serve`'s HTTP face.
-pub fn router(shared: Arc<Shared>) -> Router {
+/// Serves `router` on `listener` for ever, within `limits`: at most so many
+/// connections (the newest refused at the cap), request headers complete
+/// within `limits.partial`, an idle connection closed after `limits.idle`.
+/// (`axum::serve` offers neither a cap nor a header deadline.)
+pub async fn serve(listener: TcpListener, router: Router, limits: ConnectionLimits) {
+    loop {
+        let stream = match listener.accept().await {
+            Ok((stream, _)) => stream,
+            Err(err) => {
+                // Out of file descriptors and the like: wait, do not spin.
+                eprintln!("ecam serve: http accept: {err}");
+                tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+                continue;
+            }
+        };
+        let Some(slot) = limits.admit() else {
+            drop(stream);
+            continue;
+        };
+        let router = router.clone();
+        let limits = limits.clone();
+        tokio::spawn(async move {
+            let service = hyper::service::service_fn(
+                move |request: hyper::Request<hyper::body::Incoming>| {
+                    router.clone().call(request.map(axum::body::Body::new))
+                },
+            );
+            let connection = hyper::server::conn::http1::Builder::new()
+                .timer(TokioTimer::new())
+                .header_read_timeout(limits.partial)
+                .serve_connection(TokioIo::new(stream), service);
+            // Errors only mean the client went away (or was sent away).
+            let _ = connection.await;
+            drop(slot);
+        });
+    }
+}
+
+/// Who may talk to the HTTP face: the threat model is a page in the
+/// operator's browser (or a rebinding DNS name) sending requests to a
+/// server on the operator's machine (docs/modbus.md, "Web safety").
+#[derive(Clone, Debug)]
+pub struct Access {
+    /// `Host` header values accepted (`name` or `name:port`).
+    hosts: Vec<String>,
+    /// A token writes must present as `Authorization: Bearer TOKEN`.
+    token: Option<String>,
+}
+
+impl Access {
+    /// Accepts the bound address, `localhost` and `127.0.0.1` at its port,
+    /// and `names` (as given, or with the port); writes need `token` when
+    /// one is given.
+    pub fn new(bound: std::net::SocketAddr, names: &[String], token: Option<String>) -> Self {
+        let port = bound.port();
+        let mut hosts = vec![
+            bound.to_string(),
+            format!("localhost:{port}"),
+            format!("127.0.0.1:{port}"),
+            format!("[::1]:{port}"),
+        ];
+        for name in names {
+            hosts.push(name.clone());
+            hosts.push(format!("{name}:{port}"));
+        }
+        Self { hosts, token }
+    }
+
+    fn host_allowed(&self, host: &str) -> bool {
+        self.hosts.iter().any(|h| h.eq_ignore_ascii_case(host))
+    }
+}
+
+/// Refuses requests for another host (DNS rebinding), from a foreign page
+/// (`Origin`), writes that are not JSON (a cross-site form or `text/plain`
+/// post), and writes without the token when one is set.
+async fn guard(State(access): State<Arc<Access>>, request: Request, next: Next) -> Response {
+    let headers = request.headers();
+    let host = headers
+        .get(header::HOST)
+        .and_then(|h| h.to_str().ok())
+        .unwrap_or("");
+    if !access.host_allowed(host) {
+        return error(
+            StatusCode::MISDIRECTED_REQUEST,
+            &format!("Host `{host}` is not this server; name it with --http-name"),
+        );
+    }
+    if let Some(origin) = headers.get(header::ORIGIN) {
+        let origin = origin.to_str().unwrap_or("");
+        let own = origin
+            .strip_prefix("http://")
+            .or_else(|| origin.strip_prefix("https://"))
+            .is_some_and(|o| access.host_allowed(o));
+        if !own {
+            return error(
+                StatusCode::FORBIDDEN,
+                &format!("requests from pages of `{origin}` are refused"),
+            );
+        }
+    }
+    let reads = matches!(
+        *request.method(),
+        axum::http::Method::GET | axum::http::Method::HEAD
+    );
+    if !reads {
+        let json = headers
+            .get(header::CONTENT_TYPE)
+            .and_then(|c| c.to_str().ok())
+            .is_some_and(|c| {
+                c.trim()
+                    .to_ascii_lowercase()
+                    .starts_with("application/json")
+            });
+        if !json {
+            return error(
+                StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                "writes need Content-Type: application/json",
+            );
+        }
+        if let Some(token) = &access.token {
+            let given = headers
+                .get(header::AUTHORIZATION)
+                .and_then(|a| a.to_str().ok())
+                .and_then(|a| a.strip_prefix("Bearer "));
+            if given != Some(token.as_str()) {
+                return error(
+                    StatusCode::UNAUTHORIZED,
+                    "writes need the token: Authorization: Bearer TOKEN (see --token-file)",
+                );
+            }
+        }
+    }
+    next.run(request).await
+}
+
+/// The router of `ecam serve`'s HTTP face, behind [`Access`].
+pub fn router(shared: Arc<Shared>, access: Access) -> Router {
     Router::new()
         .route(
             "/",
@@ -67,6 +210,7 @@ pub fn router(shared: Arc<Shared>) -> Router {
         .route("/api/keypoints", post(key_points))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
         .with_state(shared)
+        .layer(middleware::from_fn_with_state(Arc::new(access), guard))
 }
 
 fn asset(content_type: &'static str, body: &'static str) -> Response {
@@ -134,18 +278,39 @@ async fn law(Path(name): Path<String>, Query(query): Query<HashMap<String, Strin
             .parse::<usize>()
             .map_err(|_| format!("points must be a whole number, not `{text}`")),
     };
-    match points.and_then(|points| ecam_design::law_curves_json(&name, points)) {
-        Ok(value) => json_value(StatusCode::OK, &value),
-        Err(message) => error(StatusCode::BAD_REQUEST, &message),
-    }
+    off_the_network_threads(move || {
+        match points.and_then(|points| ecam_design::law_curves_json(&name, points)) {
+            Ok(value) => json_value(StatusCode::OK, &value),
+            Err(message) => error(StatusCode::BAD_REQUEST, &message),
+        }
+    })
+    .await
 }
 
 async fn table_gen(body: Bytes) -> Response {
-    json_call(&body, ecam_design::generate_json)
+    off_the_network_threads(move || json_call(&body, ecam_design::generate_json)).await
 }
 
 async fn key_points(body: Bytes) -> Response {
-    json_call(&body, ecam_design::key_points_json)
+    off_the_network_threads(move || json_call(&body, ecam_design::key_points_json)).await
+}
+
+/// Longest a design request may compute before it is answered with 503.
+const DESIGN_DEADLINE: std::time::Duration = std::time::Duration::from_secs(30);
+
+/// Runs CPU-bound work on the blocking pool, so that the async workers
+/// (Modbus clients, other HTTP requests) are never held up by it; gives up
+/// waiting after [`DESIGN_DEADLINE`] (the work itself is bounded by
+/// `ecam_core::limits`).
+async fn off_the_network_threads(work: impl FnOnce() -> Response + Send + 'static) -> Response {
+    match tokio::time::timeout(DESIGN_DEADLINE, tokio::task::spawn_blocking(work)).await {
+        Ok(Ok(response)) => response,
+        Ok(Err(_)) => error(StatusCode::INTERNAL_SERVER_ERROR, "the request failed"),
+        Err(_) => error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "the request took too long; ask for fewer points",
+        ),
+    }
 }
 
 /// Answers `answer(body)`, or 400 with its error.

@@ -3,7 +3,9 @@
 //!
 //! - [`modbus`]: the Modbus TCP listener (one task per client),
 //! - [`http`]: the HTTP API and the designer page (whose JSON answers are
-//!   [`ecam_design`]'s).
+//!   [`ecam_design`]'s),
+//! - [`limits`]: connection caps and timeouts both listeners keep.
 
 pub mod http;
+pub mod limits;
 pub mod modbus;

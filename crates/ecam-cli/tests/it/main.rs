@@ -14,6 +14,7 @@ mod plc_run;
 mod pmd_run;
 mod safe_motion;
 mod serve;
+mod serve_safety;
 mod simulate;
 mod table;
 mod table_design;
