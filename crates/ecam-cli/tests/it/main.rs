@@ -15,6 +15,7 @@ mod pmd_run;
 mod safe_motion;
 mod serve;
 mod serve_safety;
+mod serve_soak;
 mod simulate;
 mod table;
 mod table_design;
