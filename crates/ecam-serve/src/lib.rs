@@ -62,14 +62,15 @@ mod mbap;
 mod pdu;
 mod retain;
 mod state;
+mod state_file;
 mod write;
 
 pub use answer::answer_request;
 pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{
-    COMPACT_AFTER, COMPACT_AFTER_BYTES, JOURNAL_FILE, Journal, JournalError, Recovery,
-    SNAPSHOT_FILE,
+    COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
+    OnDamage, Recovery, SNAPSHOT_FILE,
 };
 pub use map::{
     CoilArea, CoilRange, RegisterRange, X_COIL_BASE, Y_COIL_BASE, coil_range, register_range,
@@ -84,4 +85,5 @@ pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
 pub use state::{Event, ServeInfo, Shared, Stats};
+pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use write::{LineError, Slot, WriteBatch};
