@@ -118,10 +118,13 @@ impl fmt::Display for Dropped {
             self.line,
             self.damage
         )?;
-        match self.records {
-            0 => f.write_str("whatever it held is lost"),
-            1 => f.write_str("1 record dropped"),
-            n => write!(f, "{n} records dropped (this one and all after it)"),
+        match (self.records, &self.damage) {
+            (0, Damage::Empty | Damage::CutShort | Damage::NoEndMarker) => {
+                f.write_str("whatever followed is lost")
+            }
+            (0, _) => f.write_str("the records that check out are kept"),
+            (1, _) => f.write_str("1 record dropped"),
+            (n, _) => write!(f, "{n} records dropped (this one and all after it)"),
         }
     }
 }
@@ -267,6 +270,9 @@ pub(crate) fn read_snapshot(
     if first != SNAPSHOT_HEADER {
         replay.damage(path, 1, Damage::NoHeader, 0)?;
     }
+    // Recovering, a damaged record already said the file is damaged: the
+    // end marker's count and checksum would only say it again.
+    let damaged_before = replay.dropped.len();
     let mut offset = pieces.first().map_or(0, |p| p.len());
     let mut expected = 1;
     let mut count = 0;
@@ -299,7 +305,9 @@ pub(crate) fn read_snapshot(
                     .is_none()
                     .then_some(Damage::FileChecksumMismatch),
             };
-            if let Some(damage) = damage {
+            let repeated = replay.dropped.len() > damaged_before
+                && !matches!(damage, Some(Damage::BadEndMarker));
+            if let Some(damage) = damage.filter(|_| !repeated) {
                 replay.damage(path, number, damage, 0)?;
             }
             continue;
@@ -514,6 +522,16 @@ mod tests {
 
     fn lines(text: &str) -> Vec<&str> {
         text.split_inclusive('\n').collect()
+    }
+
+    #[test]
+    fn the_examples_of_docs_modbus_md_check_out() {
+        assert_eq!(record_line(1, "D100 3183"), "@1 0587aff6 D100 3183\n");
+        let values = BTreeMap::from([(Slot::D(1), 1), (Slot::D(100), 5)]);
+        assert_eq!(
+            snapshot_text(&values),
+            format!("{SNAPSHOT_HEADER}\n@1 52072eaf D1 1;D100 5\nend 1 c1a9c447\n")
+        );
     }
 
     #[test]
