@@ -223,14 +223,21 @@ impl Journal {
             recover: on_damage == OnDamage::Recover,
             ..Replay::default()
         };
-        let snapshot_format = match read_optional(&snapshot_path)? {
-            Some(text) => state_file::read_snapshot(&text, &snapshot_path, &mut replay)?,
+        let snapshot = read_optional(&snapshot_path)?;
+        let journal = read_optional(&journal_path)?;
+        let snapshot_format = match &snapshot {
+            Some(text) => state_file::read_snapshot(text, &snapshot_path, &mut replay)?,
+            None if journal.is_some() => {
+                replay.damage(&snapshot_path, 1, Damage::Missing, 0)?;
+                Format::Checked
+            }
             None => Format::Checked,
         };
         let snapshot_damages = replay.dropped.len();
-        let journal = read_optional(&journal_path)?.unwrap_or_default();
+        let journal = journal.unwrap_or_default();
         let read = state_file::read_journal(&journal, &journal_path, &mut replay)?;
-        let snapshot_damaged = snapshot_damages > 0;
+        // A missing snapshot is damage, but there is no file to set aside.
+        let snapshot_damaged = snapshot_damages > 0 && snapshot.is_some();
         let journal_damaged = replay.dropped.len() > snapshot_damages;
 
         let mut set_aside = Vec::new();
@@ -483,6 +490,7 @@ mod tests {
     fn a_torn_last_record_is_dropped_and_others_kept() {
         let dir = scratch("torn");
         fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join(SNAPSHOT_FILE), "# ecam serve snapshot\n").unwrap();
         fs::write(dir.join(JOURNAL_FILE), "D1 1\nD2 2\nD3 3").unwrap();
         let (journal, recovery) = Journal::open(&dir).unwrap();
         assert_eq!(
@@ -503,6 +511,7 @@ mod tests {
     fn a_corrupt_record_names_its_line() {
         let dir = scratch("corrupt");
         fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join(SNAPSHOT_FILE), "# ecam serve snapshot\n").unwrap();
         fs::write(dir.join(JOURNAL_FILE), "D1 1\nY7 1\nD2 2\n").unwrap();
         let err = Journal::open(&dir).unwrap_err();
         assert!(

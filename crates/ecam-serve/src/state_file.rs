@@ -29,6 +29,9 @@ pub const SNAPSHOT_HEADER: &str =
 /// What is wrong with a line of a state file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Damage {
+    /// The snapshot is missing beside a journal (the server writes the
+    /// snapshot first, so only a deleted one is missing).
+    Missing,
     /// The snapshot is empty (it always holds a header and an end marker).
     Empty,
     /// The snapshot's first line is not a snapshot header.
@@ -68,6 +71,7 @@ pub enum Damage {
 impl fmt::Display for Damage {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Self::Missing => f.write_str("missing, though the journal is there"),
             Self::Empty => f.write_str("empty file (a snapshot holds a header and an end marker)"),
             Self::NoHeader => f.write_str("not an ecam snapshot header"),
             Self::CutShort => f.write_str("cut short (no newline at the end of the file)"),
@@ -119,9 +123,8 @@ impl fmt::Display for Dropped {
             self.damage
         )?;
         match (self.records, &self.damage) {
-            (0, Damage::Empty | Damage::CutShort | Damage::NoEndMarker) => {
-                f.write_str("whatever followed is lost")
-            }
+            (0, Damage::Missing | Damage::Empty) => f.write_str("whatever it held is lost"),
+            (0, Damage::CutShort | Damage::NoEndMarker) => f.write_str("whatever followed is lost"),
             (0, _) => f.write_str("the records that check out are kept"),
             (1, _) => f.write_str("1 record dropped"),
             (n, _) => write!(f, "{n} records dropped (this one and all after it)"),
@@ -213,7 +216,7 @@ impl Replay {
     }
 
     /// Stops with `damage`, or notes it when recovering.
-    fn damage(
+    pub(crate) fn damage(
         &mut self,
         path: &Path,
         line: usize,
@@ -693,6 +696,39 @@ mod tests {
         );
         let garbage_journal = "\u{0}\u{1}garbage\nmore garbage\n";
         assert_eq!(refused(&snapshot, garbage_journal).0, JOURNAL_FILE);
+    }
+
+    #[test]
+    fn a_deleted_snapshot_is_refused() {
+        let dir =
+            std::env::temp_dir().join(format!("ecam-state-file-{}-deleted", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join(JOURNAL_FILE), journal()).unwrap();
+        let err = Journal::open(&dir).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                JournalError::Corrupt {
+                    line: 1,
+                    damage: Damage::Missing,
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        assert!(
+            err.to_string()
+                .ends_with("snapshot.txt:1: missing, though the journal is there")
+        );
+        let (journal, recovery) = Journal::open_with(&dir, OnDamage::Recover).unwrap();
+        assert_eq!(journal.persisted().len(), 4);
+        assert!(journal.read_only().is_none());
+        assert_eq!(recovery.dropped.len(), 1);
+        assert!(recovery.set_aside.is_empty());
+        drop(journal);
+        assert!(Journal::open(&dir).is_ok());
+        fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
