@@ -6,7 +6,8 @@
 //! (the **contract** in `docs/architecture.md`: [`coil_range`],
 //! [`register_range`]), device writes and their one-line text form
 //! ([`WriteBatch`]), the durable journal of a state directory
-//! ([`Journal`]), which devices a restart keeps ([`is_kept`],
+//! ([`Journal`]; its files carry checksums, so damage stops the start with
+//! file and line, [`Damage`], or is stepped over, [`OnDamage`]), which devices a restart keeps ([`is_kept`],
 //! [`LatchedImage`]), device names as JSON for the HTTP API
 //! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
 //! and the PLC shared by the scan loop and the servers ([`Shared`]), paced
