@@ -1,20 +1,25 @@
 //! Durable writes: what `ecam serve --state DIR` keeps across a crash.
 //!
 //! Every write a client makes (Modbus 0x05/0x06/0x0F/0x10, HTTP `POST
-//! /api/devices`) is appended to `DIR/journal.log` as one line (see
-//! [`WriteBatch::to_line`]) and the file is `fdatasync`ed *before* the response is
-//! sent, so an acknowledged write survives `kill -9` and a power cut. A
-//! write the server could not make durable is refused (Modbus exception 04,
-//! HTTP 500) and not applied.
+//! /api/devices`) is appended to `DIR/journal.log` as one checksummed
+//! record (`state_file.rs` and `docs/modbus.md` give the format) and the
+//! file is `fdatasync`ed *before* the response is sent, so an acknowledged
+//! write survives `kill -9` and a power cut. A write the server could not
+//! make durable is refused (Modbus exception 04, HTTP 500) and not applied.
 //!
 //! On start the server reads `DIR/snapshot.txt`, replays the journal over
 //! it (last write wins), and compacts: the result is written to a temporary
 //! file, synced, renamed over the snapshot, and the journal is emptied. A
 //! crash between those steps leaves a journal whose replay is idempotent. A
 //! last journal line without its newline is a write that was cut off before
-//! it was acknowledged: it is dropped. Any other unreadable line stops the
-//! server with the file and line, rather than guess. The same compaction
-//! runs while serving once the journal holds [`COMPACT_AFTER`] records or
+//! it was acknowledged: it is dropped. Any other damage (a checksum that
+//! does not match, a record missing, repeated or moved, a snapshot cut
+//! short) stops the start with the file and line, rather than guess — or,
+//! with [`OnDamage::Recover`], restores the last consistent state and lists
+//! what it dropped ([`Recovery::dropped`]). A compaction that fails at start
+//! (a full disk) leaves the old files as they were and the journal
+//! read-only ([`Journal::read_only`]). The same compaction runs while
+//! serving once the journal holds [`COMPACT_AFTER`] records or
 //! [`COMPACT_AFTER_BYTES`] bytes.
 //!
 //! What is kept (see [`is_kept`](crate::is_kept) for the rules): the last value
@@ -33,20 +38,20 @@ use std::path::{Path, PathBuf};
 use ecam_plc::Devices;
 
 use crate::retain;
+use crate::state_file::{self, Damage, Dropped, Format, Replay};
 use crate::write::{Slot, WriteBatch};
 
 /// Journal file name inside the state directory.
 pub const JOURNAL_FILE: &str = "journal.log";
 /// Snapshot file name inside the state directory.
 pub const SNAPSHOT_FILE: &str = "snapshot.txt";
+/// Appended to the name of a damaged file [`OnDamage::Recover`] set aside.
+pub const DAMAGED_SUFFIX: &str = ".damaged";
 /// Journal records after which the journal is compacted into the snapshot.
 pub const COMPACT_AFTER: usize = 4096;
 /// Journal size after which it is compacted whatever its record count: a
 /// save of latched values can be one long line every second.
 pub const COMPACT_AFTER_BYTES: u64 = 8 << 20;
-
-const SNAPSHOT_HEADER: &str =
-    "# ecam serve snapshot: the last kept value of each D, M, X and C device\n";
 
 /// Why the state directory cannot be used.
 #[derive(Debug)]
@@ -58,35 +63,37 @@ pub enum JournalError {
         /// The operating system's error.
         source: io::Error,
     },
-    /// A record that cannot be read (not a torn last line).
+    /// A damaged state file (not a torn last journal line).
     Corrupt {
         /// The file.
         path: PathBuf,
         /// 1-based line.
         line: usize,
-        /// What is wrong with it.
-        message: String,
+        /// What is wrong there.
+        damage: Damage,
     },
     /// An earlier append failed and could not be undone: the journal's end
     /// is unknown, so no more writes are accepted until a restart.
     Broken,
+    /// The compaction at start failed (see [`Journal::read_only`]): the
+    /// old files were left as they were, and no write is accepted until a
+    /// restart.
+    ReadOnly,
 }
 
 impl std::fmt::Display for JournalError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
-            Self::Corrupt {
-                path,
-                line,
-                message,
-            } => write!(
-                f,
-                "{}:{line}: {message} (fix or remove the line to start)",
-                path.display()
-            ),
+            Self::Corrupt { path, line, damage } => {
+                write!(f, "{}:{line}: {damage}", path.display())
+            }
             Self::Broken => f.write_str(
                 "an earlier journal write failed and could not be undone; restart the server",
+            ),
+            Self::ReadOnly => f.write_str(
+                "the state directory is read-only: its compaction at start failed \
+                 (free some space and restart the server)",
             ),
         }
     }
@@ -101,6 +108,20 @@ fn io_error(path: &Path) -> impl FnOnce(io::Error) -> JournalError + '_ {
     }
 }
 
+/// What [`Journal::open_with`] does with a damaged state file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnDamage {
+    /// Stop with the file, the line and what is wrong
+    /// ([`JournalError::Corrupt`]).
+    #[default]
+    Refuse,
+    /// Restore the last consistent state: every snapshot record whose
+    /// checksum matches, and the journal up to its first damaged record.
+    /// What is dropped is listed in [`Recovery::dropped`], and the damaged
+    /// files are kept beside the new ones with [`DAMAGED_SUFFIX`].
+    Recover,
+}
+
 /// What [`Journal::open`] found.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Recovery {
@@ -111,69 +132,36 @@ pub struct Recovery {
     /// Special devices whose records were skipped (written by an older
     /// version, which journalled them).
     pub skipped_special: BTreeSet<Slot>,
+    /// Damage [`OnDamage::Recover`] stepped over, in file order.
+    pub dropped: Vec<Dropped>,
+    /// Damaged files set aside (renamed with [`DAMAGED_SUFFIX`]).
+    pub set_aside: Vec<PathBuf>,
+    /// Whether a file was in the format without checksums (rewritten with
+    /// them by the compaction at start, unless it failed).
+    pub old_format: bool,
 }
 
 /// The open journal of a state directory and the values it keeps.
 #[derive(Debug)]
 pub struct Journal {
     dir: PathBuf,
-    file: File,
+    /// `None` when read-only.
+    file: Option<File>,
     len: u64,
     records: usize,
     compact_after: usize,
     compact_after_bytes: u64,
     broken: bool,
+    read_only: Option<JournalError>,
     compaction_failure: Option<JournalError>,
     persisted: BTreeMap<Slot, i32>,
 }
 
-/// Applies every line of `text` (from `path`) to `values`, leaving out the
-/// devices that are not kept (added to `skipped`); returns the records read
-/// and whether a torn last line was dropped.
-fn replay(
-    text: &str,
-    path: &Path,
-    values: &mut BTreeMap<Slot, i32>,
-    skipped: &mut BTreeSet<Slot>,
-    allow_torn_tail: bool,
-) -> Result<(usize, bool), JournalError> {
-    let complete = text.ends_with('\n') || text.is_empty();
-    let lines: Vec<&str> = text.lines().collect();
-    let mut records = 0;
-    let mut torn = false;
-    for (k, line) in lines.iter().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        // A last line without its newline was never acknowledged, whether
-        // or not what reached the disk happens to parse. (The snapshot is
-        // renamed into place whole, so it has no torn lines.)
-        if allow_torn_tail && !complete && k + 1 == lines.len() {
-            torn = true;
-            continue;
-        }
-        let batch = WriteBatch::parse_line(line).map_err(|err| JournalError::Corrupt {
-            path: path.to_path_buf(),
-            line: k + 1,
-            message: err.to_string(),
-        })?;
-        for &(slot, value) in batch.writes() {
-            if retain::is_kept(slot) {
-                values.insert(slot, value);
-            } else {
-                skipped.insert(slot);
-            }
-        }
-        records += 1;
-    }
-    Ok((records, torn))
-}
-
-fn read_optional(path: &Path) -> Result<String, JournalError> {
+/// The text of `path`, `None` if there is no such file.
+fn read_optional(path: &Path) -> Result<Option<String>, JournalError> {
     match fs::read(path) {
-        Ok(bytes) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
-        Err(err) if err.kind() == io::ErrorKind::NotFound => Ok(String::new()),
+        Ok(bytes) => Ok(Some(String::from_utf8_lossy(&bytes).into_owned())),
+        Err(err) if err.kind() == io::ErrorKind::NotFound => Ok(None),
         Err(err) => Err(io_error(path)(err)),
     }
 }
@@ -195,13 +183,32 @@ fn sync_dir(dir: &Path) -> Result<(), JournalError> {
     }
 }
 
+fn damaged_name(path: &Path) -> PathBuf {
+    let mut name = path.as_os_str().to_owned();
+    name.push(DAMAGED_SUFFIX);
+    PathBuf::from(name)
+}
+
 impl Journal {
     /// Opens (creating it if needed) the state directory `dir`: loads the
-    /// snapshot, replays the journal and compacts both.
+    /// snapshot, replays the journal and compacts both; a damaged file
+    /// stops it ([`OnDamage::Refuse`]).
     ///
     /// # Errors
-    /// File errors, or a corrupt record (with its file and line).
+    /// File errors, or damage (with its file and line).
     pub fn open(dir: &Path) -> Result<(Self, Recovery), JournalError> {
+        Self::open_with(dir, OnDamage::Refuse)
+    }
+
+    /// Opens the state directory `dir` as [`Self::open`] does, doing
+    /// `on_damage` with damaged files. When the compaction fails (a full
+    /// disk), the old files are left as they were and the journal is
+    /// opened read-only ([`Self::read_only`]) rather than failing.
+    ///
+    /// # Errors
+    /// `dir` cannot be created or read, or (with [`OnDamage::Refuse`]) a
+    /// damaged file.
+    pub fn open_with(dir: &Path, on_damage: OnDamage) -> Result<(Self, Recovery), JournalError> {
         if dir.exists() && !dir.is_dir() {
             // create_dir_all would only say "File exists".
             return Err(JournalError::Io {
@@ -212,51 +219,96 @@ impl Journal {
         fs::create_dir_all(dir).map_err(io_error(dir))?;
         let snapshot_path = dir.join(SNAPSHOT_FILE);
         let journal_path = dir.join(JOURNAL_FILE);
-        let mut persisted = BTreeMap::new();
-        let mut skipped_special = BTreeSet::new();
+        let mut replay = Replay {
+            recover: on_damage == OnDamage::Recover,
+            ..Replay::default()
+        };
         let snapshot = read_optional(&snapshot_path)?;
-        replay(
-            &snapshot,
-            &snapshot_path,
-            &mut persisted,
-            &mut skipped_special,
-            false,
-        )?;
         let journal = read_optional(&journal_path)?;
-        let (replayed, torn_tail) = replay(
-            &journal,
-            &journal_path,
-            &mut persisted,
-            &mut skipped_special,
-            true,
-        )?;
+        let snapshot_format = match &snapshot {
+            Some(text) => state_file::read_snapshot(text, &snapshot_path, &mut replay)?,
+            None if journal.is_some() => {
+                replay.damage(&snapshot_path, 1, Damage::Missing, 0)?;
+                Format::Checked
+            }
+            None => Format::Checked,
+        };
+        let snapshot_damages = replay.dropped.len();
+        let journal = journal.unwrap_or_default();
+        let read = state_file::read_journal(&journal, &journal_path, &mut replay)?;
+        // A missing snapshot is damage, but there is no file to set aside.
+        let snapshot_damaged = snapshot_damages > 0 && snapshot.is_some();
+        let journal_damaged = replay.dropped.len() > snapshot_damages;
 
-        write_snapshot(dir, &persisted)?;
-        let file = File::create(&journal_path).map_err(io_error(&journal_path))?;
-        file.sync_all().map_err(io_error(&journal_path))?;
-        sync_dir(dir)?;
-        let file = OpenOptions::new()
-            .append(true)
-            .open(&journal_path)
-            .map_err(io_error(&journal_path))?;
+        let mut set_aside = Vec::new();
+        let mut journal = Self {
+            dir: dir.to_path_buf(),
+            file: None,
+            len: 0,
+            records: 0,
+            compact_after: COMPACT_AFTER,
+            compact_after_bytes: COMPACT_AFTER_BYTES,
+            broken: false,
+            read_only: None,
+            compaction_failure: None,
+            persisted: replay.values,
+        };
+        let aside = |damaged: bool, path: &Path| damaged.then(|| damaged_name(path));
+        let compacted = journal.compact_at_open(
+            aside(snapshot_damaged, &snapshot_path),
+            aside(journal_damaged, &journal_path),
+            &mut set_aside,
+        );
+        if let Err(err) = compacted {
+            journal.read_only = Some(err);
+        }
         Ok((
-            Self {
-                dir: dir.to_path_buf(),
-                file,
-                len: 0,
-                records: 0,
-                compact_after: COMPACT_AFTER,
-                compact_after_bytes: COMPACT_AFTER_BYTES,
-                broken: false,
-                compaction_failure: None,
-                persisted,
-            },
+            journal,
             Recovery {
-                replayed,
-                torn_tail,
-                skipped_special,
+                replayed: read.records,
+                torn_tail: read.torn,
+                skipped_special: replay.skipped,
+                dropped: replay.dropped,
+                set_aside,
+                old_format: snapshot_format == Format::Old || read.format == Format::Old,
             },
         ))
+    }
+
+    /// Writes the snapshot and starts an empty journal, setting aside the
+    /// damaged old files under the names given (each pushed to `set_aside`
+    /// once renamed). On failure the old files are still in place.
+    fn compact_at_open(
+        &mut self,
+        snapshot_aside: Option<PathBuf>,
+        journal_aside: Option<PathBuf>,
+        set_aside: &mut Vec<PathBuf>,
+    ) -> Result<(), JournalError> {
+        write_snapshot(&self.dir, &self.persisted, snapshot_aside.as_deref())?;
+        if let Some(aside) = snapshot_aside {
+            set_aside.push(aside);
+        }
+        let path = self.dir.join(JOURNAL_FILE);
+        if let Some(aside) = journal_aside {
+            fs::rename(&path, &aside).map_err(io_error(&aside))?;
+            set_aside.push(aside);
+        }
+        let file = File::create(&path).map_err(io_error(&path))?;
+        file.sync_all().map_err(io_error(&path))?;
+        sync_dir(&self.dir)?;
+        let file = OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(io_error(&path))?;
+        self.file = Some(file);
+        Ok(())
+    }
+
+    /// Why the journal is read-only, if it is: the compaction at start
+    /// failed (a full disk, say), the old files were left as they were,
+    /// and every write is refused with [`JournalError::ReadOnly`].
+    pub fn read_only(&self) -> Option<&JournalError> {
+        self.read_only.as_ref()
     }
 
     /// The last value kept for each device: what a restart restores.
@@ -285,7 +337,7 @@ impl Journal {
     /// # Errors
     /// The file could not be written or synced; the record is then cut off
     /// again so the journal stays readable ([`JournalError::Broken`] if even
-    /// that fails).
+    /// that fails). [`JournalError::ReadOnly`] when [`Self::read_only`].
     pub fn append(&mut self, batch: &WriteBatch) -> Result<(), JournalError> {
         if self.broken {
             return Err(JournalError::Broken);
@@ -295,18 +347,19 @@ impl Journal {
         if batch.is_empty() {
             return Ok(());
         }
-        let mut line = batch.to_line();
-        line.push('\n');
+        let Some(file) = self.file.as_mut() else {
+            return Err(JournalError::ReadOnly);
+        };
+        let seq = u64::try_from(self.records).map_or(u64::MAX, |n| n.saturating_add(1));
+        let line = state_file::record_line(seq, &batch.to_line());
         let path = self.dir.join(JOURNAL_FILE);
-        let written = self
-            .file
+        let written = file
             .write_all(line.as_bytes())
-            .and_then(|()| self.file.sync_data());
+            .and_then(|()| file.sync_data());
         if let Err(err) = written {
-            if self
-                .file
+            if file
                 .set_len(self.len)
-                .and_then(|()| self.file.sync_data())
+                .and_then(|()| file.sync_data())
                 .is_err()
             {
                 self.broken = true;
@@ -338,13 +391,15 @@ impl Journal {
 
     /// Folds the journal into the snapshot and empties it.
     fn compact(&mut self) -> Result<(), JournalError> {
-        write_snapshot(&self.dir, &self.persisted)?;
+        write_snapshot(&self.dir, &self.persisted, None)?;
         let path = self.dir.join(JOURNAL_FILE);
+        let Some(file) = self.file.as_mut() else {
+            return Err(JournalError::ReadOnly);
+        };
         // Appends go to the end whatever the cursor, so truncating the
         // open append handle is enough.
-        self.file
-            .set_len(0)
-            .and_then(|()| self.file.sync_all())
+        file.set_len(0)
+            .and_then(|()| file.sync_all())
             .map_err(io_error(&path))?;
         self.len = 0;
         self.records = 0;
@@ -352,26 +407,29 @@ impl Journal {
     }
 }
 
-/// Writes `values` as the new snapshot: temporary file, sync, rename, sync
-/// the directory.
-fn write_snapshot(dir: &Path, values: &BTreeMap<Slot, i32>) -> Result<(), JournalError> {
+/// Writes `values` as the new snapshot: temporary file, sync, rename (the
+/// old snapshot first renamed to `old_aside`, if given), sync the
+/// directory. On failure the old snapshot is untouched and the temporary
+/// file removed, so a full disk gets its space back.
+fn write_snapshot(
+    dir: &Path,
+    values: &BTreeMap<Slot, i32>,
+    old_aside: Option<&Path>,
+) -> Result<(), JournalError> {
     let tmp = dir.join(format!("{SNAPSHOT_FILE}.tmp"));
-    let mut text = String::from(SNAPSHOT_HEADER);
-    let entries: Vec<(Slot, i32)> = values.iter().map(|(&s, &v)| (s, v)).collect();
-    // 32 values a line keeps the file readable.
-    for chunk in entries.chunks(32) {
-        let mut batch = WriteBatch::new();
-        for &(slot, value) in chunk {
-            batch.slot(slot, value);
-        }
-        text.push_str(&batch.to_line());
-        text.push('\n');
+    let text = state_file::snapshot_text(values);
+    let written = File::create(&tmp).and_then(|mut file| {
+        file.write_all(text.as_bytes())
+            .and_then(|()| file.sync_all())
+    });
+    if let Err(err) = written {
+        let _ = fs::remove_file(&tmp);
+        return Err(io_error(&tmp)(err));
     }
-    let mut file = File::create(&tmp).map_err(io_error(&tmp))?;
-    file.write_all(text.as_bytes())
-        .and_then(|()| file.sync_all())
-        .map_err(io_error(&tmp))?;
     let target = dir.join(SNAPSHOT_FILE);
+    if let Some(aside) = old_aside {
+        fs::rename(&target, aside).map_err(io_error(aside))?;
+    }
     fs::rename(&tmp, &target).map_err(io_error(&target))?;
     sync_dir(dir)
 }
@@ -432,6 +490,7 @@ mod tests {
     fn a_torn_last_record_is_dropped_and_others_kept() {
         let dir = scratch("torn");
         fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join(SNAPSHOT_FILE), "# ecam serve snapshot\n").unwrap();
         fs::write(dir.join(JOURNAL_FILE), "D1 1\nD2 2\nD3 3").unwrap();
         let (journal, recovery) = Journal::open(&dir).unwrap();
         assert_eq!(
@@ -439,7 +498,8 @@ mod tests {
             Recovery {
                 replayed: 2,
                 torn_tail: true,
-                skipped_special: BTreeSet::new(),
+                old_format: true,
+                ..Recovery::default()
             }
         );
         assert_eq!(journal.persisted().get(&Slot::D(2)), Some(&2));
@@ -451,6 +511,7 @@ mod tests {
     fn a_corrupt_record_names_its_line() {
         let dir = scratch("corrupt");
         fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join(SNAPSHOT_FILE), "# ecam serve snapshot\n").unwrap();
         fs::write(dir.join(JOURNAL_FILE), "D1 1\nY7 1\nD2 2\n").unwrap();
         let err = Journal::open(&dir).unwrap_err();
         assert!(
@@ -574,7 +635,7 @@ mod tests {
         assert_eq!(journal.records(), 1);
         assert_eq!(
             fs::read_to_string(dir.join(JOURNAL_FILE)).unwrap(),
-            "D7999 1\n"
+            state_file::record_line(1, "D7999 1")
         );
         fs::remove_dir_all(&dir).unwrap();
     }

@@ -6,7 +6,8 @@
 //! (the **contract** in `docs/architecture.md`: [`coil_range`],
 //! [`register_range`]), device writes and their one-line text form
 //! ([`WriteBatch`]), the durable journal of a state directory
-//! ([`Journal`]), which devices a restart keeps ([`is_kept`],
+//! ([`Journal`]; its files carry checksums, so damage stops the start with
+//! file and line, [`Damage`], or is stepped over, [`OnDamage`]), which devices a restart keeps ([`is_kept`],
 //! [`LatchedImage`]), device names as JSON for the HTTP API
 //! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
 //! and the PLC shared by the scan loop and the servers ([`Shared`]), paced
@@ -62,14 +63,15 @@ mod mbap;
 mod pdu;
 mod retain;
 mod state;
+mod state_file;
 mod write;
 
 pub use answer::answer_request;
 pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{
-    COMPACT_AFTER, COMPACT_AFTER_BYTES, JOURNAL_FILE, Journal, JournalError, Recovery,
-    SNAPSHOT_FILE,
+    COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
+    OnDamage, Recovery, SNAPSHOT_FILE,
 };
 pub use map::{
     CoilArea, CoilRange, RegisterRange, X_COIL_BASE, Y_COIL_BASE, coil_range, register_range,
@@ -84,4 +86,5 @@ pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
 pub use state::{Event, ServeInfo, Shared, Stats};
+pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use write::{LineError, Slot, WriteBatch};

@@ -204,9 +204,13 @@ impl Shared {
                     .unwrap_or(0),
             )
         });
-        let (kept, records) = lock(&self.journal)
-            .as_ref()
-            .map_or((0, 0), |j| (j.persisted().len(), j.records()));
+        let (kept, records, read_only) = lock(&self.journal).as_ref().map_or((0, 0, None), |j| {
+            (
+                j.persisted().len(),
+                j.records(),
+                j.read_only().map(ToString::to_string),
+            )
+        });
         let load = |a: &AtomicU64| a.load(Ordering::Relaxed);
         let s = &self.stats;
         json!({
@@ -234,6 +238,7 @@ impl Shared {
                 "kept_values": kept,
                 "journal_records": records,
                 "latched_saves": load(&s.latched_saves),
+                "read_only": read_only,
             },
         })
     }

@@ -14,7 +14,9 @@ use anyhow::{Context as _, bail};
 use ecam_plc::Plc;
 use ecam_plc::Wire;
 use ecam_plc::sim::{self, Timing};
-use ecam_serve::{Event, Journal, LatchedImage, Recovery, ServeInfo, Shared, Slot};
+use ecam_serve::{
+    Event, Journal, JournalError, LatchedImage, OnDamage, Recovery, ServeInfo, Shared, Slot,
+};
 use tokio::net::TcpListener;
 
 use crate::serve::limits::ConnectionLimits;
@@ -39,6 +41,13 @@ pub struct Args {
     /// durably (created if missing); without it nothing survives a restart.
     #[arg(long, value_name = "DIR")]
     pub state: Option<PathBuf>,
+    /// When the state directory's files are damaged, start from the last
+    /// consistent state instead of refusing to: every snapshot record whose
+    /// checksum matches and the journal up to its first damaged record.
+    /// Says on stderr what was dropped and keeps the damaged files as
+    /// *.damaged.
+    #[arg(long, requires = "state")]
+    pub recover_state: bool,
     /// Instruction-list program to run; without one the PLC runs an empty
     /// program (device memory, special relays and clocks only).
     #[arg(long, value_name = "FILE.il")]
@@ -98,8 +107,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let (journal, restored) = match &args.state {
         Some(dir) => {
-            let (journal, recovery) =
-                Journal::open(dir).with_context(|| format!("state directory {}", dir.display()))?;
+            let on_damage = if args.recover_state {
+                OnDamage::Recover
+            } else {
+                OnDamage::Refuse
+            };
+            let (journal, recovery) = match Journal::open_with(dir, on_damage) {
+                Ok(opened) => opened,
+                Err(err @ JournalError::Corrupt { .. }) => anyhow::bail!(
+                    "state directory {}: {err}\n\
+                     fix the file, or start with --recover-state to restore the last \
+                     consistent state (what is dropped is listed, the damaged files kept)",
+                    dir.display()
+                ),
+                Err(err) => {
+                    return Err(err).with_context(|| format!("state directory {}", dir.display()));
+                }
+            };
+            report_open(dir, &recovery, &journal);
             journal.restore_into(plc.devices_mut());
             let restored = journal.persisted().clone();
             (Some(journal), Some((dir.clone(), recovery, restored)))
@@ -224,6 +249,35 @@ fn report(event: Event) {
     }
 }
 
+/// Says on stderr what opening the state directory dropped, set aside or
+/// rewrote, and whether it is read-only.
+fn report_open(dir: &std::path::Path, recovery: &Recovery, journal: &Journal) {
+    let dir = dir.display();
+    for dropped in &recovery.dropped {
+        eprintln!("ecam serve: state {dir}: --recover-state: {dropped}");
+    }
+    for aside in &recovery.set_aside {
+        eprintln!(
+            "ecam serve: state {dir}: --recover-state: damaged file kept as {}",
+            aside.display()
+        );
+    }
+    match journal.read_only() {
+        Some(err) => {
+            eprintln!(
+                "ecam serve: state {dir}: READ-ONLY: cannot compact the state files ({err}); \
+                 they are left as they were and every write is refused until a restart \
+                 with space to spare"
+            );
+        }
+        None if recovery.old_format => eprintln!(
+            "ecam serve: state {dir}: state files without checksums (an older version's) \
+             loaded and rewritten with checksums"
+        ),
+        None => {}
+    }
+}
+
 /// Longest list of device names one stderr line gives.
 const NAMES_SHOWN: usize = 32;
 
@@ -287,6 +341,12 @@ fn report_restore(
         summary.push_str(&format!(
             ", {} skipped (special devices, never restored)",
             skipped.len()
+        ));
+    }
+    if !recovery.dropped.is_empty() {
+        let records: usize = recovery.dropped.iter().map(|d| d.records).sum();
+        summary.push_str(&format!(
+            ", {records} damaged records dropped by --recover-state (listed above)"
         ));
     }
     if !overridden.is_empty() {

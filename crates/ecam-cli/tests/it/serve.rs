@@ -871,3 +871,175 @@ async fn a_table_written_over_modbus_while_the_cam_runs_takes_over_at_the_seam()
     let flags = ctx.read_holding_registers(2001, 1).await.unwrap().unwrap()[0];
     assert_eq!(flags & 0b1_0011_1000, 0, "no error flags: {flags:#b}");
 }
+
+/// Runs `ecam serve --state dir` expecting it to refuse to start; returns
+/// its stderr (fails the test if it is still running after [`STEP`]).
+fn refused_start(dir: &Path) -> String {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"])
+        .arg("--state")
+        .arg(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > STEP {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("ecam serve started on a damaged state directory");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let status = child.wait().unwrap();
+    let mut stderr = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
+    assert!(!status.success(), "{stderr}");
+    stderr
+}
+
+#[tokio::test]
+async fn a_damaged_journal_stops_the_start_and_recover_state_drops_what_follows() {
+    let dir = state_dir("damaged");
+    let server = Server::start(&dir, &[]);
+    {
+        let mut ctx = server.client().await;
+        for (register, value) in [(100, 1), (101, 2), (102, 3)] {
+            ctx.write_single_register(register, value)
+                .await
+                .unwrap()
+                .unwrap();
+        }
+    }
+    server.kill_9();
+    // A changed digit in the second record (D101 = 2 becomes 7).
+    let journal = dir.join("journal.log");
+    let text = std::fs::read_to_string(&journal).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3, "{text}");
+    assert!(lines[1].ends_with("D101 2"), "{text}");
+    let damaged = text.replacen("D101 2", "D101 7", 1);
+    std::fs::write(&journal, &damaged).unwrap();
+
+    let stderr = refused_start(&dir);
+    assert!(
+        stderr.contains("journal.log:2: checksum mismatch") && stderr.contains("--recover-state"),
+        "{stderr}"
+    );
+    // Refusing left the files as they were.
+    assert_eq!(std::fs::read_to_string(&journal).unwrap(), damaged);
+
+    let log = dir.with_extension("log");
+    let server = Server::start_logged(&dir, &["--recover-state"], &log);
+    let stderr = log_line(&log, "values restored");
+    assert!(
+        stderr.contains("journal.log:2: checksum mismatch: 2 records dropped"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("1 values restored") && stderr.contains("2 damaged records dropped"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("journal.log.damaged"), "{stderr}");
+    assert_eq!(
+        server.get_json("/api/devices?names=D100,D101,D102"),
+        json!({"D100": 1, "D101": 0, "D102": 0})
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("journal.log.damaged")).unwrap(),
+        damaged
+    );
+    server.kill_9();
+    // The recovered state is consistent: a plain start takes it.
+    let server = Server::start(&dir, &[]);
+    assert_eq!(
+        server.get_json("/api/devices?names=D100,D101"),
+        json!({"D100": 1, "D101": 0})
+    );
+}
+
+#[tokio::test]
+async fn a_snapshot_cut_inside_a_number_stops_the_start() {
+    let dir = state_dir("cut-snapshot");
+    let server = Server::start(&dir, &[]);
+    server
+        .client()
+        .await
+        .write_multiple_registers(100, &[12345, 7])
+        .await
+        .unwrap()
+        .unwrap();
+    server.kill_9();
+    // A clean start compacts the journal into the snapshot.
+    Server::start(&dir, &[]).kill_9();
+    let snapshot = dir.join("snapshot.txt");
+    let text = std::fs::read_to_string(&snapshot).unwrap();
+    let cut = text.find("12345").unwrap() + 2;
+    std::fs::write(&snapshot, &text[..cut]).unwrap();
+    let stderr = refused_start(&dir);
+    assert!(stderr.contains("snapshot.txt:2: cut short"), "{stderr}");
+}
+
+#[cfg(unix)]
+#[tokio::test]
+async fn a_start_that_cannot_compact_serves_read_only() {
+    let dir = state_dir("read-only");
+    let server = Server::start(&dir, &[]);
+    server
+        .client()
+        .await
+        .write_single_register(100, 42)
+        .await
+        .unwrap()
+        .unwrap();
+    server.kill_9();
+    let journal = std::fs::read_to_string(dir.join("journal.log")).unwrap();
+    // The new snapshot cannot be written, as on a full disk.
+    std::fs::create_dir(dir.join("snapshot.txt.tmp")).unwrap();
+    let log = dir.with_extension("log");
+    let server = Server::start_logged(&dir, &[], &log);
+    let stderr = log_line(&log, "READ-ONLY");
+    assert!(stderr.contains("every write is refused"), "{stderr}");
+    let status = server.get_json("/api/status");
+    assert!(
+        status["state"]["read_only"]
+            .as_str()
+            .is_some_and(|r| r.contains("snapshot.txt.tmp")),
+        "{status}"
+    );
+    let mut ctx = server.client().await;
+    assert_eq!(
+        ctx.read_holding_registers(100, 1).await.unwrap().unwrap(),
+        [42]
+    );
+    assert_eq!(
+        ctx.write_single_register(100, 1).await.unwrap().err(),
+        Some(ExceptionCode::ServerDeviceFailure)
+    );
+    assert_eq!(
+        ctx.read_holding_registers(100, 1).await.unwrap().unwrap(),
+        [42]
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("journal.log")).unwrap(),
+        journal
+    );
+    server.kill_9();
+    std::fs::remove_dir(dir.join("snapshot.txt.tmp")).unwrap();
+    let server = Server::start(&dir, &[]);
+    assert!(server.get_json("/api/status")["state"]["read_only"].is_null());
+    server
+        .client()
+        .await
+        .write_single_register(100, 1)
+        .await
+        .unwrap()
+        .unwrap();
+}
