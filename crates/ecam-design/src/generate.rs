@@ -73,6 +73,7 @@ pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
     let generator = find(name)?;
     let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Value::Table(params))
+        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
         .with_context(|| format!("parameters of generator {name:?}"))?;
     generate(generator, values)
 }
@@ -92,6 +93,7 @@ pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Genera
     }
     let values = ValuesSeed::new(generator, true)
         .deserialize(params)
+        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
         .with_context(|| format!("parameters of generator {name:?}"))?;
     generate(generator, values)
 }

@@ -139,7 +139,8 @@ fn unknown_field(key: &str, generator: &Schema) -> String {
 /// The generator's `Params` from checked values; the rest keep their defaults.
 pub(crate) fn typed<P: DeserializeOwned>(values: Values) -> anyhow::Result<P> {
     let map = MapDeserializer::<_, serde_json::Error>::new(values.into_iter());
-    Ok(P::deserialize(map)?)
+    P::deserialize(map)
+        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
 }
 
 impl<'de> IntoDeserializer<'de, serde_json::Error> for Param {
@@ -223,5 +224,7 @@ impl<'de> Deserialize<'de> for Word {
 /// # Errors
 /// TOML syntax, keys the generator does not have, values of the wrong kind.
 pub fn read_toml(generator: &'static Schema, text: &str) -> anyhow::Result<Values> {
-    Ok(ValuesSeed::new(generator, false).deserialize(toml::Deserializer::new(text))?)
+    ValuesSeed::new(generator, false)
+        .deserialize(toml::Deserializer::new(text))
+        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
 }

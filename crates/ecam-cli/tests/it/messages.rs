@@ -35,3 +35,22 @@ fn json_errors_say_what_is_wrong_in_the_authors_words() {
     assert!(err.contains("whole number"), "{err}");
     assert!(!err.contains("i64"), "{err}");
 }
+
+#[test]
+fn parameter_errors_name_no_rust_types() {
+    let dir = scratch_dir("messages-params");
+    let params = dir.join("s.toml");
+    std::fs::write(&params, "pulses = \"a\"\n").unwrap();
+    let err = fails(ecam(&[
+        "table",
+        "gen",
+        "s-curve",
+        "--params",
+        params.to_str().unwrap(),
+    ]));
+    assert!(
+        err.contains("pulses") && err.contains("whole number"),
+        "{err}"
+    );
+    assert!(!err.contains("i64"), "{err}");
+}

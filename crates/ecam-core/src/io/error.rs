@@ -165,10 +165,18 @@ impl std::error::Error for FileError {
 /// A serde_json error in the words of the file's author: Rust type names
 /// (`i64`, `f64`, `u16`…) become what they mean.
 pub(crate) fn plain_json_message(e: &serde_json::Error) -> String {
-    let mut text = e.to_string();
+    plain_serde_message(&e.to_string())
+}
+
+/// A serde message (JSON, TOML, parameter maps) in the words of the input's
+/// author: `expected i64` becomes `expected a whole number`, and so on for
+/// the other Rust number types.
+pub fn plain_serde_message(message: &str) -> String {
+    let mut text = message.to_string();
     for (rust, plain) in [
         ("expected i64", "expected a whole number"),
         ("expected i32", "expected a whole number"),
+        ("expected i16", "expected a whole number"),
         ("expected u64", "expected a whole number, 0 or more"),
         ("expected u32", "expected a whole number, 0 or more"),
         ("expected u16", "expected a whole number, 0 or more"),
