@@ -9,6 +9,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::blend::{Blend, BlendEnd};
 use crate::config::effective_frequency;
 use crate::coupling::{Engagement, Geometry, Place, Sample};
 use crate::master::TurnUnwrap;
@@ -16,10 +17,11 @@ use crate::pulse::PulseOutput;
 use crate::ramp::Ramp;
 use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
+use crate::switch::{Pending, Trigger};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
-    TickOutput,
+    AxisConfig, AxisState, EngineError, Events, MasterTracker, SlaveAlign, StopKind, SwitchAt,
+    SyncWindow, TickInput, TickOutput,
 };
 
 /// A slave axis coupled to a master through a cam curve.
@@ -88,6 +90,14 @@ struct Engaged<C> {
     place: Place,
     /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
     queued: Option<(C, AfterPass)>,
+    /// A table waiting for a master position or the next tick
+    /// ([`CamAxis::switch_curve`]); never together with `queued`.
+    pending: Option<Pending<C>>,
+    /// The blend from the last switch's old cam, while it runs.
+    blend: Option<Blend>,
+    /// The master followed at the last tick, counts × 2^32 plus the
+    /// fraction (where a switch position is crossed from).
+    followed: i128,
 }
 
 impl<C> Phase<C> {
@@ -237,6 +247,7 @@ impl<C: CamCurve> CamAxis<C> {
                 if geometry.extent == crate::coupling::Extent::Single {
                     return Err(EngineError::NoSeam);
                 }
+                engaged.pending = None;
                 engaged.queued = Some((curve, then));
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished => {
@@ -248,9 +259,54 @@ impl<C: CamCurve> CamAxis<C> {
         Ok(())
     }
 
-    /// True while a queued table waits for the next seam.
+    /// Hands a new table to the axis, taking over where `at` says. Idle,
+    /// armed or finished, it replaces the table at once. While the cam is
+    /// running, [`SwitchAt::NextSeam`] is [`CamAxis::queue_curve`]; with
+    /// [`SwitchAt::MasterPosition`] and [`SwitchAt::Now`] the new cam takes
+    /// over at that master position (or this tick's master), aligned to
+    /// the master as [`AxisConfig::master_align`] says (as at engage) and
+    /// anchored on the old cam there: the slave's position is continuous.
+    /// With a blend distance the velocity is too: the slave's velocity
+    /// moves from the old cam's to the new cam's over that master travel
+    /// and stays between them (see docs/engine.md, "Changing the table
+    /// while engaged"). A second call before the switch replaces the
+    /// waiting table; a switch that comes due while a blend runs waits for
+    /// its end. `events.table_switched` marks the tick of the switch; the
+    /// old table can be taken back with [`CamAxis::take_retired_curve`].
+    ///
+    /// # Errors
+    /// As [`CamAxis::queue_curve`]; [`EngineError::Busy`] for a position
+    /// or at-once switch during an end-of-cycle stop. The running cam is
+    /// left untouched.
+    pub fn switch_curve(&mut self, curve: C, at: SwitchAt) -> Result<(), EngineError> {
+        let (trigger, blend) = match at {
+            SwitchAt::NextSeam => return self.queue_curve(curve),
+            SwitchAt::MasterPosition { position, blend } => (Trigger::Position(position), blend),
+            SwitchAt::Now { blend } => (Trigger::Now, blend),
+        };
+        Geometry::new(&curve, &self.config)?;
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                engaged.queued = None;
+                engaged.pending = Some(Pending::new(curve, trigger, blend));
+                Ok(())
+            }
+            Phase::Stopping(..) => Err(EngineError::Busy),
+            Phase::Idle | Phase::Armed(_) | Phase::Finished => self.queue_curve(curve),
+        }
+    }
+
+    /// True while a queued table waits for the next seam, a master
+    /// position or the next tick.
     pub fn has_queued_curve(&self) -> bool {
-        self.phase.engaged().is_some_and(|e| e.queued.is_some())
+        self.phase
+            .engaged()
+            .is_some_and(|e| e.queued.is_some() || e.pending.is_some())
+    }
+
+    /// True while a switch's blend runs.
+    pub fn is_blending(&self) -> bool {
+        self.phase.engaged().is_some_and(|e| e.blend.is_some())
     }
 
     /// The table the last switch or replacement retired, if not yet taken.
@@ -328,7 +384,7 @@ impl<C: CamCurve> CamAxis<C> {
                     StopAt::Here { completes_cycle } => {
                         self.pending_events.stopped = true;
                         self.pending_events.cycle_completed |= completes_cycle;
-                        self.end_run(engaged.queued);
+                        self.end_run(engaged);
                         Phase::Finished
                     }
                 }
@@ -336,7 +392,7 @@ impl<C: CamCurve> CamAxis<C> {
             (stopping @ Phase::Stopping(..), StopKind::EndOfCycle) => stopping,
             (Phase::Running(engaged) | Phase::Stopping(engaged, _), StopKind::Immediate) => {
                 self.pending_events.stopped = true;
-                self.end_run(engaged.queued);
+                self.end_run(engaged);
                 Phase::Idle
             }
             (Phase::Armed(_), _) => {
@@ -353,8 +409,12 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     /// Ends a run: a table still queued is the one to restart with.
-    fn end_run(&mut self, queued: Option<(C, AfterPass)>) {
-        if let Some((curve, _)) = queued
+    fn end_run(&mut self, engaged: Engaged<C>) {
+        let Engaged {
+            queued, pending, ..
+        } = engaged;
+        let next = queued.map(|(curve, _)| curve).or(pending.map(|p| p.curve));
+        if let Some(curve) = next
             && let Ok(geometry) = Geometry::new(&curve, &self.config)
         {
             self.geometry = geometry;
@@ -367,7 +427,7 @@ impl<C: CamCurve> CamAxis<C> {
     fn halt(&mut self) {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         match phase {
-            Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged.queued),
+            Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged),
             Phase::Finished => self.phase = Phase::Finished,
             Phase::Idle | Phase::Armed(_) => {}
         }
@@ -479,6 +539,9 @@ impl<C: CamCurve> CamAxis<C> {
                 .map(|ramp| Ramp::new(ramp, at, self.commanded)),
             place,
             queued: None,
+            pending: None,
+            blend: None,
+            followed: i128::from(at) << 32,
         });
         Ok(())
     }
@@ -524,7 +587,7 @@ impl<C: CamCurve> CamAxis<C> {
     /// and whether a ramp-in is still blending.
     fn command_at(
         &mut self,
-        engaged: &Engaged<C>,
+        engaged: &mut Engaged<C>,
         place: Place,
         master: i64,
     ) -> Result<(Sample, i64, f64, bool), EngineError> {
@@ -532,22 +595,92 @@ impl<C: CamCurve> CamAxis<C> {
             engaged
                 .engagement
                 .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let (slave, ratio) = match &engaged.blend {
+            Some(blend) => {
+                let blended = blend.command(master)?;
+                (blended.slave, blended.velocity_ratio)
+            }
+            None => (cam.slave, cam.velocity_ratio),
+        };
         match engaged
             .ramp
-            .and_then(|ramp| Some((ramp, ramp.blend(master, cam.slave)?)))
+            .and_then(|ramp| Some((ramp, ramp.blend(master, slave)?)))
         {
-            Some((ramp, blended)) => {
-                Ok((cam, blended, cam.velocity_ratio * ramp.weight(master), true))
-            }
-            None => Ok((cam, cam.slave, cam.velocity_ratio, false)),
+            Some((ramp, blended)) => Ok((cam, blended, ratio * ramp.weight(master), true)),
+            None => Ok((cam, slave, ratio, false)),
         }
+    }
+
+    /// Carries out a waiting position or at-once switch at master `at`:
+    /// the new cam is aligned to the master as at engage and anchored on
+    /// the old cam's position there; a blend then carries the slave from
+    /// the old cam's velocity to the new cam's.
+    fn switch_at(&mut self, engaged: &mut Engaged<C>, at: i64) -> Result<(), EngineError> {
+        let Some(pending) = engaged.pending.take() else {
+            return Ok(());
+        };
+        let place = self.resolve(&engaged.engagement, None, at).place;
+        let old =
+            engaged
+                .engagement
+                .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let geometry = Geometry::new(&pending.curve, &self.config)?;
+        let mut cursor = Cursor::new();
+        let config = AxisConfig {
+            slave_align: SlaveAlign::Relative,
+            ..self.config
+        };
+        let engagement = Engagement::new(
+            &geometry,
+            &config,
+            &pending.curve,
+            &mut cursor,
+            at,
+            old.slave,
+        )?;
+        engaged.engagement = engagement;
+        self.geometry = geometry;
+        self.cursor = cursor;
+        self.retired = Some(core::mem::replace(&mut self.curve, pending.curve));
+        engaged.blend = match pending.blend {
+            Some(distance) => {
+                let mut ends = [BlendEnd {
+                    slave: 0,
+                    velocity_ratio: 0.0,
+                }; 2];
+                for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
+                    let place = self.resolve(&engaged.engagement, None, master).place;
+                    let cam = engaged.engagement.sample(
+                        &self.geometry,
+                        &self.curve,
+                        &mut self.cursor,
+                        place,
+                    )?;
+                    *end = BlendEnd {
+                        slave: cam.slave,
+                        velocity_ratio: cam.velocity_ratio,
+                    };
+                }
+                Some(Blend::start(
+                    at,
+                    distance.get(),
+                    old.slave,
+                    old.velocity_ratio,
+                    ends,
+                )?)
+            }
+            None => None,
+        };
+        Ok(())
     }
 
     /// Takes a queued table over at the seam between the last place and
     /// `to`, if one waits; gives back the engagement on the new table.
     fn switch_at_seam(&mut self, engaged: &mut Engaged<C>, to: Place) -> Result<bool, EngineError> {
         let from = engaged.place;
-        if from.k == to.k || engaged.queued.is_none() {
+        // A seam crossed while a blend runs is not taken: the switch waits
+        // for the next seam after the blend.
+        if from.k == to.k || engaged.queued.is_none() || engaged.blend.is_some() {
             return Ok(false);
         }
         let forward = to.k > from.k;
@@ -604,8 +737,29 @@ impl<C: CamCurve> CamAxis<C> {
             // Cycle indices restart with the new table.
             engaged.place = here.place;
         }
+        if let Some(shift) = engaged.blend.as_ref().and_then(|b| b.finished(master)) {
+            engaged.engagement.shift_output(shift)?;
+            engaged.blend = None;
+        }
+        if here.stopped.is_none() && stop_at.is_none() {
+            let blending = engaged.blend.is_some();
+            let previous = engaged.followed;
+            let now = (i128::from(master) << 32) | i128::from(fraction);
+            if let Some(at) = engaged
+                .pending
+                .as_mut()
+                .and_then(|p| p.fires(previous, now, blending))
+            {
+                self.switch_at(&mut engaged, at)?;
+                events.table_switched = true;
+                here = self.resolve(&engaged.engagement, None, master);
+                engaged.place = here.place;
+            }
+        }
+        engaged.followed = (i128::from(master) << 32) | i128::from(fraction);
         let place = here.place;
-        let (cam, mut slave, velocity_ratio, ramping) = self.command_at(&engaged, place, master)?;
+        let (cam, mut slave, velocity_ratio, ramping) =
+            self.command_at(&mut engaged, place, master)?;
         if fraction != 0 && here.stopped.is_none() && !here.finished {
             // Between whole master counts (an exact time base, or a coarse
             // master's estimate) the command moves along the straight line
@@ -613,7 +767,7 @@ impl<C: CamCurve> CamAxis<C> {
             // monotonic in between.
             let next_master = master.saturating_add(1);
             let ahead = self.resolve(&engaged.engagement, stop_at.as_ref(), next_master);
-            let (_, next_slave, _, _) = self.command_at(&engaged, ahead.place, next_master)?;
+            let (_, next_slave, _, _) = self.command_at(&mut engaged, ahead.place, next_master)?;
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
             slave =
@@ -622,6 +776,7 @@ impl<C: CamCurve> CamAxis<C> {
         if !ramping {
             engaged.ramp = None;
         }
+        let blending = engaged.blend.is_some();
         self.commanded = slave;
         if engaged.place.k != place.k {
             events.cycle_completed = true;
@@ -631,19 +786,19 @@ impl<C: CamCurve> CamAxis<C> {
         let followed = FollowSample {
             cam,
             velocity_ratio,
-            following: !ramping,
+            following: !ramping && !blending,
             input_offset: engaged.engagement.input_offset(&self.geometry),
             cycle: place.k.saturating_sub(engaged.engagement.k_engage),
         };
         let phase = if let Some(forward) = here.stopped {
             events.cycle_completed |= forward;
             events.stopped = true;
-            self.end_run(engaged.queued);
+            self.end_run(engaged);
             Phase::Finished
         } else if here.finished {
             events.finished = true;
             events.cycle_completed = true;
-            self.end_run(engaged.queued);
+            self.end_run(engaged);
             Phase::Finished
         } else {
             match stop_at {

@@ -398,6 +398,16 @@ impl Engagement {
         });
     }
 
+    /// Moves the whole output by `delta` pulses (a blend that ended
+    /// `delta` off the cam it blended onto).
+    pub(crate) fn shift_output(&mut self, delta: i128) -> Result<(), EngineError> {
+        self.output_offset = self
+            .output_offset
+            .checked_add(delta)
+            .ok_or(EngineError::SlaveOverflow)?;
+        Ok(())
+    }
+
     /// Document 002 `CamInputOffset`, in table counts (floor).
     pub(crate) fn input_offset(&self, geo: &Geometry) -> i64 {
         clamp_i64(div_floor(self.input_offset_num, geo.mden).0)

@@ -44,6 +44,7 @@
 extern crate std;
 
 mod axis;
+mod blend;
 mod config;
 mod coupling;
 mod error;
@@ -55,11 +56,13 @@ mod pulse;
 mod ramp;
 mod start;
 mod stop;
+mod switch;
 mod sync;
 mod tracker;
 mod zoom;
 
 pub use axis::{AfterPass, CamAxis};
+pub use blend::min_blend_distance;
 pub use config::{
     AxisConfig, Compare, Coupling, MAX_FREQUENCY_HZ, MasterAlign, RampIn, SlaveAlign, StartMode,
 };
@@ -68,6 +71,7 @@ pub use input::TickInput;
 pub use master::{TimeBase, Unwrap32};
 pub use output::{AxisState, Events, TickOutput};
 pub use stop::StopKind;
+pub use switch::SwitchAt;
 pub use sync::SyncWindow;
 pub use tracker::{MasterFilter, MasterPosition, MasterTracker};
 pub use zoom::Zoom;

@@ -54,7 +54,9 @@ pub struct Events {
     /// The jump goes out under the frequency limit, never as one burst.
     pub seam_jump: bool,
     /// A table queued with [`crate::CamAxis::queue_curve`] took over at the
-    /// seam just crossed.
+    /// seam just crossed, or one handed over with
+    /// [`crate::CamAxis::switch_curve`] took over at its master position
+    /// or at once.
     pub table_switched: bool,
 }
 
@@ -107,7 +109,8 @@ pub struct TickOutput {
     pub in_sync: bool,
     /// Document 003 flag bit 0: armed, delaying, running or stopping.
     pub initialised: bool,
-    /// Running and any ramp-in complete (PLCopen `InSync`).
+    /// Running, any ramp-in and any table-switch blend complete (PLCopen
+    /// `InSync`).
     pub following: bool,
     /// Active or pulses still owed (PLC M8147..M8150 BUSY).
     pub busy: bool,

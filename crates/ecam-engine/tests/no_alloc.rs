@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use ecam_core::PointTable;
 use ecam_engine::{
     AxisConfig, CamAxis, Compare, Coupling, MasterAlign, RampIn, SlaveAlign, StartMode, StopKind,
-    SyncWindow, TickInput, Zoom,
+    SwitchAt, SyncWindow, TickInput, Zoom,
 };
 
 struct Counting;
@@ -149,6 +149,24 @@ fn tick_allocates_nothing() {
                 300 => axis.stop(StopKind::Immediate),
                 301 | 320 => {
                     axis.arm().ok();
+                }
+                // Table switches: the new table is built (and the old one
+                // taken back) outside the watch; only ticks are watched.
+                100 | 200 | 400 => {
+                    WATCHING.with(|w| w.set(false));
+                    let at = match i % 701 {
+                        100 => SwitchAt::Now {
+                            blend: NonZeroU64::new(300),
+                        },
+                        200 => SwitchAt::MasterPosition {
+                            position: master.saturating_add(50),
+                            blend: NonZeroU64::new(200),
+                        },
+                        _ => SwitchAt::Now { blend: None },
+                    };
+                    axis.switch_curve(table.clone(), at).ok();
+                    drop(axis.take_retired_curve());
+                    WATCHING.with(|w| w.set(true));
                 }
                 _ => {}
             }

@@ -10,6 +10,7 @@ mod plcopen;
 mod properties;
 mod safe_motion;
 mod starts_stops;
+mod table_switch;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.

@@ -1,0 +1,138 @@
+//! When a new table takes over a running cam ([`crate::CamAxis::switch_curve`]).
+//!
+//! PLCopen `MC_CamIn` knows two ways for a second cam to follow a running
+//! one: `BufferMode` buffered (at the end of the running cam's cycle: the
+//! next seam here) and aborting (at once); implementations add a start at
+//! a master position. The position and at-once switches anchor the new
+//! cam on the old one where they take effect and may blend between them
+//! (see the `blend` module).
+
+use core::num::NonZeroU64;
+
+/// Where a table handed to a running cam takes over.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SwitchAt {
+    /// At the next seam the master crosses (PLCopen `BufferMode`
+    /// buffered): the new table's cycle starts there. Same as
+    /// [`crate::CamAxis::queue_curve`].
+    NextSeam,
+    /// When the master (unwrapped, before zoom) reaches or crosses
+    /// `position`, in either direction, the new cam takes over exactly
+    /// there, whichever tick passes it.
+    MasterPosition {
+        /// Master position in counts.
+        position: i64,
+        /// Master travel over which to blend onto the new cam; `None`
+        /// switches without a blend (no position step, but a velocity step
+        /// where the cams' velocities differ there).
+        blend: Option<NonZeroU64>,
+    },
+    /// At once (PLCopen `BufferMode` aborting): at the master the axis
+    /// followed last (where it stands when this is called), or, while that
+    /// lies between two counts, at the next whole count the master reaches;
+    /// the next tick carries it out.
+    Now {
+        /// As for [`SwitchAt::MasterPosition`].
+        blend: Option<NonZeroU64>,
+    },
+}
+
+/// What makes a waiting position or at-once switch fire.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Trigger {
+    Position(i64),
+    Now,
+}
+
+/// A table waiting for its position (or the next tick).
+#[derive(Clone, Debug)]
+pub(crate) struct Pending<C> {
+    pub(crate) curve: C,
+    trigger: Trigger,
+    pub(crate) blend: Option<NonZeroU64>,
+}
+
+impl<C> Pending<C> {
+    /// A table waiting for `trigger`.
+    pub(crate) fn new(curve: C, trigger: Trigger, blend: Option<NonZeroU64>) -> Self {
+        Self {
+            curve,
+            trigger,
+            blend,
+        }
+    }
+
+    /// The master position where the switch takes effect, if it does in
+    /// the tick from `previous` to `now` (fixed point: counts × 2^32 plus
+    /// the fraction). A switch always takes effect at a whole count that
+    /// lies between the two, so the old cam is followed up to it and the
+    /// new one from it, also while the master stands between two counts
+    /// (an at-once switch then waits for the next whole count). While
+    /// `blending`, a due switch waits for the blend to end and then takes
+    /// effect as an at-once switch.
+    pub(crate) fn fires(&mut self, previous: i128, now: i128, blending: bool) -> Option<i64> {
+        let (low, high) = (previous.min(now), previous.max(now));
+        let at = match self.trigger {
+            Trigger::Position(p) => {
+                let fixed = i128::from(p) << 32;
+                (low <= fixed && fixed <= high).then_some(p)
+            }
+            Trigger::Now => {
+                // The first whole count the master reaches from `previous`.
+                let first = if now >= previous {
+                    (previous + ((1 << 32) - 1)) >> 32
+                } else {
+                    previous >> 32
+                };
+                let fixed = first << 32;
+                if low <= fixed && fixed <= high {
+                    i64::try_from(first).ok()
+                } else {
+                    None
+                }
+            }
+        };
+        if at.is_some() && blending {
+            self.trigger = Trigger::Now;
+            return None;
+        }
+        at
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ONE: i128 = 1 << 32;
+
+    #[test]
+    fn a_position_fires_where_it_is_crossed_either_way() {
+        let mut p = Pending::new((), Trigger::Position(100), None);
+        assert_eq!(p.fires(0, 99 * ONE, false), None);
+        assert_eq!(p.fires(99 * ONE, 150 * ONE, false), Some(100));
+        let mut p = Pending::new((), Trigger::Position(100), None);
+        // Backwards, between 101 and 100: not yet.
+        assert_eq!(p.fires(101 * ONE, 100 * ONE + 5, false), None);
+        assert_eq!(p.fires(100 * ONE + 5, 100 * ONE, false), Some(100));
+    }
+
+    #[test]
+    fn at_once_takes_the_first_whole_count_reached() {
+        let mut p = Pending::new((), Trigger::Now, None);
+        assert_eq!(p.fires(7 * ONE, 9 * ONE, false), Some(7));
+        let mut p = Pending::new((), Trigger::Now, None);
+        assert_eq!(p.fires(7 * ONE + 3, 7 * ONE + 9, false), None);
+        assert_eq!(p.fires(7 * ONE + 9, 8 * ONE + 1, false), Some(8));
+        let mut p = Pending::new((), Trigger::Now, None);
+        assert_eq!(p.fires(-7 * ONE + 3, -8 * ONE, false), Some(-7));
+    }
+
+    #[test]
+    fn a_switch_due_during_a_blend_waits_for_its_end() {
+        let mut p = Pending::new((), Trigger::Position(100), None);
+        assert_eq!(p.fires(90 * ONE, 110 * ONE, true), None);
+        assert_eq!(p.fires(110 * ONE, 120 * ONE, true), None);
+        assert_eq!(p.fires(120 * ONE, 130 * ONE, false), Some(120));
+    }
+}
