@@ -13,6 +13,7 @@ use crate::blend::{Blend, BlendEnd};
 use crate::config::effective_frequency;
 use crate::coupling::{Engagement, Geometry, Place, Sample};
 use crate::master::TurnUnwrap;
+use crate::offset_ramp::OffsetRamp;
 use crate::pulse::PulseOutput;
 use crate::ramp::Ramp;
 use crate::start::{StartStep, StartWatch};
@@ -20,8 +21,8 @@ use crate::stop::{CycleEnd, StopAt};
 use crate::switch::{Pending, Trigger};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, SlaveAlign, StopKind, SwitchAt,
-    SyncWindow, TickInput, TickOutput,
+    AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, SlaveAlign, StopKind,
+    SwitchAt, SyncWindow, TickInput, TickOutput,
 };
 
 /// A slave axis coupled to a master through a cam curve.
@@ -95,9 +96,21 @@ struct Engaged<C> {
     pending: Option<Pending<C>>,
     /// The blend from the last switch's old cam, while it runs.
     blend: Option<Blend>,
+    /// An offset change being ramped in ([`CamAxis::change_offsets`]).
+    offsets: Option<OffsetRamp>,
     /// The master followed at the last tick, counts × 2^32 plus the
     /// fraction (where a switch position is crossed from).
     followed: i128,
+}
+
+impl<C> Engaged<C> {
+    /// The engagement in effect at `master`, an offset ramp included.
+    fn engagement_at(&self, master: i64) -> Result<Engagement, EngineError> {
+        match &self.offsets {
+            Some(ramp) => ramp.apply(&self.engagement, master),
+            None => Ok(self.engagement),
+        }
+    }
 }
 
 impl<C> Phase<C> {
@@ -286,6 +299,7 @@ impl<C: CamCurve> CamAxis<C> {
         };
         Geometry::new(&curve, &self.config)?;
         match &mut self.phase {
+            Phase::Running(engaged) if engaged.offsets.is_some() => Err(EngineError::Busy),
             Phase::Running(engaged) => {
                 engaged.queued = None;
                 engaged.pending = Some(Pending::new(curve, trigger, blend));
@@ -302,6 +316,41 @@ impl<C: CamCurve> CamAxis<C> {
         self.phase
             .engaged()
             .is_some_and(|e| e.queued.is_some() || e.pending.is_some())
+    }
+
+    /// Changes the master and slave offsets of the running cam by
+    /// `change`, ramped in over `change.distance` master counts from the
+    /// master the axis followed last (PLCopen `MasterOffset` and
+    /// `SlaveOffset` changed in sync; see docs/engine.md, "Offsets on the
+    /// fly"). Position, velocity and acceleration stay continuous; the
+    /// final offsets are exact.
+    ///
+    /// # Errors
+    /// [`EngineError::NotRunning`] unless the cam is running;
+    /// [`EngineError::Busy`] while a table switch waits or blends, or an
+    /// offset change is still being ramped in.
+    pub fn change_offsets(&mut self, change: OffsetChange) -> Result<(), EngineError> {
+        let mden = self.geometry.master_den();
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                if engaged.offsets.is_some()
+                    || engaged.blend.is_some()
+                    || engaged.pending.is_some()
+                    || engaged.queued.is_some()
+                {
+                    return Err(EngineError::Busy);
+                }
+                let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
+                engaged.offsets = Some(OffsetRamp::new(change, from, mden));
+                Ok(())
+            }
+            _ => Err(EngineError::NotRunning),
+        }
+    }
+
+    /// True while an offset change is being ramped in.
+    pub fn is_changing_offsets(&self) -> bool {
+        self.phase.engaged().is_some_and(|e| e.offsets.is_some())
     }
 
     /// True while a switch's blend runs.
@@ -541,6 +590,7 @@ impl<C: CamCurve> CamAxis<C> {
             queued: None,
             pending: None,
             blend: None,
+            offsets: None,
             followed: i128::from(at) << 32,
         });
         Ok(())
@@ -591,10 +641,12 @@ impl<C: CamCurve> CamAxis<C> {
         place: Place,
         master: i64,
     ) -> Result<(Sample, i64, f64, bool), EngineError> {
-        let cam =
-            engaged
-                .engagement
-                .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let cam = engaged.engagement_at(master)?.sample(
+            &self.geometry,
+            &self.curve,
+            &mut self.cursor,
+            place,
+        )?;
         let (slave, ratio) = match &engaged.blend {
             Some(blend) => {
                 let blended = blend.command(master)?;
@@ -680,7 +732,11 @@ impl<C: CamCurve> CamAxis<C> {
         let from = engaged.place;
         // A seam crossed while a blend runs is not taken: the switch waits
         // for the next seam after the blend.
-        if from.k == to.k || engaged.queued.is_none() || engaged.blend.is_some() {
+        if from.k == to.k
+            || engaged.queued.is_none()
+            || engaged.blend.is_some()
+            || engaged.offsets.is_some()
+        {
             return Ok(false);
         }
         let forward = to.k > from.k;
@@ -729,7 +785,13 @@ impl<C: CamCurve> CamAxis<C> {
         fraction: u32,
     ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
-        let mut here = self.resolve(&engaged.engagement, stop_at.as_ref(), master);
+        if let Some(ramp) = engaged.offsets
+            && ramp.finished(master)
+        {
+            engaged.engagement = ramp.apply(&engaged.engagement, master)?;
+            engaged.offsets = None;
+        }
+        let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
         if here.stopped.is_none() && self.switch_at_seam(&mut engaged, here.place)? {
             events.table_switched = true;
             events.cycle_completed = true;
@@ -766,7 +828,11 @@ impl<C: CamCurve> CamAxis<C> {
             // to the next count's value: exact at every whole count, and
             // monotonic in between.
             let next_master = master.saturating_add(1);
-            let ahead = self.resolve(&engaged.engagement, stop_at.as_ref(), next_master);
+            let ahead = self.resolve(
+                &engaged.engagement_at(next_master)?,
+                stop_at.as_ref(),
+                next_master,
+            );
             let (_, next_slave, _, _) = self.command_at(&mut engaged, ahead.place, next_master)?;
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
@@ -786,7 +852,7 @@ impl<C: CamCurve> CamAxis<C> {
         let followed = FollowSample {
             cam,
             velocity_ratio,
-            following: !ramping && !blending,
+            following: !ramping && !blending && engaged.offsets.is_none(),
             input_offset: engaged.engagement.input_offset(&self.geometry),
             cycle: place.k.saturating_sub(engaged.engagement.k_engage),
         };

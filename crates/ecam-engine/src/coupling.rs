@@ -113,6 +113,11 @@ impl Geometry {
         })
     }
 
+    /// The master zoom's denominator (the unit of table-input offsets).
+    pub(crate) fn master_den(&self) -> i128 {
+        self.mden
+    }
+
     /// The zoomed master in table-input units.
     pub(crate) fn zoomed_master(&self, master: i64) -> i128 {
         i128::from(master) * self.mnum
@@ -396,6 +401,22 @@ impl Engagement {
         } else {
             (start.saturating_sub(geo.period_num), start)
         });
+    }
+
+    /// The same engagement with `input_num` added to the table input
+    /// (× master-zoom-denominator units) and `output` to the output.
+    pub(crate) fn shifted(&self, input_num: i128, output: i128) -> Result<Self, EngineError> {
+        Ok(Self {
+            input_offset_num: self
+                .input_offset_num
+                .checked_add(input_num)
+                .ok_or(EngineError::SlaveOverflow)?,
+            output_offset: self
+                .output_offset
+                .checked_add(output)
+                .ok_or(EngineError::SlaveOverflow)?,
+            ..*self
+        })
     }
 
     /// Moves the whole output by `delta` pulses (a blend that ended

@@ -29,6 +29,8 @@ pub enum EngineError {
     /// A normal (non-repeating) cam has no seam at which a queued table
     /// could take over.
     NoSeam,
+    /// The request needs a running cam (e.g. offsets changed on the fly).
+    NotRunning,
 }
 
 use ecam_core::{CODE_PARAMETER, CODE_TABLE};
@@ -44,7 +46,8 @@ impl EngineError {
             | Self::BadTurn
             | Self::SlaveOverflow
             | Self::MasterStep
-            | Self::NoSeam => CODE_PARAMETER,
+            | Self::NoSeam
+            | Self::NotRunning => CODE_PARAMETER,
         }
     }
 }
@@ -71,6 +74,9 @@ impl fmt::Display for EngineError {
                 "the master moved more than the allowed step in one tick; the cam was stopped"
             }
             Self::NoSeam => "a normal cam has no seam: stop it before changing its table",
+            Self::NotRunning => {
+                "the cam is not running: engage it first, or set this in the configuration"
+            }
         };
         write!(f, "{text} (error {})", self.code())
     }

@@ -50,6 +50,7 @@ mod coupling;
 mod error;
 mod input;
 mod master;
+mod offset_ramp;
 mod output;
 pub mod plcopen;
 mod pulse;
@@ -69,6 +70,7 @@ pub use config::{
 pub use error::EngineError;
 pub use input::TickInput;
 pub use master::{TimeBase, Unwrap32};
+pub use offset_ramp::OffsetChange;
 pub use output::{AxisState, Events, TickOutput};
 pub use stop::StopKind;
 pub use switch::SwitchAt;

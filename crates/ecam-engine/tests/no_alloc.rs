@@ -13,8 +13,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use ecam_core::PointTable;
 use ecam_engine::{
-    AxisConfig, CamAxis, Compare, Coupling, MasterAlign, RampIn, SlaveAlign, StartMode, StopKind,
-    SwitchAt, SyncWindow, TickInput, Zoom,
+    AxisConfig, CamAxis, Compare, Coupling, MasterAlign, OffsetChange, RampIn, SlaveAlign,
+    StartMode, StopKind, SwitchAt, SyncWindow, TickInput, Zoom,
 };
 
 struct Counting;
@@ -149,6 +149,14 @@ fn tick_allocates_nothing() {
                 300 => axis.stop(StopKind::Immediate),
                 301 | 320 => {
                     axis.arm().ok();
+                }
+                500 => {
+                    axis.change_offsets(OffsetChange {
+                        master: 37,
+                        slave: -250,
+                        distance: NonZeroU64::new(400).unwrap(),
+                    })
+                    .ok();
                 }
                 // Table switches: the new table is built (and the old one
                 // taken back) outside the watch; only ticks are watched.
