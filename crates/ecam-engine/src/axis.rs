@@ -7,6 +7,8 @@
 //! windows; the curve lookup is O(1) through the cursor while the master
 //! moves continuously.
 
+use core::num::NonZeroU64;
+
 use ecam_core::{CamCurve, Cursor};
 
 use crate::blend::{Blend, BlendEnd};
@@ -16,13 +18,14 @@ use crate::master::TurnUnwrap;
 use crate::offset_ramp::OffsetRamp;
 use crate::pulse::PulseOutput;
 use crate::ramp::Ramp;
+use crate::scaling::ScalingRamp;
 use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
 use crate::switch::{Pending, Trigger};
 use crate::sync::active_windows;
 use crate::{
     AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, SlaveAlign, StopKind,
-    SwitchAt, SyncWindow, TickInput, TickOutput,
+    SwitchAt, SyncWindow, TickInput, TickOutput, Zoom,
 };
 
 /// A slave axis coupled to a master through a cam curve.
@@ -98,12 +101,24 @@ struct Engaged<C> {
     blend: Option<Blend>,
     /// An offset change being ramped in ([`CamAxis::change_offsets`]).
     offsets: Option<OffsetRamp>,
+    /// A slave-scaling change being ramped in
+    /// ([`CamAxis::change_slave_scaling`]).
+    scaling: Option<ScalingRamp>,
     /// The master followed at the last tick, counts × 2^32 plus the
     /// fraction (where a switch position is crossed from).
     followed: i128,
 }
 
 impl<C> Engaged<C> {
+    /// A table switch, blend, offset or scaling change is under way.
+    fn changing(&self) -> bool {
+        self.offsets.is_some()
+            || self.scaling.is_some()
+            || self.blend.is_some()
+            || self.pending.is_some()
+            || self.queued.is_some()
+    }
+
     /// The engagement in effect at `master`, an offset ramp included.
     fn engagement_at(&self, master: i64) -> Result<Engagement, EngineError> {
         match &self.offsets {
@@ -299,7 +314,9 @@ impl<C: CamCurve> CamAxis<C> {
         };
         Geometry::new(&curve, &self.config)?;
         match &mut self.phase {
-            Phase::Running(engaged) if engaged.offsets.is_some() => Err(EngineError::Busy),
+            Phase::Running(engaged) if engaged.offsets.is_some() || engaged.scaling.is_some() => {
+                Err(EngineError::Busy)
+            }
             Phase::Running(engaged) => {
                 engaged.queued = None;
                 engaged.pending = Some(Pending::new(curve, trigger, blend));
@@ -333,15 +350,41 @@ impl<C: CamCurve> CamAxis<C> {
         let mden = self.geometry.master_den();
         match &mut self.phase {
             Phase::Running(engaged) => {
-                if engaged.offsets.is_some()
-                    || engaged.blend.is_some()
-                    || engaged.pending.is_some()
-                    || engaged.queued.is_some()
-                {
+                if engaged.changing() {
                     return Err(EngineError::Busy);
                 }
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 engaged.offsets = Some(OffsetRamp::new(change, from, mden));
+                Ok(())
+            }
+            _ => Err(EngineError::NotRunning),
+        }
+    }
+
+    /// Changes the slave scaling (slave zoom) of the running cam, ramped
+    /// in over `distance` master counts from the master the axis followed
+    /// last (PLCopen `SlaveScaling` changed in sync; see docs/engine.md,
+    /// "Scaling on the fly"): the command moves from the cam with the old
+    /// scaling to the cam with the new one, position and velocity
+    /// continuous; afterwards it is exactly the cam with the new scaling
+    /// and [`AxisConfig::slave_zoom`] reads the new value.
+    ///
+    /// # Errors
+    /// As [`CamAxis::change_offsets`].
+    pub fn change_slave_scaling(
+        &mut self,
+        zoom: Zoom,
+        distance: NonZeroU64,
+    ) -> Result<(), EngineError> {
+        let target = self.geometry.with_slave_zoom(zoom);
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                if engaged.changing() {
+                    return Err(EngineError::Busy);
+                }
+                let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
+                engaged.scaling = Some(ScalingRamp::new(target, from, distance));
+                self.config.slave_zoom = zoom;
                 Ok(())
             }
             _ => Err(EngineError::NotRunning),
@@ -460,8 +503,15 @@ impl<C: CamCurve> CamAxis<C> {
     /// Ends a run: a table still queued is the one to restart with.
     fn end_run(&mut self, engaged: Engaged<C>) {
         let Engaged {
-            queued, pending, ..
+            queued,
+            pending,
+            scaling,
+            ..
         } = engaged;
+        // The configuration already names the new scaling.
+        if let Some(ramp) = scaling {
+            self.geometry = ramp.target;
+        }
         let next = queued.map(|(curve, _)| curve).or(pending.map(|p| p.curve));
         if let Some(curve) = next
             && let Ok(geometry) = Geometry::new(&curve, &self.config)
@@ -591,6 +641,7 @@ impl<C: CamCurve> CamAxis<C> {
             pending: None,
             blend: None,
             offsets: None,
+            scaling: None,
             followed: i128::from(at) << 32,
         });
         Ok(())
@@ -647,12 +698,25 @@ impl<C: CamCurve> CamAxis<C> {
             &mut self.cursor,
             place,
         )?;
-        let (slave, ratio) = match &engaged.blend {
-            Some(blend) => {
+        let (slave, ratio) = match (&engaged.blend, &engaged.scaling) {
+            (Some(blend), _) => {
                 let blended = blend.command(master)?;
                 (blended.slave, blended.velocity_ratio)
             }
-            None => (cam.slave, cam.velocity_ratio),
+            (None, Some(scaling)) => {
+                let new = engaged.engagement_at(master)?.sample(
+                    &scaling.target,
+                    &self.curve,
+                    &mut self.cursor,
+                    place,
+                )?;
+                scaling.mix(
+                    master,
+                    (cam.slave, cam.velocity_ratio),
+                    (new.slave, new.velocity_ratio),
+                )
+            }
+            (None, None) => (cam.slave, cam.velocity_ratio),
         };
         match engaged
             .ramp
@@ -736,6 +800,7 @@ impl<C: CamCurve> CamAxis<C> {
             || engaged.queued.is_none()
             || engaged.blend.is_some()
             || engaged.offsets.is_some()
+            || engaged.scaling.is_some()
         {
             return Ok(false);
         }
@@ -790,6 +855,12 @@ impl<C: CamCurve> CamAxis<C> {
         {
             engaged.engagement = ramp.apply(&engaged.engagement, master)?;
             engaged.offsets = None;
+        }
+        if let Some(ramp) = engaged.scaling
+            && ramp.finished(master)
+        {
+            self.geometry = ramp.target;
+            engaged.scaling = None;
         }
         let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
         if here.stopped.is_none() && self.switch_at_seam(&mut engaged, here.place)? {
@@ -852,7 +923,10 @@ impl<C: CamCurve> CamAxis<C> {
         let followed = FollowSample {
             cam,
             velocity_ratio,
-            following: !ramping && !blending && engaged.offsets.is_none(),
+            following: !ramping
+                && !blending
+                && engaged.offsets.is_none()
+                && engaged.scaling.is_none(),
             input_offset: engaged.engagement.input_offset(&self.geometry),
             cycle: place.k.saturating_sub(engaged.engagement.k_engage),
         };

@@ -118,6 +118,15 @@ impl Geometry {
         self.mden
     }
 
+    /// The same geometry with another slave zoom.
+    pub(crate) fn with_slave_zoom(&self, zoom: crate::Zoom) -> Self {
+        Self {
+            snum: i128::from(zoom.num()),
+            sden: i128::from(zoom.den()),
+            ..*self
+        }
+    }
+
     /// The zoomed master in table-input units.
     pub(crate) fn zoomed_master(&self, master: i64) -> i128 {
         i128::from(master) * self.mnum

@@ -55,6 +55,7 @@ mod output;
 pub mod plcopen;
 mod pulse;
 mod ramp;
+mod scaling;
 mod start;
 mod stop;
 mod switch;

@@ -10,6 +10,7 @@ mod offsets_on_the_fly;
 mod plcopen;
 mod properties;
 mod safe_motion;
+mod scaling_on_the_fly;
 mod starts_stops;
 mod table_switch;
 
