@@ -21,7 +21,7 @@ use crate::ramp::Ramp;
 use crate::scaling::ScalingRamp;
 use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
-use crate::switch::{Pending, Trigger};
+use crate::switch::{Pending, Takeover, Trigger};
 use crate::sync::active_windows;
 use crate::{
     AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, SlaveAlign, StopKind,
@@ -319,7 +319,7 @@ impl<C: CamCurve> CamAxis<C> {
             }
             Phase::Running(engaged) => {
                 engaged.queued = None;
-                engaged.pending = Some(Pending::new(curve, trigger, blend));
+                engaged.pending = Some(Pending::new(Takeover::Table(curve), trigger, blend));
                 Ok(())
             }
             Phase::Stopping(..) => Err(EngineError::Busy),
@@ -385,6 +385,45 @@ impl<C: CamCurve> CamAxis<C> {
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 engaged.scaling = Some(ScalingRamp::new(target, from, distance));
                 self.config.slave_zoom = zoom;
+                Ok(())
+            }
+            _ => Err(EngineError::NotRunning),
+        }
+    }
+
+    /// Changes the master scaling (master zoom) of the running cam at the
+    /// next whole master count (as [`SwitchAt::Now`]): the cam's phase (its
+    /// table input) and the slave's position are kept there and from then
+    /// on the table runs at the new scaling; with `blend` the velocity
+    /// moves from the old to the new over that master travel, as a table
+    /// switch's blend does. Afterwards [`AxisConfig::master_zoom`] reads
+    /// the new value and the cam is an exact function of the master again.
+    ///
+    /// # Errors
+    /// As [`CamAxis::change_offsets`], and as [`CamAxis::new`] for a
+    /// scaling that does not fit the table.
+    pub fn change_master_scaling(
+        &mut self,
+        zoom: Zoom,
+        blend: Option<NonZeroU64>,
+    ) -> Result<(), EngineError> {
+        Geometry::new(
+            &self.curve,
+            &AxisConfig {
+                master_zoom: zoom,
+                ..self.config
+            },
+        )?;
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                if engaged.changing() {
+                    return Err(EngineError::Busy);
+                }
+                engaged.pending = Some(Pending::new(
+                    Takeover::MasterScaling(zoom),
+                    Trigger::Now,
+                    blend,
+                ));
                 Ok(())
             }
             _ => Err(EngineError::NotRunning),
@@ -512,7 +551,21 @@ impl<C: CamCurve> CamAxis<C> {
         if let Some(ramp) = scaling {
             self.geometry = ramp.target;
         }
-        let next = queued.map(|(curve, _)| curve).or(pending.map(|p| p.curve));
+        let mut next = queued.map(|(curve, _)| curve);
+        match pending.map(|p| p.takeover) {
+            Some(Takeover::Table(curve)) => next = Some(curve),
+            Some(Takeover::MasterScaling(zoom)) => {
+                let config = AxisConfig {
+                    master_zoom: zoom,
+                    ..self.config
+                };
+                if let Ok(geometry) = Geometry::new(&self.curve, &config) {
+                    self.config = config;
+                    self.geometry = geometry;
+                }
+            }
+            None => {}
+        }
         if let Some(curve) = next
             && let Ok(geometry) = Geometry::new(&curve, &self.config)
         {
@@ -647,6 +700,15 @@ impl<C: CamCurve> CamAxis<C> {
         Ok(())
     }
 
+    /// The place of `master` under `geometry` (a one-shot held in its span).
+    fn resolve_on(&self, geometry: &Geometry, engagement: &Engagement, master: i64) -> Place {
+        let mut t = engagement.table_input(geometry, master);
+        if let Some((begin, end)) = engagement.span {
+            t = t.clamp(begin, end);
+        }
+        geometry.locate(t)
+    }
+
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
     /// span or to the end of a requested end-of-cycle stop), whether a
     /// one-shot finished, and whether the stop was reached (and forwards).
@@ -740,24 +802,40 @@ impl<C: CamCurve> CamAxis<C> {
             engaged
                 .engagement
                 .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-        let geometry = Geometry::new(&pending.curve, &self.config)?;
-        let mut cursor = Cursor::new();
-        let config = AxisConfig {
-            slave_align: SlaveAlign::Relative,
-            ..self.config
-        };
-        let engagement = Engagement::new(
-            &geometry,
-            &config,
-            &pending.curve,
-            &mut cursor,
-            at,
-            old.slave,
-        )?;
-        engaged.engagement = engagement;
-        self.geometry = geometry;
-        self.cursor = cursor;
-        self.retired = Some(core::mem::replace(&mut self.curve, pending.curve));
+        match pending.takeover {
+            Takeover::Table(curve) => {
+                let geometry = Geometry::new(&curve, &self.config)?;
+                let mut cursor = Cursor::new();
+                let config = AxisConfig {
+                    slave_align: SlaveAlign::Relative,
+                    ..self.config
+                };
+                let engagement =
+                    Engagement::new(&geometry, &config, &curve, &mut cursor, at, old.slave)?;
+                engaged.engagement = engagement;
+                self.geometry = geometry;
+                self.cursor = cursor;
+                self.retired = Some(core::mem::replace(&mut self.curve, curve));
+            }
+            Takeover::MasterScaling(zoom) => {
+                let config = AxisConfig {
+                    master_zoom: zoom,
+                    ..self.config
+                };
+                let geometry = Geometry::new(&self.curve, &config)?;
+                let mut engagement =
+                    engaged
+                        .engagement
+                        .with_master_rescaled(&self.geometry, &geometry, at)?;
+                let place = self.resolve_on(&geometry, &engagement, at);
+                let new = engagement.sample(&geometry, &self.curve, &mut self.cursor, place)?;
+                // Anchored: the new table unit may round the phase.
+                engagement.shift_output(i128::from(old.slave) - i128::from(new.slave))?;
+                engaged.engagement = engagement;
+                self.geometry = geometry;
+                self.config = config;
+            }
+        }
         engaged.blend = match pending.blend {
             Some(distance) => {
                 let mut ends = [BlendEnd {

@@ -428,6 +428,36 @@ impl Engagement {
         })
     }
 
+    /// The same engagement on `new`, a geometry that differs from `old`
+    /// only in its master zoom, with the table input at master `at` kept
+    /// (to the nearest new table unit): the cam's phase is continuous.
+    pub(crate) fn with_master_rescaled(
+        &self,
+        old: &Geometry,
+        new: &Geometry,
+        at: i64,
+    ) -> Result<Self, EngineError> {
+        let rescale = |t: i128| -> Result<i128, EngineError> {
+            let scaled = mul_exact(t, new.mden)
+                .and_then(|v| v.checked_mul(2))
+                .and_then(|v| v.checked_add(old.mden))
+                .ok_or(EngineError::SlaveOverflow)?;
+            Ok(div_floor(scaled, 2 * old.mden).0)
+        };
+        let t_new = rescale(self.table_input(old, at))?;
+        let span = match self.span {
+            Some((begin, end)) => Some((rescale(begin)?, rescale(end)?)),
+            None => None,
+        };
+        Ok(Self {
+            input_offset_num: t_new
+                .checked_sub(new.zoomed_master(at))
+                .ok_or(EngineError::SlaveOverflow)?,
+            span,
+            ..*self
+        })
+    }
+
     /// Moves the whole output by `delta` pulses (a blend that ended
     /// `delta` off the cam it blended onto).
     pub(crate) fn shift_output(&mut self, delta: i128) -> Result<(), EngineError> {

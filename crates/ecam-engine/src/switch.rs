@@ -9,6 +9,8 @@
 
 use core::num::NonZeroU64;
 
+use crate::Zoom;
+
 /// Where a table handed to a running cam takes over.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SwitchAt {
@@ -44,19 +46,29 @@ pub(crate) enum Trigger {
     Now,
 }
 
-/// A table waiting for its position (or the next tick).
+/// What takes over when a waiting switch fires.
+#[derive(Clone, Debug)]
+pub(crate) enum Takeover<C> {
+    /// A new table.
+    Table(C),
+    /// The same table under a new master zoom
+    /// ([`crate::CamAxis::change_master_scaling`]).
+    MasterScaling(Zoom),
+}
+
+/// A table (or master scaling) waiting for its position or the next tick.
 #[derive(Clone, Debug)]
 pub(crate) struct Pending<C> {
-    pub(crate) curve: C,
+    pub(crate) takeover: Takeover<C>,
     trigger: Trigger,
     pub(crate) blend: Option<NonZeroU64>,
 }
 
 impl<C> Pending<C> {
     /// A table waiting for `trigger`.
-    pub(crate) fn new(curve: C, trigger: Trigger, blend: Option<NonZeroU64>) -> Self {
+    pub(crate) fn new(takeover: Takeover<C>, trigger: Trigger, blend: Option<NonZeroU64>) -> Self {
         Self {
-            curve,
+            takeover,
             trigger,
             blend,
         }
@@ -108,10 +120,10 @@ mod tests {
 
     #[test]
     fn a_position_fires_where_it_is_crossed_either_way() {
-        let mut p = Pending::new((), Trigger::Position(100), None);
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         assert_eq!(p.fires(0, 99 * ONE, false), None);
         assert_eq!(p.fires(99 * ONE, 150 * ONE, false), Some(100));
-        let mut p = Pending::new((), Trigger::Position(100), None);
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         // Backwards, between 101 and 100: not yet.
         assert_eq!(p.fires(101 * ONE, 100 * ONE + 5, false), None);
         assert_eq!(p.fires(100 * ONE + 5, 100 * ONE, false), Some(100));
@@ -119,18 +131,18 @@ mod tests {
 
     #[test]
     fn at_once_takes_the_first_whole_count_reached() {
-        let mut p = Pending::new((), Trigger::Now, None);
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
         assert_eq!(p.fires(7 * ONE, 9 * ONE, false), Some(7));
-        let mut p = Pending::new((), Trigger::Now, None);
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
         assert_eq!(p.fires(7 * ONE + 3, 7 * ONE + 9, false), None);
         assert_eq!(p.fires(7 * ONE + 9, 8 * ONE + 1, false), Some(8));
-        let mut p = Pending::new((), Trigger::Now, None);
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
         assert_eq!(p.fires(-7 * ONE + 3, -8 * ONE, false), Some(-7));
     }
 
     #[test]
     fn a_switch_due_during_a_blend_waits_for_its_end() {
-        let mut p = Pending::new((), Trigger::Position(100), None);
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         assert_eq!(p.fires(90 * ONE, 110 * ONE, true), None);
         assert_eq!(p.fires(110 * ONE, 120 * ONE, true), None);
         assert_eq!(p.fires(120 * ONE, 130 * ONE, false), Some(120));

@@ -47,6 +47,45 @@ fn a_slave_scaling_is_ramped_in_and_ends_exact() {
     assert!(axis.status().following);
 }
 
+#[test]
+fn a_master_scaling_keeps_phase_and_position() {
+    let table = PointTable::from_pairs(&[(0, 0), (1000, 1000)]).unwrap();
+    let config = AxisConfig {
+        coupling: Coupling::Repeat { min_stroke: 1 },
+        ..AxisConfig::default()
+    };
+    let mut axis = CamAxis::new(table.clone(), config).unwrap();
+    axis.arm().unwrap();
+    for m in 0..=500 {
+        let _ = axis.tick(&TickInput::at(m, TICK_US));
+    }
+    let double = Zoom::new(2, 1).unwrap();
+    axis.change_master_scaling(double, None).unwrap();
+    let out = axis.tick(&TickInput::at(600, TICK_US));
+    assert!(out.events.table_switched);
+    // From master 500 (slave 500) on, two table counts per master count.
+    assert_eq!(out.slave, 700);
+    assert_eq!(axis.config().master_zoom, double);
+
+    // With a blend the velocity goes from 1 to 2 per count without a step.
+    let mut axis = CamAxis::new(table, config).unwrap();
+    axis.arm().unwrap();
+    for m in 0..=500 {
+        let _ = axis.tick(&TickInput::at(m, TICK_US));
+    }
+    axis.change_master_scaling(double, NonZeroU64::new(400))
+        .unwrap();
+    let mut last = axis.commanded();
+    let mut steps = Vec::new();
+    for m in 501..=1200 {
+        let out = axis.tick(&TickInput::at(m, TICK_US));
+        steps.push(out.slave - last);
+        last = out.slave;
+    }
+    assert!(steps.iter().all(|s| (1..=2).contains(s)), "{steps:?}");
+    assert!(steps[450..].iter().all(|&s| s == 2));
+}
+
 fn any_table() -> impl Strategy<Value = PointTable> {
     prop::collection::vec((1i64..400, -300i64..900), 1..8).prop_map(|steps| {
         let mut points = vec![(0i64, 0i64)];

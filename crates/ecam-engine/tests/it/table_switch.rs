@@ -231,7 +231,8 @@ proptest! {
         hz in prop_oneof![Just(200_000i64), 1_000i64..200_000],
         motion in prop::collection::vec((-20_000i64..60_000, 1u32..300), 1..6),
         switch_tick in 0usize..200,
-        mode in 0u8..2,
+        mode in 0u8..3,
+        rezoom in 1u16..5,
         position_offset in -300i64..300,
         distance in prop_oneof![Just(0u64), 1u64..3000],
         every in prop_oneof![Just(1u32), 2u32..20],
@@ -249,6 +250,8 @@ proptest! {
         };
         let mut axis = CamAxis::new(old, config).unwrap();
         axis.arm().unwrap();
+        // Mode 2 changes the master scaling instead of the table.
+        let new_steep = if mode == 2 { old_steep * f64::from(rezoom) / f64::from(zoom.0) } else { new_steep };
         let steepest = old_steep.max(new_steep) * f64::from(zoom.0) / f64::from(zoom.1);
 
         let mut micro: i64 = 0;
@@ -269,7 +272,18 @@ proptest! {
                         blend: NonZeroU64::new(distance),
                     },
                 };
-                axis.switch_curve(new.clone(), at).unwrap();
+                if mode == 2 {
+                    // Before the first tick the cam is not running yet.
+                    match axis.change_master_scaling(
+                        Zoom::new(rezoom, 1).unwrap(),
+                        NonZeroU64::new(distance),
+                    ) {
+                        Ok(()) | Err(EngineError::NotRunning) => {}
+                        Err(e) => panic!("{e}"),
+                    }
+                } else {
+                    axis.switch_curve(new.clone(), at).unwrap();
+                }
             }
             micro += speed * i64::from(TICK_US);
             if i as u64 % u64::from(every) == 0 {
