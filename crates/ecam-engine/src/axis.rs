@@ -18,14 +18,16 @@ use crate::master::TurnUnwrap;
 use crate::offset_ramp::OffsetRamp;
 use crate::pulse::PulseOutput;
 use crate::ramp::Ramp;
+use crate::ramp_in::{RampDirection, RampInLimits};
 use crate::scaling::ScalingRamp;
+use crate::speed::MasterSpeed;
 use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
 use crate::switch::{Pending, Takeover, Trigger};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, SlaveAlign, StopKind,
-    SwitchAt, SyncWindow, TickInput, TickOutput, Zoom,
+    AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, RampIn, SlaveAlign,
+    StopKind, SwitchAt, SyncWindow, TickInput, TickOutput, Zoom,
 };
 
 /// A slave axis coupled to a master through a cam curve.
@@ -54,6 +56,10 @@ pub struct CamAxis<C> {
     last_start_input: bool,
     /// Events of a stop that took effect between ticks, reported by the next tick.
     pending_events: Events,
+    /// Limits a ramp-in keeps to ([`CamAxis::set_ramp_in_limits`]).
+    ramp_limits: Option<RampInLimits>,
+    /// The master's speed for sizing a ramp-in (see `speed.rs`).
+    speed: MasterSpeed,
     last: TickOutput,
 }
 
@@ -170,6 +176,8 @@ impl<C: CamCurve> CamAxis<C> {
             pulse: PulseOutput::at(0),
             last_start_input: false,
             pending_events: Events::default(),
+            ramp_limits: None,
+            speed: MasterSpeed::new(),
             last: TickOutput {
                 direction_forward: true,
                 ..TickOutput::default()
@@ -445,6 +453,17 @@ impl<C: CamCurve> CamAxis<C> {
         self.retired.take()
     }
 
+    /// Sets the limits the next ramp-ins keep to (PLCopen ramp-in with
+    /// limits, `ramp_in_pos`, `ramp_in_neg`; see docs/engine.md, "Ramp-in
+    /// under limits"): at engage the ramp's master distance becomes the
+    /// longer of [`AxisConfig::ramp_in`]'s and the one the limits need at
+    /// the master's speed then, and the gap is closed in the allowed
+    /// direction. With limits a ramp-in happens even without
+    /// [`AxisConfig::ramp_in`]. `None` removes them.
+    pub fn set_ramp_in_limits(&mut self, limits: Option<RampInLimits>) {
+        self.ramp_limits = limits;
+    }
+
     /// Changes the sync windows; allowed while running (document 003
     /// function register 4 may change during execution).
     pub fn set_sync_windows(&mut self, windows: [SyncWindow; 4]) {
@@ -599,6 +618,7 @@ impl<C: CamCurve> CamAxis<C> {
             .tracker
             .update(reading, input.master_fraction, input.dt_us);
         let master = estimate.counts;
+        self.speed.update(estimate, input.dt_us);
         let edge = input.start_input && !self.last_start_input;
         self.last_start_input = input.start_input;
 
@@ -672,7 +692,7 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     fn engage(&mut self, at: i64) -> Result<(), EngineError> {
-        let engagement = Engagement::new(
+        let mut engagement = Engagement::new(
             &self.geometry,
             &self.config,
             &self.curve,
@@ -683,12 +703,13 @@ impl<C: CamCurve> CamAxis<C> {
         let place = self
             .geometry
             .locate(engagement.table_input(&self.geometry, at));
+        let ramp_in = match self.ramp_limits {
+            Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
+            None => self.config.ramp_in,
+        };
         self.phase = Phase::Running(Engaged {
             engagement,
-            ramp: self
-                .config
-                .ramp_in
-                .map(|ramp| Ramp::new(ramp, at, self.commanded)),
+            ramp: ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded)),
             place,
             queued: None,
             pending: None,
@@ -707,6 +728,57 @@ impl<C: CamCurve> CamAxis<C> {
             t = t.clamp(begin, end);
         }
         geometry.locate(t)
+    }
+
+    /// The ramp-in that keeps to `limits` for the engagement at `place`,
+    /// after moving its target by whole strokes for a restricted direction.
+    fn limited_ramp(
+        &mut self,
+        limits: RampInLimits,
+        engagement: &mut Engagement,
+        place: Place,
+    ) -> Result<Option<RampIn>, EngineError> {
+        let hold = i128::from(self.commanded);
+        let mut cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let wrong_way = |slave: i64| {
+            let gap = i128::from(slave) - hold;
+            match limits.direction {
+                RampDirection::Either => false,
+                RampDirection::Positive => gap < 0,
+                RampDirection::Negative => gap > 0,
+            }
+        };
+        if wrong_way(cam.slave) {
+            let stroke = self.geometry.stroke_pulses();
+            if stroke == 0.0 {
+                return Err(EngineError::RampDirection);
+            }
+            let gap = (i128::from(cam.slave) - hold) as f64;
+            let strokes = libm::ceil(libm::fabs(gap / stroke));
+            let toward = match limits.direction {
+                RampDirection::Negative => -1.0,
+                _ => 1.0,
+            };
+            let n = strokes * toward * libm::copysign(1.0, stroke);
+            engagement.add_strokes(n as i128);
+            cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            if wrong_way(cam.slave) {
+                // Rounding left it a pulse short: one stroke more.
+                engagement.add_strokes(libm::copysign(1.0, n) as i128);
+                cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            }
+        }
+        let gap = (i128::from(cam.slave) - hold) as f64;
+        let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
+        let configured = self.config.ramp_in.map(|r| r.distance.get());
+        Ok(match (needed, configured) {
+            (Some(a), Some(b)) => NonZeroU64::new(a.max(b)),
+            (Some(d), None) | (None, Some(d)) => NonZeroU64::new(d),
+            // A master at rest gives no speed to size the ramp for: one
+            // master count per 1/1.875 pulse of gap.
+            (None, None) => NonZeroU64::new(libm::ceil(1.875 * libm::fabs(gap)).max(1.0) as u64),
+        }
+        .map(|distance| RampIn { distance }))
     }
 
     /// Where the cam stands for `master`: the place (clamped to a one-shot's

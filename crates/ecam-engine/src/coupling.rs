@@ -113,6 +113,11 @@ impl Geometry {
         })
     }
 
+    /// One stroke in output pulses (0 for a cam that does not accumulate).
+    pub(crate) fn stroke_pulses(&self) -> f64 {
+        to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+    }
+
     /// The master zoom's denominator (the unit of table-input offsets).
     pub(crate) fn master_den(&self) -> i128 {
         self.mden
@@ -456,6 +461,12 @@ impl Engagement {
             span,
             ..*self
         })
+    }
+
+    /// Adds `n` whole strokes to the output (a direction-restricted
+    /// ramp-in's target on a repeat cam).
+    pub(crate) fn add_strokes(&mut self, n: i128) {
+        self.shift = self.shift.saturating_add(n);
     }
 
     /// Moves the whole output by `delta` pulses (a blend that ended

@@ -31,6 +31,12 @@ pub enum EngineError {
     NoSeam,
     /// The request needs a running cam (e.g. offsets changed on the fly).
     NotRunning,
+    /// A ramp-in cannot keep to its limits: the cam alone, at the master's
+    /// speed, needs more velocity than the limit leaves for a catch-up.
+    RampInLimits,
+    /// A ramp-in restricted to one direction cannot close its gap that
+    /// way (a cam without a stroke to add).
+    RampDirection,
 }
 
 use ecam_core::{CODE_PARAMETER, CODE_TABLE};
@@ -47,7 +53,9 @@ impl EngineError {
             | Self::SlaveOverflow
             | Self::MasterStep
             | Self::NoSeam
-            | Self::NotRunning => CODE_PARAMETER,
+            | Self::NotRunning
+            | Self::RampInLimits
+            | Self::RampDirection => CODE_PARAMETER,
         }
     }
 }
@@ -76,6 +84,12 @@ impl fmt::Display for EngineError {
             Self::NoSeam => "a normal cam has no seam: stop it before changing its table",
             Self::NotRunning => {
                 "the cam is not running: engage it first, or set this in the configuration"
+            }
+            Self::RampInLimits => {
+                "the ramp-in cannot keep to its velocity limit at this master speed; the cam was stopped"
+            }
+            Self::RampDirection => {
+                "the ramp-in cannot close its gap in the allowed direction (no stroke to add); the cam was stopped"
             }
         };
         write!(f, "{text} (error {})", self.code())

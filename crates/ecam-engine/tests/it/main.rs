@@ -9,6 +9,7 @@ mod master_sources;
 mod offsets_on_the_fly;
 mod plcopen;
 mod properties;
+mod ramp_in_limits;
 mod safe_motion;
 mod scaling_on_the_fly;
 mod starts_stops;
