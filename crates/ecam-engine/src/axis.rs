@@ -11,6 +11,7 @@ use core::num::NonZeroU64;
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::MissedActivation;
 use crate::blend::{Blend, BlendEnd};
 use crate::config::effective_frequency;
 use crate::coupling::{Engagement, Geometry, Place, Sample};
@@ -58,6 +59,10 @@ pub struct CamAxis<C> {
     pending_events: Events,
     /// Limits a ramp-in keeps to ([`CamAxis::set_ramp_in_limits`]).
     ramp_limits: Option<RampInLimits>,
+    /// What a backward pass of an activation position does.
+    missed_policy: MissedActivation,
+    /// An activation was missed since the last arm, engage or switch.
+    missed: bool,
     /// The master's speed for sizing a ramp-in (see `speed.rs`).
     speed: MasterSpeed,
     last: TickOutput,
@@ -177,6 +182,8 @@ impl<C: CamCurve> CamAxis<C> {
             last_start_input: false,
             pending_events: Events::default(),
             ramp_limits: None,
+            missed_policy: MissedActivation::StartNow,
+            missed: false,
             speed: MasterSpeed::new(),
             last: TickOutput {
                 direction_forward: true,
@@ -464,6 +471,19 @@ impl<C: CamCurve> CamAxis<C> {
         self.ramp_limits = limits;
     }
 
+    /// Chooses what a backward pass of an activation position does (a
+    /// [`crate::StartMode::AtMasterPosition`] start, a
+    /// [`SwitchAt::MasterPosition`] switch): take effect there
+    /// ([`MissedActivation::StartNow`], the default and the behaviour
+    /// before this setting) or wait for the next forward pass
+    /// ([`MissedActivation::NextPass`]). Either way the tick reports
+    /// `events.activation_missed` and `activation_missed` stays set until
+    /// the next arm, engage or switch. Takes effect at the next arm for
+    /// starts, at once for switches.
+    pub fn set_missed_activation(&mut self, policy: MissedActivation) {
+        self.missed_policy = policy;
+    }
+
     /// Changes the sync windows; allowed while running (document 003
     /// function register 4 may change during execution).
     pub fn set_sync_windows(&mut self, windows: [SyncWindow; 4]) {
@@ -510,8 +530,9 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Running(_) | Phase::Stopping(..) => Err(EngineError::Busy),
             Phase::Armed(_) => Ok(()),
             Phase::Idle | Phase::Finished => {
+                self.missed = false;
                 self.phase = Phase::Armed(Armed {
-                    watch: StartWatch::arm(self.config.start),
+                    watch: StartWatch::arm_with(self.config.start, self.missed_policy),
                     previous: None,
                     delaying: false,
                 });
@@ -648,6 +669,7 @@ impl<C: CamCurve> CamAxis<C> {
                 armed.previous = Some(master);
                 let step = armed.watch.step(previous, master, edge, input.watch);
                 armed.delaying |= step == StartStep::Delaying;
+                events.activation_missed |= armed.watch.take_missed();
                 step
             }
             _ => StartStep::Waiting,
@@ -1028,11 +1050,13 @@ impl<C: CamCurve> CamAxis<C> {
             let blending = engaged.blend.is_some();
             let previous = engaged.followed;
             let now = (i128::from(master) << 32) | i128::from(fraction);
-            if let Some(at) = engaged
+            let policy = self.missed_policy;
+            let fired = engaged
                 .pending
                 .as_mut()
-                .and_then(|p| p.fires(previous, now, blending))
-            {
+                .map(|p| p.fires(previous, now, blending, policy));
+            events.activation_missed |= fired.is_some_and(|f| f.missed);
+            if let Some(at) = fired.and_then(|f| f.at) {
                 self.switch_at(&mut engaged, at)?;
                 events.table_switched = true;
                 here = self.resolve(&engaged.engagement, None, master);
@@ -1141,6 +1165,11 @@ impl<C: CamCurve> CamAxis<C> {
         out.in_sync = out.sync != 0;
         out.initialised = state.is_active();
         out.busy = out.initialised || out.backlog != 0;
+        if events.engaged || events.table_switched {
+            self.missed = false;
+        }
+        self.missed |= events.activation_missed;
+        out.activation_missed = self.missed;
         out.events = events;
         out.fault = fault;
         self.last = out;

@@ -77,7 +77,7 @@ pub use offset_ramp::OffsetChange;
 pub use output::{AxisState, Events, TickOutput};
 pub use ramp_in::{RampDirection, RampInLimits};
 pub use stop::StopKind;
-pub use switch::SwitchAt;
+pub use switch::{MissedActivation, SwitchAt};
 pub use sync::SyncWindow;
 pub use tracker::{MasterFilter, MasterPosition, MasterTracker};
 pub use zoom::Zoom;

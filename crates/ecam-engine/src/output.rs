@@ -58,6 +58,10 @@ pub struct Events {
     /// [`crate::CamAxis::switch_curve`] took over at its master position
     /// or at once.
     pub table_switched: bool,
+    /// The master passed an activation position (a start or switch at a
+    /// master position) backwards; what followed is the axis'
+    /// [`crate::MissedActivation`] policy.
+    pub activation_missed: bool,
 }
 
 impl Events {
@@ -69,6 +73,7 @@ impl Events {
         self.stopped |= other.stopped;
         self.seam_jump |= other.seam_jump;
         self.table_switched |= other.table_switched;
+        self.activation_missed |= other.activation_missed;
     }
 }
 
@@ -121,6 +126,9 @@ pub struct TickOutput {
     /// Document 002 `CamOutputOffset`: commanded minus the zoomed table
     /// value in the cycle (includes accumulated strokes).
     pub output_offset: i64,
+    /// An activation position was passed backwards since the last arm,
+    /// engage or switch (the status of `events.activation_missed`).
+    pub activation_missed: bool,
     /// Set on the tick a runtime fault stopped the cam.
     pub fault: Option<EngineError>,
 }

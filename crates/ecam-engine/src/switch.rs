@@ -11,6 +11,19 @@ use core::num::NonZeroU64;
 
 use crate::Zoom;
 
+/// What happens when the master passes an activation position (a start
+/// at a master position, a table switch at a master position) backwards,
+/// e.g. when it reverses: the axis reports it either way
+/// (`Events::activation_missed`, `TickOutput::activation_missed`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MissedActivation {
+    /// Take effect there all the same (the behaviour without a policy).
+    #[default]
+    StartNow,
+    /// Keep waiting for the next forward pass.
+    NextPass,
+}
+
 /// Where a table handed to a running cam takes over.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SwitchAt {
@@ -56,6 +69,15 @@ pub(crate) enum Takeover<C> {
     MasterScaling(Zoom),
 }
 
+/// What a waiting switch did in one tick.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Fired {
+    /// It takes effect at this master position.
+    pub(crate) at: Option<i64>,
+    /// Its position was passed backwards.
+    pub(crate) missed: bool,
+}
+
 /// A table (or master scaling) waiting for its position or the next tick.
 #[derive(Clone, Debug)]
 pub(crate) struct Pending<C> {
@@ -82,12 +104,21 @@ impl<C> Pending<C> {
     /// (an at-once switch then waits for the next whole count). While
     /// `blending`, a due switch waits for the blend to end and then takes
     /// effect as an at-once switch.
-    pub(crate) fn fires(&mut self, previous: i128, now: i128, blending: bool) -> Option<i64> {
+    pub(crate) fn fires(
+        &mut self,
+        previous: i128,
+        now: i128,
+        blending: bool,
+        policy: MissedActivation,
+    ) -> Fired {
         let (low, high) = (previous.min(now), previous.max(now));
+        let mut missed = false;
         let at = match self.trigger {
             Trigger::Position(p) => {
                 let fixed = i128::from(p) << 32;
-                (low <= fixed && fixed <= high).then_some(p)
+                let passed = low <= fixed && fixed <= high;
+                missed = passed && now < previous;
+                (passed && (!missed || policy == MissedActivation::StartNow)).then_some(p)
             }
             Trigger::Now => {
                 // The first whole count the master reaches from `previous`.
@@ -106,9 +137,9 @@ impl<C> Pending<C> {
         };
         if at.is_some() && blending {
             self.trigger = Trigger::Now;
-            return None;
+            return Fired { at: None, missed };
         }
-        at
+        Fired { at, missed }
     }
 }
 
@@ -121,30 +152,103 @@ mod tests {
     #[test]
     fn a_position_fires_where_it_is_crossed_either_way() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
-        assert_eq!(p.fires(0, 99 * ONE, false), None);
-        assert_eq!(p.fires(99 * ONE, 150 * ONE, false), Some(100));
+        assert_eq!(
+            p.fires(0, 99 * ONE, false, MissedActivation::StartNow).at,
+            None
+        );
+        assert_eq!(
+            p.fires(99 * ONE, 150 * ONE, false, MissedActivation::StartNow)
+                .at,
+            Some(100)
+        );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         // Backwards, between 101 and 100: not yet.
-        assert_eq!(p.fires(101 * ONE, 100 * ONE + 5, false), None);
-        assert_eq!(p.fires(100 * ONE + 5, 100 * ONE, false), Some(100));
+        assert_eq!(
+            p.fires(101 * ONE, 100 * ONE + 5, false, MissedActivation::StartNow)
+                .at,
+            None
+        );
+        assert_eq!(
+            p.fires(100 * ONE + 5, 100 * ONE, false, MissedActivation::StartNow)
+                .at,
+            Some(100)
+        );
     }
 
     #[test]
     fn at_once_takes_the_first_whole_count_reached() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
-        assert_eq!(p.fires(7 * ONE, 9 * ONE, false), Some(7));
+        assert_eq!(
+            p.fires(7 * ONE, 9 * ONE, false, MissedActivation::StartNow)
+                .at,
+            Some(7)
+        );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
-        assert_eq!(p.fires(7 * ONE + 3, 7 * ONE + 9, false), None);
-        assert_eq!(p.fires(7 * ONE + 9, 8 * ONE + 1, false), Some(8));
+        assert_eq!(
+            p.fires(7 * ONE + 3, 7 * ONE + 9, false, MissedActivation::StartNow)
+                .at,
+            None
+        );
+        assert_eq!(
+            p.fires(7 * ONE + 9, 8 * ONE + 1, false, MissedActivation::StartNow)
+                .at,
+            Some(8)
+        );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
-        assert_eq!(p.fires(-7 * ONE + 3, -8 * ONE, false), Some(-7));
+        assert_eq!(
+            p.fires(-7 * ONE + 3, -8 * ONE, false, MissedActivation::StartNow)
+                .at,
+            Some(-7)
+        );
+    }
+
+    #[test]
+    fn a_backward_pass_is_reported_and_follows_the_policy() {
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
+        let fired = p.fires(120 * ONE, 90 * ONE, false, MissedActivation::NextPass);
+        assert_eq!(
+            fired,
+            Fired {
+                at: None,
+                missed: true
+            }
+        );
+        let fired = p.fires(90 * ONE, 130 * ONE, false, MissedActivation::NextPass);
+        assert_eq!(
+            fired,
+            Fired {
+                at: Some(100),
+                missed: false
+            }
+        );
+        let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
+        let fired = p.fires(120 * ONE, 90 * ONE, false, MissedActivation::StartNow);
+        assert_eq!(
+            fired,
+            Fired {
+                at: Some(100),
+                missed: true
+            }
+        );
     }
 
     #[test]
     fn a_switch_due_during_a_blend_waits_for_its_end() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
-        assert_eq!(p.fires(90 * ONE, 110 * ONE, true), None);
-        assert_eq!(p.fires(110 * ONE, 120 * ONE, true), None);
-        assert_eq!(p.fires(120 * ONE, 130 * ONE, false), Some(120));
+        assert_eq!(
+            p.fires(90 * ONE, 110 * ONE, true, MissedActivation::StartNow)
+                .at,
+            None
+        );
+        assert_eq!(
+            p.fires(110 * ONE, 120 * ONE, true, MissedActivation::StartNow)
+                .at,
+            None
+        );
+        assert_eq!(
+            p.fires(120 * ONE, 130 * ONE, false, MissedActivation::StartNow)
+                .at,
+            Some(120)
+        );
     }
 }

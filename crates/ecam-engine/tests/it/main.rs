@@ -6,6 +6,7 @@ mod doc001_repeat;
 mod doc002_profile;
 mod doc003_decam;
 mod master_sources;
+mod missed_activation;
 mod offsets_on_the_fly;
 mod plcopen;
 mod properties;
