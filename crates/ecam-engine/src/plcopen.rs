@@ -10,7 +10,15 @@
 //! - `MC_CamOut` stops the slave where it is (the engine has no velocity
 //!   mode to continue at the last speed);
 //! - `EndOfProfile` pulses for one cycle each time a cycle of the table
-//!   completes, and when a non-periodic table ends.
+//!   completes, and when a non-periodic table ends;
+//! - `InSync` is set once the slave follows the cam (ramp-in, blend and
+//!   offset or scaling ramps done) *and* no pulses are owed;
+//! - `MC_CamIn` while a cam is engaged changes it on the fly: a table
+//!   selected with [`McCamAxis::select_table`] takes over as `BufferMode`
+//!   and `ActivationMode` say (with a velocity blend over
+//!   [`CamIn::blend`]), and changed offsets or scalings are ramped in over
+//!   the same distance, never stepped. See docs/engine.md, "PLCopen
+//!   mapping".
 //!
 //! ```
 //! use ecam_core::PointTable;
@@ -33,9 +41,31 @@ use core::num::NonZeroU64;
 use ecam_core::CamCurve;
 
 use crate::{
-    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, RampIn, SlaveAlign, StartMode,
-    StopKind, TickInput, TickOutput, Zoom,
+    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, OffsetChange, RampIn, SlaveAlign,
+    StartMode, StopKind, SwitchAt, TickInput, TickOutput, Zoom,
 };
+
+/// `MC_CamIn` `BufferMode` for a cam-in while a cam is engaged.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BufferMode {
+    /// Take over as `ActivationMode` says (at once by default).
+    #[default]
+    Aborting,
+    /// Take over when the running cam's cycle ends (the next seam).
+    Buffered,
+}
+
+/// `MC_CamIn` `ActivationMode`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ActivationMode {
+    /// Now (idle: on the next cycle; engaged: at once).
+    #[default]
+    Immediate,
+    /// When the master reaches this position.
+    AtMasterPosition(i64),
+    /// At the start of the next table cycle (engaged: the next seam).
+    NextCycle,
+}
 
 /// `MC_CamTableSelect`: how the selected table is interpreted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,6 +121,13 @@ pub struct CamIn {
     pub slave_scaling: Zoom,
     /// How the slave engages.
     pub start_mode: CamInStartMode,
+    /// When the coupling starts (or, engaged, the new table takes over).
+    pub activation: ActivationMode,
+    /// Engaged: how the new table relates to the running one.
+    pub buffer_mode: BufferMode,
+    /// Engaged: master counts over which a new table is blended in and
+    /// changed offsets or scalings are ramped in.
+    pub blend: NonZeroU64,
 }
 
 impl Default for CamIn {
@@ -101,9 +138,18 @@ impl Default for CamIn {
             master_scaling: Zoom::ONE,
             slave_scaling: Zoom::ONE,
             start_mode: CamInStartMode::Absolute,
+            activation: ActivationMode::Immediate,
+            buffer_mode: BufferMode::Aborting,
+            blend: DEFAULT_BLEND,
         }
     }
 }
+
+/// The default [`CamIn::blend`]: 1000 master counts.
+pub const DEFAULT_BLEND: NonZeroU64 = match NonZeroU64::new(1000) {
+    Some(v) => v,
+    None => NonZeroU64::MIN,
+};
 
 /// `MC_CamOut`: disengage the slave (it holds its position).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -112,7 +158,8 @@ pub struct CamOut;
 /// The outputs of the cam blocks after one cycle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CamStatus {
-    /// `InSync`: the slave follows the cam (any ramp-in done).
+    /// `InSync`: the slave follows the cam (any ramp-in, blend or ramped
+    /// change done) and no pulses are owed.
     pub in_sync: bool,
     /// `EndOfProfile`: a table cycle (or the non-periodic table) ended this cycle.
     pub end_of_profile: bool,
@@ -131,6 +178,10 @@ pub struct CamStatus {
 pub struct McCamAxis<C> {
     axis: CamAxis<C>,
     select: CamTableSelect,
+    /// A table selected while engaged, for the next `cam_in`.
+    next_table: Option<C>,
+    /// The inputs of the cam-in that engaged (offsets and scalings in effect).
+    engaged_with: Option<CamIn>,
 }
 
 impl<C: CamCurve> McCamAxis<C> {
@@ -143,6 +194,8 @@ impl<C: CamCurve> McCamAxis<C> {
         Ok(Self {
             axis: CamAxis::new(curve, AxisConfig::default())?,
             select,
+            next_table: None,
+            engaged_with: None,
         })
     }
 
@@ -158,11 +211,47 @@ impl<C: CamCurve> McCamAxis<C> {
         Ok(())
     }
 
-    /// `MC_CamIn`: engage on the next cycle.
+    /// `MC_CamTableSelect` with a table (`CamTableID`): idle, the table
+    /// replaces the current one at once; engaged, it waits for the next
+    /// [`McCamAxis::cam_in`], which switches to it on the fly. The
+    /// interpretation (`select`) can only change while idle.
     ///
     /// # Errors
-    /// [`EngineError::Busy`] while a cam is engaged.
+    /// As [`CamAxis::new`] for a table that does not fit;
+    /// [`EngineError::Busy`] for a different `select` while engaged.
+    pub fn select_table(&mut self, curve: C, select: CamTableSelect) -> Result<(), EngineError> {
+        if self.axis.state().is_active() {
+            if select != self.select {
+                return Err(EngineError::Busy);
+            }
+            crate::coupling::Geometry::new(&curve, self.axis.config())?;
+            self.next_table = Some(curve);
+            return Ok(());
+        }
+        self.axis.queue_curve(curve)?;
+        self.select = select;
+        Ok(())
+    }
+
+    /// The table a switch replaced, for the caller to take back.
+    pub fn take_retired_table(&mut self) -> Option<C> {
+        self.axis.take_retired_curve()
+    }
+
+    /// `MC_CamIn`. Idle: engage as `ActivationMode` says. Engaged: switch
+    /// to a table selected with [`McCamAxis::select_table`] (buffered: at
+    /// the next seam; aborting: at once or at the activation position,
+    /// blended over [`CamIn::blend`]), else ramp changed offsets and
+    /// scalings in over [`CamIn::blend`] (one change at a time).
+    ///
+    /// # Errors
+    /// Engaged: [`EngineError::Busy`] while an earlier change still runs,
+    /// or when offsets and a scaling change together; as
+    /// [`CamAxis::switch_curve`].
     pub fn cam_in(&mut self, params: &CamIn) -> Result<(), EngineError> {
+        if self.axis.state().is_engaged() {
+            return self.cam_in_engaged(params);
+        }
         let master_align = if self.select.master_absolute {
             MasterAlign::Offset(params.master_offset)
         } else {
@@ -191,7 +280,13 @@ impl<C: CamCurve> McCamAxis<C> {
             } else {
                 Coupling::OneShot { repeats: 0 }
             },
-            start: StartMode::Immediate,
+            start: match params.activation {
+                ActivationMode::AtMasterPosition(position) => StartMode::AtMasterPosition {
+                    position,
+                    after_edge: false,
+                },
+                ActivationMode::Immediate | ActivationMode::NextCycle => StartMode::Immediate,
+            },
             master_align,
             slave_align,
             master_zoom: params.master_scaling,
@@ -200,7 +295,49 @@ impl<C: CamCurve> McCamAxis<C> {
             ..*self.axis.config()
         };
         self.axis.set_config(config)?;
-        self.axis.arm()
+        self.axis.arm()?;
+        self.engaged_with = Some(*params);
+        Ok(())
+    }
+
+    fn cam_in_engaged(&mut self, params: &CamIn) -> Result<(), EngineError> {
+        if let Some(curve) = self.next_table.take() {
+            let at = match (params.buffer_mode, params.activation) {
+                (BufferMode::Buffered, _) | (_, ActivationMode::NextCycle) => SwitchAt::NextSeam,
+                (BufferMode::Aborting, ActivationMode::AtMasterPosition(position)) => {
+                    SwitchAt::MasterPosition {
+                        position,
+                        blend: Some(params.blend),
+                    }
+                }
+                (BufferMode::Aborting, ActivationMode::Immediate) => SwitchAt::Now {
+                    blend: Some(params.blend),
+                },
+            };
+            return self.axis.switch_curve(curve, at);
+        }
+        let was = self.engaged_with.unwrap_or_default();
+        let offsets = OffsetChange {
+            master: params.master_offset.saturating_sub(was.master_offset),
+            slave: params.slave_offset.saturating_sub(was.slave_offset),
+            distance: params.blend,
+        };
+        let master_scaling = params.master_scaling != was.master_scaling;
+        let slave_scaling = params.slave_scaling != was.slave_scaling;
+        let offsets_change = offsets.master != 0 || offsets.slave != 0;
+        match (offsets_change, master_scaling, slave_scaling) {
+            (false, false, false) => Ok(()),
+            (true, false, false) => self.axis.change_offsets(offsets),
+            (false, true, false) => self
+                .axis
+                .change_master_scaling(params.master_scaling, Some(params.blend)),
+            (false, false, true) => self
+                .axis
+                .change_slave_scaling(params.slave_scaling, params.blend),
+            _ => Err(EngineError::Busy),
+        }?;
+        self.engaged_with = Some(*params);
+        Ok(())
     }
 
     /// `MC_CamOut`: disengage now; the slave holds its position.
@@ -220,7 +357,7 @@ impl<C: CamCurve> McCamAxis<C> {
     pub fn tick(&mut self, master: i64, dt_us: u32) -> CamStatus {
         let output = self.axis.tick(&TickInput::at(master, dt_us));
         CamStatus {
-            in_sync: output.following,
+            in_sync: output.following && output.backlog == 0,
             end_of_profile: output.events.cycle_completed || output.events.finished,
             busy: output.busy,
             active: output.state.is_engaged(),

@@ -5,7 +5,9 @@ use core::num::NonZeroU64;
 
 use ecam_core::PointTable;
 use ecam_engine::Zoom;
-use ecam_engine::plcopen::{CamIn, CamInStartMode, CamOut, CamTableSelect, McCamAxis};
+use ecam_engine::plcopen::{
+    ActivationMode, BufferMode, CamIn, CamInStartMode, CamOut, CamTableSelect, McCamAxis,
+};
 
 fn table() -> PointTable {
     PointTable::from_pairs(&[(0, 0), (400, 100), (1000, 600)]).unwrap()
@@ -41,6 +43,7 @@ fn absolute_offsets_and_scaling() {
         master_scaling: Zoom::new(1, 2).unwrap(),
         slave_scaling: Zoom::new(2, 1).unwrap(),
         start_mode: CamInStartMode::Absolute,
+        ..CamIn::default()
     };
     axis.cam_in(&params).unwrap();
     // master 1200 → table input 600 + 400 = 1000 → table 600 → ×2 + 7.
@@ -79,9 +82,95 @@ fn ramp_in_reports_in_sync_when_done_and_cam_out_holds() {
     assert!(!axis.tick(550, 1_000_000).in_sync);
     let s = axis.tick(600, 1_000_000);
     assert!(s.in_sync);
-    assert!(axis.cam_in(&CamIn::default()).is_err());
+    // The same inputs again while engaged change nothing.
+    axis.cam_in(&CamIn::default()).unwrap();
     axis.cam_out(CamOut);
     let held = axis.tick(700, 1_000_000);
     assert!(!held.active && !held.in_sync);
     assert_eq!(held.output.slave, s.output.slave);
+}
+
+#[test]
+fn cam_in_while_engaged_switches_tables_aborting_with_a_blend() {
+    let line = |slope: i64| PointTable::from_pairs(&[(0, 0), (1000, 1000 * slope)]).unwrap();
+    let mut axis = McCamAxis::new(line(1)).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    for m in 0..=500 {
+        let _ = axis.tick(m, 1000);
+    }
+    axis.select_table(line(3), CamTableSelect::default())
+        .unwrap();
+    let params = CamIn {
+        blend: NonZeroU64::new(200).unwrap(),
+        ..CamIn::default()
+    };
+    axis.cam_in(&params).unwrap();
+    let mut last = 500;
+    for m in 501..=800 {
+        let s = axis.tick(m, 1000);
+        let step = s.output.slave - last;
+        assert!((1..=3).contains(&step), "master {m}: step {step}");
+        assert_eq!(s.in_sync, m >= 700, "master {m}");
+        last = s.output.slave;
+    }
+    assert_eq!(axis.tick(801, 1000).output.slave - last, 3);
+    assert!(axis.take_retired_table().is_some());
+}
+
+#[test]
+fn cam_in_while_engaged_buffered_switches_at_the_seam() {
+    let line = |slope: i64| PointTable::from_pairs(&[(0, 0), (1000, 1000 * slope)]).unwrap();
+    let mut axis = McCamAxis::new(line(1)).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    let _ = axis.tick(300, 1_000_000);
+    axis.select_table(line(2), CamTableSelect::default())
+        .unwrap();
+    axis.cam_in(&CamIn {
+        buffer_mode: BufferMode::Buffered,
+        ..CamIn::default()
+    })
+    .unwrap();
+    assert_eq!(axis.tick(900, 1_000_000).output.slave, 900);
+    let s = axis.tick(1100, 1_000_000);
+    assert!(s.output.events.table_switched);
+    assert_eq!(s.output.slave, 1000 + 200);
+}
+
+#[test]
+fn cam_in_while_engaged_ramps_offsets_in_and_activation_at_a_position() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn {
+        activation: ActivationMode::AtMasterPosition(100),
+        ..CamIn::default()
+    })
+    .unwrap();
+    assert!(!axis.tick(50, 1_000_000).active);
+    assert!(axis.tick(150, 1_000_000).active);
+    axis.cam_in(&CamIn {
+        slave_offset: 40,
+        activation: ActivationMode::AtMasterPosition(100),
+        blend: NonZeroU64::new(100).unwrap(),
+        ..CamIn::default()
+    })
+    .unwrap();
+    let s = axis.tick(200, 1_000_000);
+    assert!(!s.in_sync, "ramping the offset in");
+    // Past the ramp: exactly the table (400 → 100) plus the new offset.
+    let s = axis.tick(400, 1_000_000);
+    assert!(s.in_sync);
+    assert_eq!(s.output.slave, 100 + 40);
+}
+
+#[test]
+fn in_sync_waits_for_the_pulse_backlog() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    // 400 counts in 100 µs: 100 pulses owed against 20 per tick at 200 kHz.
+    let s = axis.tick(400, 100);
+    assert!(s.output.following && !s.in_sync);
+    let mut s = s;
+    for _ in 0..10 {
+        s = axis.tick(400, 100);
+    }
+    assert!(s.in_sync);
 }
