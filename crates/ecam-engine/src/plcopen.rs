@@ -4,11 +4,19 @@
 //!
 //! It is a thin layer over [`CamAxis`]: the same exact arithmetic, the same
 //! tick. Choices where PLCopen leaves room:
-//! - a periodic table repeats with the stroke accumulated
-//!   ([`Coupling::Repeat`]), so a table whose ends differ keeps the slave
-//!   continuous; a non-periodic table runs once ([`Coupling::OneShot`]);
+//! - a periodic table with an absolute slave is re-evaluated every cycle
+//!   ([`Coupling::Periodic`]: the slave jumps at the seam where the first
+//!   and last values differ, the jump going out under the frequency
+//!   limit); with a relative slave the stroke accumulates
+//!   ([`Coupling::Repeat`]), so the slave is continuous;
+//! - a non-periodic table with an absolute master runs over the table's
+//!   own master range and then keeps the slave coupled at the end value
+//!   ([`Coupling::Normal`]; `EndOfProfile` set while the master is at or
+//!   past the end, still `Active` and `InSync`); with a relative master it
+//!   runs once from engage and ends the coupling ([`Coupling::OneShot`]);
 //! - `MC_CamOut` stops the slave where it is (the engine has no velocity
-//!   mode to continue at the last speed);
+//!   mode to continue at the last speed); [`McCamAxis::cam_out_at_end_of_cycle`]
+//!   follows to the end of the current cycle first;
 //! - `EndOfProfile` pulses for one cycle each time a cycle of the table
 //!   completes, and when a non-periodic table ends;
 //! - `InSync` is set once the slave follows the cam (ramp-in, blend and
@@ -275,10 +283,11 @@ impl<C: CamCurve> McCamAxis<C> {
             CamInStartMode::Absolute | CamInStartMode::Relative => None,
         };
         let config = AxisConfig {
-            coupling: if self.select.periodic {
-                Coupling::Repeat { min_stroke: 1 }
-            } else {
-                Coupling::OneShot { repeats: 0 }
+            coupling: match (self.select.periodic, self.select.master_absolute) {
+                (true, _) if relative => Coupling::Repeat { min_stroke: 1 },
+                (true, _) => Coupling::Periodic,
+                (false, true) => Coupling::Normal,
+                (false, false) => Coupling::OneShot { repeats: 0 },
             },
             start: match params.activation {
                 ActivationMode::AtMasterPosition(position) => StartMode::AtMasterPosition {
@@ -345,6 +354,12 @@ impl<C: CamCurve> McCamAxis<C> {
         self.axis.stop(StopKind::Immediate);
     }
 
+    /// `MC_CamOut`, end-of-cycle variant (an implementation option): keeps
+    /// following to the end of the current table cycle, then holds there.
+    pub fn cam_out_at_end_of_cycle(&mut self) {
+        self.axis.stop(StopKind::EndOfCycle);
+    }
+
     /// Declares the slave's current position (while not engaged).
     ///
     /// # Errors
@@ -356,9 +371,13 @@ impl<C: CamCurve> McCamAxis<C> {
     /// One control cycle with the master at `master`, `dt_us` after the last.
     pub fn tick(&mut self, master: i64, dt_us: u32) -> CamStatus {
         let output = self.axis.tick(&TickInput::at(master, dt_us));
+        // A non-periodic table on an absolute master holds its end value.
+        let past_end = self.axis.config().coupling == Coupling::Normal
+            && output.state.is_engaged()
+            && output.master_in_cycle >= self.axis.curve().master_last();
         CamStatus {
             in_sync: output.following && output.backlog == 0,
-            end_of_profile: output.events.cycle_completed || output.events.finished,
+            end_of_profile: output.events.cycle_completed || output.events.finished || past_end,
             busy: output.busy,
             active: output.state.is_engaged(),
             error: output.fault,

@@ -46,8 +46,8 @@ fn absolute_offsets_and_scaling() {
         ..CamIn::default()
     };
     axis.cam_in(&params).unwrap();
-    // master 1200 → table input 600 + 400 = 1000 → table 600 → ×2 + 7.
-    assert_eq!(axis.tick(1200, 1_000_000).output.slave, 1207);
+    // master 1100 → table input 550 + 400 = 950 → table 558.3 → ×2 + 7.
+    assert_eq!(axis.tick(1100, 1_000_000).output.slave, 1124);
 }
 
 #[test]
@@ -173,4 +173,62 @@ fn in_sync_waits_for_the_pulse_backlog() {
         s = axis.tick(400, 100);
     }
     assert!(s.in_sync);
+}
+
+/// PLCopen: periodic with an absolute slave re-evaluates the table each
+/// cycle (the slave jumps back where first ≠ last); relative accumulates.
+#[test]
+fn periodic_absolute_re_evaluates_relative_accumulates() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    assert_eq!(axis.tick(999, 1_000_000).output.slave, 599);
+    assert_eq!(axis.tick(1400, 1_000_000).output.slave, 100);
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn {
+        start_mode: CamInStartMode::Relative,
+        ..CamIn::default()
+    })
+    .unwrap();
+    let _ = axis.tick(0, 1_000_000);
+    assert_eq!(axis.tick(1400, 1_000_000).output.slave, 700);
+}
+
+/// PLCopen: non-periodic with an absolute master runs over the table's own
+/// master range, then keeps the slave coupled at the last value.
+#[test]
+fn non_periodic_absolute_master_stays_coupled_at_the_end() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.select(CamTableSelect {
+        periodic: false,
+        master_absolute: true,
+        slave_absolute: true,
+    })
+    .unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    let s = axis.tick(400, 1_000_000);
+    assert!(!s.end_of_profile);
+    assert_eq!(s.output.slave, 100);
+    let s = axis.tick(1500, 1_000_000);
+    assert!(s.end_of_profile && s.active && s.in_sync);
+    assert_eq!(s.output.slave, 600);
+    let s = axis.tick(700, 1_000_000);
+    assert!(!s.end_of_profile && s.active);
+    assert_eq!(s.output.slave, 350);
+}
+
+#[test]
+fn cam_out_at_end_of_cycle_finishes_the_cycle() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn {
+        start_mode: CamInStartMode::Relative,
+        ..CamIn::default()
+    })
+    .unwrap();
+    let _ = axis.tick(0, 1_000_000);
+    let _ = axis.tick(400, 1_000_000);
+    axis.cam_out_at_end_of_cycle();
+    assert!(axis.tick(900, 1_000_000).active);
+    let s = axis.tick(1300, 1_000_000);
+    assert!(!s.active);
+    assert_eq!(s.output.slave, 600);
 }
