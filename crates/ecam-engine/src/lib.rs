@@ -53,6 +53,7 @@ mod master;
 mod offset_ramp;
 mod output;
 pub mod plcopen;
+pub mod plcopen_blocks;
 mod pulse;
 mod ramp;
 mod ramp_in;

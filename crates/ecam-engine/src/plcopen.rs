@@ -190,6 +190,9 @@ pub struct McCamAxis<C> {
     next_table: Option<C>,
     /// The inputs of the cam-in that engaged (offsets and scalings in effect).
     engaged_with: Option<CamIn>,
+    /// Counts the commands (`cam_in`, `cam_out`) accepted, so a function
+    /// block can tell when another command took over.
+    command: u64,
 }
 
 impl<C: CamCurve> McCamAxis<C> {
@@ -204,6 +207,7 @@ impl<C: CamCurve> McCamAxis<C> {
             select,
             next_table: None,
             engaged_with: None,
+            command: 0,
         })
     }
 
@@ -258,7 +262,9 @@ impl<C: CamCurve> McCamAxis<C> {
     /// [`CamAxis::switch_curve`].
     pub fn cam_in(&mut self, params: &CamIn) -> Result<(), EngineError> {
         if self.axis.state().is_engaged() {
-            return self.cam_in_engaged(params);
+            self.cam_in_engaged(params)?;
+            self.command = self.command.wrapping_add(1);
+            return Ok(());
         }
         let master_align = if self.select.master_absolute {
             MasterAlign::Offset(params.master_offset)
@@ -306,7 +312,13 @@ impl<C: CamCurve> McCamAxis<C> {
         self.axis.set_config(config)?;
         self.axis.arm()?;
         self.engaged_with = Some(*params);
+        self.command = self.command.wrapping_add(1);
         Ok(())
+    }
+
+    /// The number of commands accepted so far (see [`crate::plcopen_blocks`]).
+    pub fn command(&self) -> u64 {
+        self.command
     }
 
     fn cam_in_engaged(&mut self, params: &CamIn) -> Result<(), EngineError> {
@@ -352,12 +364,14 @@ impl<C: CamCurve> McCamAxis<C> {
     /// `MC_CamOut`: disengage now; the slave holds its position.
     pub fn cam_out(&mut self, _: CamOut) {
         self.axis.stop(StopKind::Immediate);
+        self.command = self.command.wrapping_add(1);
     }
 
     /// `MC_CamOut`, end-of-cycle variant (an implementation option): keeps
     /// following to the end of the current table cycle, then holds there.
     pub fn cam_out_at_end_of_cycle(&mut self) {
         self.axis.stop(StopKind::EndOfCycle);
+        self.command = self.command.wrapping_add(1);
     }
 
     /// Declares the slave's current position (while not engaged).

@@ -232,3 +232,72 @@ fn cam_out_at_end_of_cycle_finishes_the_cycle() {
     assert!(!s.active);
     assert_eq!(s.output.slave, 600);
 }
+
+mod blocks {
+    use super::*;
+    use ecam_engine::EngineError;
+    use ecam_engine::plcopen_blocks::{CamInBlock, TableSelectBlock};
+
+    #[test]
+    fn execute_edges_latched_errors_and_command_aborted() {
+        let mut axis = McCamAxis::new(table()).unwrap();
+        let mut first = CamInBlock::default();
+        let mut second = CamInBlock::default();
+        let params = CamIn::default();
+        let s = axis.tick(0, 1_000_000);
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.busy && !out.error);
+        let s = axis.tick(100, 1_000_000);
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.active && out.in_sync && out.busy);
+
+        // A second MC_CamIn that cannot be done (offset and scaling at once):
+        // its error latches until its next rising edge; the first keeps control.
+        let bad = CamIn {
+            slave_offset: 5,
+            slave_scaling: Zoom::new(2, 1).unwrap(),
+            ..CamIn::default()
+        };
+        let out = second.call(&mut axis, true, &bad, &s);
+        assert_eq!(out.error_id, Some(EngineError::Busy));
+        let s = axis.tick(200, 1_000_000);
+        assert!(second.call(&mut axis, false, &bad, &s).error);
+        assert!(first.call(&mut axis, true, &params, &s).active);
+
+        // A second MC_CamIn that is accepted aborts the first.
+        let good = CamIn {
+            slave_offset: 5,
+            ..CamIn::default()
+        };
+        let out = second.call(&mut axis, true, &good, &s);
+        assert!(!out.error && out.busy);
+        let s = axis.tick(300, 1_000_000);
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.command_aborted && !out.busy && !out.active);
+        // Holding Execute does not issue it again.
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.command_aborted);
+
+        // MC_CamOut aborts the second.
+        axis.cam_out(CamOut);
+        let s = axis.tick(400, 1_000_000);
+        assert!(second.call(&mut axis, true, &good, &s).command_aborted);
+    }
+
+    #[test]
+    fn table_select_is_done_on_the_rising_edge() {
+        let mut axis = McCamAxis::new(table()).unwrap();
+        let mut block = TableSelectBlock::default();
+        let mut next = Some(PointTable::from_pairs(&[(0, 0), (100, 50)]).unwrap());
+        let out = block.call(&mut axis, true, &mut next, CamTableSelect::default());
+        assert!(out.done && !out.error);
+        assert!(next.is_none());
+        // Held high: nothing more happens, Done stays.
+        assert!(
+            block
+                .call(&mut axis, true, &mut next, CamTableSelect::default())
+                .done
+        );
+        assert!(axis.take_retired_table().is_some());
+    }
+}
