@@ -49,8 +49,8 @@ use core::num::NonZeroU64;
 use ecam_core::CamCurve;
 
 use crate::{
-    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, OffsetChange, RampIn, SlaveAlign,
-    StartMode, StopKind, SwitchAt, TickInput, TickOutput, Zoom,
+    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, OffsetChange, RampIn, RampInLimits,
+    SlaveAlign, StartMode, StopKind, SwitchAt, TickInput, TickOutput, Zoom,
 };
 
 /// `MC_CamIn` `BufferMode` for a cam-in while a cam is engaged.
@@ -136,6 +136,25 @@ pub struct CamIn {
     /// Engaged: master counts over which a new table is blended in and
     /// changed offsets or scalings are ramped in.
     pub blend: NonZeroU64,
+    /// PLCopen `MasterSyncPosition` and `MasterStartDistance`: in sync
+    /// when the master reaches the first, ramping in from the second's
+    /// distance before it (the master's direction: `forward`). Overrides
+    /// `activation` and a [`CamInStartMode::RampIn`] distance.
+    pub sync_at: Option<SyncAt>,
+    /// Limits and direction of the ramp-in (PLCopen ramp-in with limits,
+    /// `ramp_in_pos`, `ramp_in_neg`); see [`crate::CamAxis::set_ramp_in_limits`].
+    pub ramp_limits: Option<RampInLimits>,
+}
+
+/// PLCopen `MasterSyncPosition` / `MasterStartDistance` (see [`RampIn::sync_at`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SyncAt {
+    /// `MasterSyncPosition`.
+    pub position: i64,
+    /// `MasterStartDistance`.
+    pub start_distance: NonZeroU64,
+    /// The master approaches the sync position forwards.
+    pub forward: bool,
 }
 
 impl Default for CamIn {
@@ -149,6 +168,8 @@ impl Default for CamIn {
             activation: ActivationMode::Immediate,
             buffer_mode: BufferMode::Aborting,
             blend: DEFAULT_BLEND,
+            sync_at: None,
+            ramp_limits: None,
         }
     }
 }
@@ -309,7 +330,20 @@ impl<C: CamCurve> McCamAxis<C> {
             ramp_in,
             ..*self.axis.config()
         };
+        let config = match params.sync_at {
+            Some(sync) => {
+                let (start, ramp) =
+                    RampIn::sync_at(sync.position, sync.start_distance, sync.forward);
+                AxisConfig {
+                    start,
+                    ramp_in: Some(ramp),
+                    ..config
+                }
+            }
+            None => config,
+        };
         self.axis.set_config(config)?;
+        self.axis.set_ramp_in_limits(params.ramp_limits);
         self.axis.arm()?;
         self.engaged_with = Some(*params);
         self.command = self.command.wrapping_add(1);

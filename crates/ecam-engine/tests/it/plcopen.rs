@@ -233,6 +233,27 @@ fn cam_out_at_end_of_cycle_finishes_the_cycle() {
     assert_eq!(s.output.slave, 600);
 }
 
+#[test]
+fn cam_in_with_master_sync_position() {
+    use ecam_engine::plcopen::SyncAt;
+    let line = PointTable::from_pairs(&[(0, 0), (1000, 2000)]).unwrap();
+    let mut axis = McCamAxis::new(line).unwrap();
+    axis.cam_in(&CamIn {
+        sync_at: Some(SyncAt {
+            position: 3000,
+            start_distance: NonZeroU64::new(500).unwrap(),
+            forward: true,
+        }),
+        ..CamIn::default()
+    })
+    .unwrap();
+    for m in (2000..=3200).step_by(10) {
+        let s = axis.tick(m, 1_000_000);
+        assert_eq!(s.active, m >= 2500, "master {m}");
+        assert_eq!(s.in_sync, m >= 3000, "master {m}");
+    }
+}
+
 mod blocks {
     use super::*;
     use ecam_engine::EngineError;
