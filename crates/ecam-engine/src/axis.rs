@@ -105,6 +105,8 @@ struct Engaged<C> {
     place: Place,
     /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
     queued: Option<(C, AfterPass)>,
+    /// The blend for the queued table's seam switch.
+    seam_blend: Option<NonZeroU64>,
     /// A table waiting for a master position or the next tick
     /// ([`CamAxis::switch_curve`]); never together with `queued`.
     pending: Option<Pending<C>>,
@@ -291,6 +293,7 @@ impl<C: CamCurve> CamAxis<C> {
                     return Err(EngineError::NoSeam);
                 }
                 engaged.pending = None;
+                engaged.seam_blend = None;
                 engaged.queued = Some((curve, then));
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished => {
@@ -323,7 +326,13 @@ impl<C: CamCurve> CamAxis<C> {
     /// left untouched.
     pub fn switch_curve(&mut self, curve: C, at: SwitchAt) -> Result<(), EngineError> {
         let (trigger, blend) = match at {
-            SwitchAt::NextSeam => return self.queue_curve(curve),
+            SwitchAt::NextSeam { blend } => {
+                self.queue_curve(curve)?;
+                if let Phase::Running(engaged) | Phase::Stopping(engaged, _) = &mut self.phase {
+                    engaged.seam_blend = blend;
+                }
+                return Ok(());
+            }
             SwitchAt::MasterPosition { position, blend } => (Trigger::Position(position), blend),
             SwitchAt::Now { blend } => (Trigger::Now, blend),
         };
@@ -734,6 +743,7 @@ impl<C: CamCurve> CamAxis<C> {
             ramp: ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded)),
             place,
             queued: None,
+            seam_blend: None,
             pending: None,
             blend: None,
             offsets: None,
@@ -932,30 +942,8 @@ impl<C: CamCurve> CamAxis<C> {
         }
         engaged.blend = match pending.blend {
             Some(distance) => {
-                let mut ends = [BlendEnd {
-                    slave: 0,
-                    velocity_ratio: 0.0,
-                }; 2];
-                for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
-                    let place = self.resolve(&engaged.engagement, None, master).place;
-                    let cam = engaged.engagement.sample(
-                        &self.geometry,
-                        &self.curve,
-                        &mut self.cursor,
-                        place,
-                    )?;
-                    *end = BlendEnd {
-                        slave: cam.slave,
-                        velocity_ratio: cam.velocity_ratio,
-                    };
-                }
-                Some(Blend::start(
-                    at,
-                    distance.get(),
-                    old.slave,
-                    old.velocity_ratio,
-                    ends,
-                )?)
+                let engagement = engaged.engagement;
+                Some(self.blend_onto(&engagement, at, distance, old.slave, old.velocity_ratio)?)
             }
             None => None,
         };
@@ -991,6 +979,29 @@ impl<C: CamCurve> CamAxis<C> {
         let Some((curve, then)) = engaged.queued.take() else {
             return Ok(false);
         };
+        // A blend starts at the last whole master count before the seam,
+        // on the old cam there.
+        let blend_from = match engaged.seam_blend.take() {
+            Some(distance) => {
+                let at = engaged
+                    .engagement
+                    .master_at_seam(&self.geometry, from.k, forward);
+                let place = self.resolve(&engaged.engagement, None, at).place;
+                // Exactly on the seam: seen from the old cycle's side.
+                let there = if place.k == from.k {
+                    engaged.engagement.sample(
+                        &self.geometry,
+                        &self.curve,
+                        &mut self.cursor,
+                        place,
+                    )?
+                } else {
+                    old
+                };
+                Some((at, distance, there.slave, there.velocity_ratio))
+            }
+            None => None,
+        };
         let geometry = Geometry::new(&curve, &self.config)?;
         let mut cursor = Cursor::new();
         let mut next = engaged.engagement.across_seam(
@@ -1009,7 +1020,35 @@ impl<C: CamCurve> CamAxis<C> {
         self.cursor = cursor;
         self.retired = Some(core::mem::replace(&mut self.curve, curve));
         engaged.engagement = next;
+        if let Some((at, distance, p0, v0)) = blend_from {
+            engaged.blend = Some(self.blend_onto(&engaged.engagement, at, distance, p0, v0)?);
+        }
         Ok(true)
+    }
+
+    /// A blend from the slave at `p0` with velocity ratio `v0` at master
+    /// `at` onto the (new) cam of `engagement`.
+    fn blend_onto(
+        &mut self,
+        engagement: &Engagement,
+        at: i64,
+        distance: NonZeroU64,
+        p0: i64,
+        v0: f64,
+    ) -> Result<Blend, EngineError> {
+        let mut ends = [BlendEnd {
+            slave: 0,
+            velocity_ratio: 0.0,
+        }; 2];
+        for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
+            let place = self.resolve(engagement, None, master).place;
+            let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            *end = BlendEnd {
+                slave: cam.slave,
+                velocity_ratio: cam.velocity_ratio,
+            };
+        }
+        Blend::start(at, distance.get(), p0, v0, ends)
     }
 
     /// Follows the cam for one tick; gives the phase after it, what was

@@ -469,6 +469,20 @@ impl Engagement {
         self.shift = self.shift.saturating_add(n);
     }
 
+    /// The whole master count at or before (`forward`) or at or after
+    /// the boundary of cycle `k` (its end when `forward`, else its start).
+    pub(crate) fn master_at_seam(&self, geo: &Geometry, k: i128, forward: bool) -> i64 {
+        let t = geo
+            .boundary(k, forward)
+            .saturating_sub(self.input_offset_num);
+        let (q, r) = div_floor(t, geo.mnum.max(1));
+        clamp_i64(if !forward && r != 0 {
+            q.saturating_add(1)
+        } else {
+            q
+        })
+    }
+
     /// Moves the whole output by `delta` pulses (a blend that ended
     /// `delta` off the cam it blended onto).
     pub(crate) fn shift_output(&mut self, delta: i128) -> Result<(), EngineError> {

@@ -358,7 +358,9 @@ impl<C: CamCurve> McCamAxis<C> {
     fn cam_in_engaged(&mut self, params: &CamIn) -> Result<(), EngineError> {
         if let Some(curve) = self.next_table.take() {
             let at = match (params.buffer_mode, params.activation) {
-                (BufferMode::Buffered, _) | (_, ActivationMode::NextCycle) => SwitchAt::NextSeam,
+                (BufferMode::Buffered, _) | (_, ActivationMode::NextCycle) => SwitchAt::NextSeam {
+                    blend: Some(params.blend),
+                },
                 (BufferMode::Aborting, ActivationMode::AtMasterPosition(position)) => {
                     SwitchAt::MasterPosition {
                         position,

@@ -28,9 +28,15 @@ pub enum MissedActivation {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SwitchAt {
     /// At the next seam the master crosses (PLCopen `BufferMode`
-    /// buffered): the new table's cycle starts there. Same as
-    /// [`crate::CamAxis::queue_curve`].
-    NextSeam,
+    /// buffered): the new table's cycle starts there. Without a blend the
+    /// same as [`crate::CamAxis::queue_curve`].
+    NextSeam {
+        /// Master travel over which to blend from the old cam's velocity
+        /// to the new one's, from the last whole master count before the
+        /// seam; `None`: no blend (velocity continuous where the tables'
+        /// slopes agree at the seam).
+        blend: Option<NonZeroU64>,
+    },
     /// When the master (unwrapped, before zoom) reaches or crosses
     /// `position`, in either direction, the new cam takes over exactly
     /// there, whichever tick passes it.

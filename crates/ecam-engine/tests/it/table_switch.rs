@@ -231,7 +231,7 @@ proptest! {
         hz in prop_oneof![Just(200_000i64), 1_000i64..200_000],
         motion in prop::collection::vec((-20_000i64..60_000, 1u32..300), 1..6),
         switch_tick in 0usize..200,
-        mode in 0u8..3,
+        mode in 0u8..4,
         rezoom in 1u16..5,
         position_offset in -300i64..300,
         distance in prop_oneof![Just(0u64), 1u64..3000],
@@ -267,6 +267,7 @@ proptest! {
             if i == switch_tick {
                 let at = match mode {
                     0 => SwitchAt::Now { blend: NonZeroU64::new(distance) },
+                    3 => SwitchAt::NextSeam { blend: NonZeroU64::new(distance) },
                     _ => SwitchAt::MasterPosition {
                         position: readings.last().copied().unwrap_or(0) + position_offset,
                         blend: NonZeroU64::new(distance),
