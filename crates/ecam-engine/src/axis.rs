@@ -7,19 +7,28 @@
 //! windows; the curve lookup is O(1) through the cursor while the master
 //! moves continuously.
 
+use core::num::NonZeroU64;
+
 use ecam_core::{CamCurve, Cursor};
 
+use crate::MissedActivation;
+use crate::blend::{Blend, BlendEnd};
 use crate::config::effective_frequency;
 use crate::coupling::{Engagement, Geometry, Place, Sample};
 use crate::master::TurnUnwrap;
+use crate::offset_ramp::OffsetRamp;
 use crate::pulse::PulseOutput;
 use crate::ramp::Ramp;
+use crate::ramp_in::{RampDirection, RampInLimits};
+use crate::scaling::ScalingRamp;
+use crate::speed::MasterSpeed;
 use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
+use crate::switch::{Pending, Takeover, Trigger};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
-    TickOutput,
+    AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, RampIn, SlaveAlign,
+    StopKind, SwitchAt, SyncWindow, TickInput, TickOutput, Zoom,
 };
 
 /// A slave axis coupled to a master through a cam curve.
@@ -48,6 +57,14 @@ pub struct CamAxis<C> {
     last_start_input: bool,
     /// Events of a stop that took effect between ticks, reported by the next tick.
     pending_events: Events,
+    /// Limits a ramp-in keeps to ([`CamAxis::set_ramp_in_limits`]).
+    ramp_limits: Option<RampInLimits>,
+    /// What a backward pass of an activation position does.
+    missed_policy: MissedActivation,
+    /// An activation was missed since the last arm, engage or switch.
+    missed: bool,
+    /// The master's speed for sizing a ramp-in (see `speed.rs`).
+    speed: MasterSpeed,
     last: TickOutput,
 }
 
@@ -88,6 +105,40 @@ struct Engaged<C> {
     place: Place,
     /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
     queued: Option<(C, AfterPass)>,
+    /// The blend for the queued table's seam switch.
+    seam_blend: Option<NonZeroU64>,
+    /// A table waiting for a master position or the next tick
+    /// ([`CamAxis::switch_curve`]); never together with `queued`.
+    pending: Option<Pending<C>>,
+    /// The blend from the last switch's old cam, while it runs.
+    blend: Option<Blend>,
+    /// An offset change being ramped in ([`CamAxis::change_offsets`]).
+    offsets: Option<OffsetRamp>,
+    /// A slave-scaling change being ramped in
+    /// ([`CamAxis::change_slave_scaling`]).
+    scaling: Option<ScalingRamp>,
+    /// The master followed at the last tick, counts × 2^32 plus the
+    /// fraction (where a switch position is crossed from).
+    followed: i128,
+}
+
+impl<C> Engaged<C> {
+    /// A table switch, blend, offset or scaling change is under way.
+    fn changing(&self) -> bool {
+        self.offsets.is_some()
+            || self.scaling.is_some()
+            || self.blend.is_some()
+            || self.pending.is_some()
+            || self.queued.is_some()
+    }
+
+    /// The engagement in effect at `master`, an offset ramp included.
+    fn engagement_at(&self, master: i64) -> Result<Engagement, EngineError> {
+        match &self.offsets {
+            Some(ramp) => ramp.apply(&self.engagement, master),
+            None => Ok(self.engagement),
+        }
+    }
 }
 
 impl<C> Phase<C> {
@@ -132,6 +183,10 @@ impl<C: CamCurve> CamAxis<C> {
             pulse: PulseOutput::at(0),
             last_start_input: false,
             pending_events: Events::default(),
+            ramp_limits: None,
+            missed_policy: MissedActivation::StartNow,
+            missed: false,
+            speed: MasterSpeed::new(),
             last: TickOutput {
                 direction_forward: true,
                 ..TickOutput::default()
@@ -237,6 +292,8 @@ impl<C: CamCurve> CamAxis<C> {
                 if geometry.extent == crate::coupling::Extent::Single {
                     return Err(EngineError::NoSeam);
                 }
+                engaged.pending = None;
+                engaged.seam_blend = None;
                 engaged.queued = Some((curve, then));
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished => {
@@ -248,14 +305,192 @@ impl<C: CamCurve> CamAxis<C> {
         Ok(())
     }
 
-    /// True while a queued table waits for the next seam.
+    /// Hands a new table to the axis, taking over where `at` says. Idle,
+    /// armed or finished, it replaces the table at once. While the cam is
+    /// running, [`SwitchAt::NextSeam`] is [`CamAxis::queue_curve`]; with
+    /// [`SwitchAt::MasterPosition`] and [`SwitchAt::Now`] the new cam takes
+    /// over at that master position (or this tick's master), aligned to
+    /// the master as [`AxisConfig::master_align`] says (as at engage) and
+    /// anchored on the old cam there: the slave's position is continuous.
+    /// With a blend distance the velocity is too: the slave's velocity
+    /// moves from the old cam's to the new cam's over that master travel
+    /// and stays between them (see docs/engine.md, "Changing the table
+    /// while engaged"). A second call before the switch replaces the
+    /// waiting table; a switch that comes due while a blend runs waits for
+    /// its end. `events.table_switched` marks the tick of the switch; the
+    /// old table can be taken back with [`CamAxis::take_retired_curve`].
+    ///
+    /// # Errors
+    /// As [`CamAxis::queue_curve`]; [`EngineError::Busy`] for a position
+    /// or at-once switch during an end-of-cycle stop. The running cam is
+    /// left untouched.
+    pub fn switch_curve(&mut self, curve: C, at: SwitchAt) -> Result<(), EngineError> {
+        let (trigger, blend) = match at {
+            SwitchAt::NextSeam { blend } => {
+                self.queue_curve(curve)?;
+                if let Phase::Running(engaged) | Phase::Stopping(engaged, _) = &mut self.phase {
+                    engaged.seam_blend = blend;
+                }
+                return Ok(());
+            }
+            SwitchAt::MasterPosition { position, blend } => (Trigger::Position(position), blend),
+            SwitchAt::Now { blend } => (Trigger::Now, blend),
+        };
+        Geometry::new(&curve, &self.config)?;
+        match &mut self.phase {
+            Phase::Running(engaged) if engaged.offsets.is_some() || engaged.scaling.is_some() => {
+                Err(EngineError::Busy)
+            }
+            Phase::Running(engaged) => {
+                engaged.queued = None;
+                engaged.pending = Some(Pending::new(Takeover::Table(curve), trigger, blend));
+                Ok(())
+            }
+            Phase::Stopping(..) => Err(EngineError::Busy),
+            Phase::Idle | Phase::Armed(_) | Phase::Finished => self.queue_curve(curve),
+        }
+    }
+
+    /// True while a queued table waits for the next seam, a master
+    /// position or the next tick.
     pub fn has_queued_curve(&self) -> bool {
-        self.phase.engaged().is_some_and(|e| e.queued.is_some())
+        self.phase
+            .engaged()
+            .is_some_and(|e| e.queued.is_some() || e.pending.is_some())
+    }
+
+    /// Changes the master and slave offsets of the running cam by
+    /// `change`, ramped in over `change.distance` master counts from the
+    /// master the axis followed last (PLCopen `MasterOffset` and
+    /// `SlaveOffset` changed in sync; see docs/engine.md, "Offsets on the
+    /// fly"). Position, velocity and acceleration stay continuous; the
+    /// final offsets are exact.
+    ///
+    /// # Errors
+    /// [`EngineError::NotRunning`] unless the cam is running;
+    /// [`EngineError::Busy`] while a table switch waits or blends, or an
+    /// offset change is still being ramped in.
+    pub fn change_offsets(&mut self, change: OffsetChange) -> Result<(), EngineError> {
+        let mden = self.geometry.master_den();
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                if engaged.changing() {
+                    return Err(EngineError::Busy);
+                }
+                let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
+                engaged.offsets = Some(OffsetRamp::new(change, from, mden));
+                Ok(())
+            }
+            _ => Err(EngineError::NotRunning),
+        }
+    }
+
+    /// Changes the slave scaling (slave zoom) of the running cam, ramped
+    /// in over `distance` master counts from the master the axis followed
+    /// last (PLCopen `SlaveScaling` changed in sync; see docs/engine.md,
+    /// "Scaling on the fly"): the command moves from the cam with the old
+    /// scaling to the cam with the new one, position and velocity
+    /// continuous; afterwards it is exactly the cam with the new scaling
+    /// and [`AxisConfig::slave_zoom`] reads the new value.
+    ///
+    /// # Errors
+    /// As [`CamAxis::change_offsets`].
+    pub fn change_slave_scaling(
+        &mut self,
+        zoom: Zoom,
+        distance: NonZeroU64,
+    ) -> Result<(), EngineError> {
+        let target = self.geometry.with_slave_zoom(zoom);
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                if engaged.changing() {
+                    return Err(EngineError::Busy);
+                }
+                let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
+                engaged.scaling = Some(ScalingRamp::new(target, from, distance));
+                self.config.slave_zoom = zoom;
+                Ok(())
+            }
+            _ => Err(EngineError::NotRunning),
+        }
+    }
+
+    /// Changes the master scaling (master zoom) of the running cam at the
+    /// next whole master count (as [`SwitchAt::Now`]): the cam's phase (its
+    /// table input) and the slave's position are kept there and from then
+    /// on the table runs at the new scaling; with `blend` the velocity
+    /// moves from the old to the new over that master travel, as a table
+    /// switch's blend does. Afterwards [`AxisConfig::master_zoom`] reads
+    /// the new value and the cam is an exact function of the master again.
+    ///
+    /// # Errors
+    /// As [`CamAxis::change_offsets`], and as [`CamAxis::new`] for a
+    /// scaling that does not fit the table.
+    pub fn change_master_scaling(
+        &mut self,
+        zoom: Zoom,
+        blend: Option<NonZeroU64>,
+    ) -> Result<(), EngineError> {
+        Geometry::new(
+            &self.curve,
+            &AxisConfig {
+                master_zoom: zoom,
+                ..self.config
+            },
+        )?;
+        match &mut self.phase {
+            Phase::Running(engaged) => {
+                if engaged.changing() {
+                    return Err(EngineError::Busy);
+                }
+                engaged.pending = Some(Pending::new(
+                    Takeover::MasterScaling(zoom),
+                    Trigger::Now,
+                    blend,
+                ));
+                Ok(())
+            }
+            _ => Err(EngineError::NotRunning),
+        }
+    }
+
+    /// True while an offset change is being ramped in.
+    pub fn is_changing_offsets(&self) -> bool {
+        self.phase.engaged().is_some_and(|e| e.offsets.is_some())
+    }
+
+    /// True while a switch's blend runs.
+    pub fn is_blending(&self) -> bool {
+        self.phase.engaged().is_some_and(|e| e.blend.is_some())
     }
 
     /// The table the last switch or replacement retired, if not yet taken.
     pub fn take_retired_curve(&mut self) -> Option<C> {
         self.retired.take()
+    }
+
+    /// Sets the limits the next ramp-ins keep to (PLCopen ramp-in with
+    /// limits, `ramp_in_pos`, `ramp_in_neg`; see docs/engine.md, "Ramp-in
+    /// under limits"): at engage the ramp's master distance becomes the
+    /// longer of [`AxisConfig::ramp_in`]'s and the one the limits need at
+    /// the master's speed then, and the gap is closed in the allowed
+    /// direction. With limits a ramp-in happens even without
+    /// [`AxisConfig::ramp_in`]. `None` removes them.
+    pub fn set_ramp_in_limits(&mut self, limits: Option<RampInLimits>) {
+        self.ramp_limits = limits;
+    }
+
+    /// Chooses what a backward pass of an activation position does (a
+    /// [`crate::StartMode::AtMasterPosition`] start, a
+    /// [`SwitchAt::MasterPosition`] switch): take effect there
+    /// ([`MissedActivation::StartNow`], the default and the behaviour
+    /// before this setting) or wait for the next forward pass
+    /// ([`MissedActivation::NextPass`]). Either way the tick reports
+    /// `events.activation_missed` and `activation_missed` stays set until
+    /// the next arm, engage or switch. Takes effect at the next arm for
+    /// starts, at once for switches.
+    pub fn set_missed_activation(&mut self, policy: MissedActivation) {
+        self.missed_policy = policy;
     }
 
     /// Changes the sync windows; allowed while running (document 003
@@ -304,8 +539,9 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Running(_) | Phase::Stopping(..) => Err(EngineError::Busy),
             Phase::Armed(_) => Ok(()),
             Phase::Idle | Phase::Finished => {
+                self.missed = false;
                 self.phase = Phase::Armed(Armed {
-                    watch: StartWatch::arm(self.config.start),
+                    watch: StartWatch::arm_with(self.config.start, self.missed_policy),
                     previous: None,
                     delaying: false,
                 });
@@ -328,7 +564,7 @@ impl<C: CamCurve> CamAxis<C> {
                     StopAt::Here { completes_cycle } => {
                         self.pending_events.stopped = true;
                         self.pending_events.cycle_completed |= completes_cycle;
-                        self.end_run(engaged.queued);
+                        self.end_run(engaged);
                         Phase::Finished
                     }
                 }
@@ -336,7 +572,7 @@ impl<C: CamCurve> CamAxis<C> {
             (stopping @ Phase::Stopping(..), StopKind::EndOfCycle) => stopping,
             (Phase::Running(engaged) | Phase::Stopping(engaged, _), StopKind::Immediate) => {
                 self.pending_events.stopped = true;
-                self.end_run(engaged.queued);
+                self.end_run(engaged);
                 Phase::Idle
             }
             (Phase::Armed(_), _) => {
@@ -353,8 +589,33 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     /// Ends a run: a table still queued is the one to restart with.
-    fn end_run(&mut self, queued: Option<(C, AfterPass)>) {
-        if let Some((curve, _)) = queued
+    fn end_run(&mut self, engaged: Engaged<C>) {
+        let Engaged {
+            queued,
+            pending,
+            scaling,
+            ..
+        } = engaged;
+        // The configuration already names the new scaling.
+        if let Some(ramp) = scaling {
+            self.geometry = ramp.target;
+        }
+        let mut next = queued.map(|(curve, _)| curve);
+        match pending.map(|p| p.takeover) {
+            Some(Takeover::Table(curve)) => next = Some(curve),
+            Some(Takeover::MasterScaling(zoom)) => {
+                let config = AxisConfig {
+                    master_zoom: zoom,
+                    ..self.config
+                };
+                if let Ok(geometry) = Geometry::new(&self.curve, &config) {
+                    self.config = config;
+                    self.geometry = geometry;
+                }
+            }
+            None => {}
+        }
+        if let Some(curve) = next
             && let Ok(geometry) = Geometry::new(&curve, &self.config)
         {
             self.geometry = geometry;
@@ -367,7 +628,7 @@ impl<C: CamCurve> CamAxis<C> {
     fn halt(&mut self) {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         match phase {
-            Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged.queued),
+            Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged),
             Phase::Finished => self.phase = Phase::Finished,
             Phase::Idle | Phase::Armed(_) => {}
         }
@@ -387,6 +648,7 @@ impl<C: CamCurve> CamAxis<C> {
             .tracker
             .update(reading, input.master_fraction, input.dt_us);
         let master = estimate.counts;
+        self.speed.update(estimate, input.dt_us);
         let edge = input.start_input && !self.last_start_input;
         self.last_start_input = input.start_input;
 
@@ -416,6 +678,7 @@ impl<C: CamCurve> CamAxis<C> {
                 armed.previous = Some(master);
                 let step = armed.watch.step(previous, master, edge, input.watch);
                 armed.delaying |= step == StartStep::Delaying;
+                events.activation_missed |= armed.watch.take_missed();
                 step
             }
             _ => StartStep::Waiting,
@@ -460,7 +723,7 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     fn engage(&mut self, at: i64) -> Result<(), EngineError> {
-        let engagement = Engagement::new(
+        let mut engagement = Engagement::new(
             &self.geometry,
             &self.config,
             &self.curve,
@@ -471,16 +734,83 @@ impl<C: CamCurve> CamAxis<C> {
         let place = self
             .geometry
             .locate(engagement.table_input(&self.geometry, at));
+        let ramp_in = match self.ramp_limits {
+            Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
+            None => self.config.ramp_in,
+        };
         self.phase = Phase::Running(Engaged {
             engagement,
-            ramp: self
-                .config
-                .ramp_in
-                .map(|ramp| Ramp::new(ramp, at, self.commanded)),
+            ramp: ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded)),
             place,
             queued: None,
+            seam_blend: None,
+            pending: None,
+            blend: None,
+            offsets: None,
+            scaling: None,
+            followed: i128::from(at) << 32,
         });
         Ok(())
+    }
+
+    /// The place of `master` under `geometry` (a one-shot held in its span).
+    fn resolve_on(&self, geometry: &Geometry, engagement: &Engagement, master: i64) -> Place {
+        let mut t = engagement.table_input(geometry, master);
+        if let Some((begin, end)) = engagement.span {
+            t = t.clamp(begin, end);
+        }
+        geometry.locate(t)
+    }
+
+    /// The ramp-in that keeps to `limits` for the engagement at `place`,
+    /// after moving its target by whole strokes for a restricted direction.
+    fn limited_ramp(
+        &mut self,
+        limits: RampInLimits,
+        engagement: &mut Engagement,
+        place: Place,
+    ) -> Result<Option<RampIn>, EngineError> {
+        let hold = i128::from(self.commanded);
+        let mut cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let wrong_way = |slave: i64| {
+            let gap = i128::from(slave) - hold;
+            match limits.direction {
+                RampDirection::Either => false,
+                RampDirection::Positive => gap < 0,
+                RampDirection::Negative => gap > 0,
+            }
+        };
+        if wrong_way(cam.slave) {
+            let stroke = self.geometry.stroke_pulses();
+            if stroke == 0.0 {
+                return Err(EngineError::RampDirection);
+            }
+            let gap = (i128::from(cam.slave) - hold) as f64;
+            let strokes = libm::ceil(libm::fabs(gap / stroke));
+            let toward = match limits.direction {
+                RampDirection::Negative => -1.0,
+                _ => 1.0,
+            };
+            let n = strokes * toward * libm::copysign(1.0, stroke);
+            engagement.add_strokes(n as i128);
+            cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            if wrong_way(cam.slave) {
+                // Rounding left it a pulse short: one stroke more.
+                engagement.add_strokes(libm::copysign(1.0, n) as i128);
+                cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            }
+        }
+        let gap = (i128::from(cam.slave) - hold) as f64;
+        let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
+        let configured = self.config.ramp_in.map(|r| r.distance.get());
+        Ok(match (needed, configured) {
+            (Some(a), Some(b)) => NonZeroU64::new(a.max(b)),
+            (Some(d), None) | (None, Some(d)) => NonZeroU64::new(d),
+            // A master at rest gives no speed to size the ramp for: one
+            // master count per 1/1.875 pulse of gap.
+            (None, None) => NonZeroU64::new(libm::ceil(1.875 * libm::fabs(gap)).max(1.0) as u64),
+        }
+        .map(|distance| RampIn { distance }))
     }
 
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
@@ -524,30 +854,114 @@ impl<C: CamCurve> CamAxis<C> {
     /// and whether a ramp-in is still blending.
     fn command_at(
         &mut self,
-        engaged: &Engaged<C>,
+        engaged: &mut Engaged<C>,
         place: Place,
         master: i64,
     ) -> Result<(Sample, i64, f64, bool), EngineError> {
-        let cam =
+        let cam = engaged.engagement_at(master)?.sample(
+            &self.geometry,
+            &self.curve,
+            &mut self.cursor,
+            place,
+        )?;
+        let (slave, ratio) = match (&engaged.blend, &engaged.scaling) {
+            (Some(blend), _) => {
+                let blended = blend.command(master)?;
+                (blended.slave, blended.velocity_ratio)
+            }
+            (None, Some(scaling)) => {
+                let new = engaged.engagement_at(master)?.sample(
+                    &scaling.target,
+                    &self.curve,
+                    &mut self.cursor,
+                    place,
+                )?;
+                scaling.mix(
+                    master,
+                    (cam.slave, cam.velocity_ratio),
+                    (new.slave, new.velocity_ratio),
+                )
+            }
+            (None, None) => (cam.slave, cam.velocity_ratio),
+        };
+        match engaged
+            .ramp
+            .and_then(|ramp| Some((ramp, ramp.blend(master, slave)?)))
+        {
+            Some((ramp, blended)) => Ok((cam, blended, ratio * ramp.weight(master), true)),
+            None => Ok((cam, slave, ratio, false)),
+        }
+    }
+
+    /// Carries out a waiting position or at-once switch at master `at`:
+    /// the new cam is aligned to the master as at engage and anchored on
+    /// the old cam's position there; a blend then carries the slave from
+    /// the old cam's velocity to the new cam's.
+    fn switch_at(&mut self, engaged: &mut Engaged<C>, at: i64) -> Result<(), EngineError> {
+        let Some(pending) = engaged.pending.take() else {
+            return Ok(());
+        };
+        let place = self.resolve(&engaged.engagement, None, at).place;
+        let old =
             engaged
                 .engagement
                 .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-        match engaged
-            .ramp
-            .and_then(|ramp| Some((ramp, ramp.blend(master, cam.slave)?)))
-        {
-            Some((ramp, blended)) => {
-                Ok((cam, blended, cam.velocity_ratio * ramp.weight(master), true))
+        match pending.takeover {
+            Takeover::Table(curve) => {
+                let geometry = Geometry::new(&curve, &self.config)?;
+                let mut cursor = Cursor::new();
+                let config = AxisConfig {
+                    slave_align: SlaveAlign::Relative,
+                    ..self.config
+                };
+                let engagement =
+                    Engagement::new(&geometry, &config, &curve, &mut cursor, at, old.slave)?;
+                engaged.engagement = engagement;
+                self.geometry = geometry;
+                self.cursor = cursor;
+                self.retired = Some(core::mem::replace(&mut self.curve, curve));
             }
-            None => Ok((cam, cam.slave, cam.velocity_ratio, false)),
+            Takeover::MasterScaling(zoom) => {
+                let config = AxisConfig {
+                    master_zoom: zoom,
+                    ..self.config
+                };
+                let geometry = Geometry::new(&self.curve, &config)?;
+                let mut engagement =
+                    engaged
+                        .engagement
+                        .with_master_rescaled(&self.geometry, &geometry, at)?;
+                let place = self.resolve_on(&geometry, &engagement, at);
+                let new = engagement.sample(&geometry, &self.curve, &mut self.cursor, place)?;
+                // Anchored: the new table unit may round the phase.
+                engagement.shift_output(i128::from(old.slave) - i128::from(new.slave))?;
+                engaged.engagement = engagement;
+                self.geometry = geometry;
+                self.config = config;
+            }
         }
+        engaged.blend = match pending.blend {
+            Some(distance) => {
+                let engagement = engaged.engagement;
+                Some(self.blend_onto(&engagement, at, distance, old.slave, old.velocity_ratio)?)
+            }
+            None => None,
+        };
+        Ok(())
     }
 
     /// Takes a queued table over at the seam between the last place and
     /// `to`, if one waits; gives back the engagement on the new table.
     fn switch_at_seam(&mut self, engaged: &mut Engaged<C>, to: Place) -> Result<bool, EngineError> {
         let from = engaged.place;
-        if from.k == to.k || engaged.queued.is_none() {
+        // A seam crossed while a blend runs is not taken: the switch waits
+        // for the next seam after the blend.
+        if from.k == to.k
+            || engaged.queued.is_none()
+            || engaged.blend.is_some()
+            || engaged.offsets.is_some()
+            || engaged.scaling.is_some()
+        {
             return Ok(false);
         }
         let forward = to.k > from.k;
@@ -564,6 +978,29 @@ impl<C: CamCurve> CamAxis<C> {
                 .sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
         let Some((curve, then)) = engaged.queued.take() else {
             return Ok(false);
+        };
+        // A blend starts at the last whole master count before the seam,
+        // on the old cam there.
+        let blend_from = match engaged.seam_blend.take() {
+            Some(distance) => {
+                let at = engaged
+                    .engagement
+                    .master_at_seam(&self.geometry, from.k, forward);
+                let place = self.resolve(&engaged.engagement, None, at).place;
+                // Exactly on the seam: seen from the old cycle's side.
+                let there = if place.k == from.k {
+                    engaged.engagement.sample(
+                        &self.geometry,
+                        &self.curve,
+                        &mut self.cursor,
+                        place,
+                    )?
+                } else {
+                    old
+                };
+                Some((at, distance, there.slave, there.velocity_ratio))
+            }
+            None => None,
         };
         let geometry = Geometry::new(&curve, &self.config)?;
         let mut cursor = Cursor::new();
@@ -583,7 +1020,35 @@ impl<C: CamCurve> CamAxis<C> {
         self.cursor = cursor;
         self.retired = Some(core::mem::replace(&mut self.curve, curve));
         engaged.engagement = next;
+        if let Some((at, distance, p0, v0)) = blend_from {
+            engaged.blend = Some(self.blend_onto(&engaged.engagement, at, distance, p0, v0)?);
+        }
         Ok(true)
+    }
+
+    /// A blend from the slave at `p0` with velocity ratio `v0` at master
+    /// `at` onto the (new) cam of `engagement`.
+    fn blend_onto(
+        &mut self,
+        engagement: &Engagement,
+        at: i64,
+        distance: NonZeroU64,
+        p0: i64,
+        v0: f64,
+    ) -> Result<Blend, EngineError> {
+        let mut ends = [BlendEnd {
+            slave: 0,
+            velocity_ratio: 0.0,
+        }; 2];
+        for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
+            let place = self.resolve(engagement, None, master).place;
+            let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            *end = BlendEnd {
+                slave: cam.slave,
+                velocity_ratio: cam.velocity_ratio,
+            };
+        }
+        Blend::start(at, distance.get(), p0, v0, ends)
     }
 
     /// Follows the cam for one tick; gives the phase after it, what was
@@ -596,7 +1061,19 @@ impl<C: CamCurve> CamAxis<C> {
         fraction: u32,
     ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
-        let mut here = self.resolve(&engaged.engagement, stop_at.as_ref(), master);
+        if let Some(ramp) = engaged.offsets
+            && ramp.finished(master)
+        {
+            engaged.engagement = ramp.apply(&engaged.engagement, master)?;
+            engaged.offsets = None;
+        }
+        if let Some(ramp) = engaged.scaling
+            && ramp.finished(master)
+        {
+            self.geometry = ramp.target;
+            engaged.scaling = None;
+        }
+        let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
         if here.stopped.is_none() && self.switch_at_seam(&mut engaged, here.place)? {
             events.table_switched = true;
             events.cycle_completed = true;
@@ -604,16 +1081,43 @@ impl<C: CamCurve> CamAxis<C> {
             // Cycle indices restart with the new table.
             engaged.place = here.place;
         }
+        if let Some(shift) = engaged.blend.as_ref().and_then(|b| b.finished(master)) {
+            engaged.engagement.shift_output(shift)?;
+            engaged.blend = None;
+        }
+        if here.stopped.is_none() && stop_at.is_none() {
+            let blending = engaged.blend.is_some();
+            let previous = engaged.followed;
+            let now = (i128::from(master) << 32) | i128::from(fraction);
+            let policy = self.missed_policy;
+            let fired = engaged
+                .pending
+                .as_mut()
+                .map(|p| p.fires(previous, now, blending, policy));
+            events.activation_missed |= fired.is_some_and(|f| f.missed);
+            if let Some(at) = fired.and_then(|f| f.at) {
+                self.switch_at(&mut engaged, at)?;
+                events.table_switched = true;
+                here = self.resolve(&engaged.engagement, None, master);
+                engaged.place = here.place;
+            }
+        }
+        engaged.followed = (i128::from(master) << 32) | i128::from(fraction);
         let place = here.place;
-        let (cam, mut slave, velocity_ratio, ramping) = self.command_at(&engaged, place, master)?;
+        let (cam, mut slave, velocity_ratio, ramping) =
+            self.command_at(&mut engaged, place, master)?;
         if fraction != 0 && here.stopped.is_none() && !here.finished {
             // Between whole master counts (an exact time base, or a coarse
             // master's estimate) the command moves along the straight line
             // to the next count's value: exact at every whole count, and
             // monotonic in between.
             let next_master = master.saturating_add(1);
-            let ahead = self.resolve(&engaged.engagement, stop_at.as_ref(), next_master);
-            let (_, next_slave, _, _) = self.command_at(&engaged, ahead.place, next_master)?;
+            let ahead = self.resolve(
+                &engaged.engagement_at(next_master)?,
+                stop_at.as_ref(),
+                next_master,
+            );
+            let (_, next_slave, _, _) = self.command_at(&mut engaged, ahead.place, next_master)?;
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
             slave =
@@ -622,6 +1126,7 @@ impl<C: CamCurve> CamAxis<C> {
         if !ramping {
             engaged.ramp = None;
         }
+        let blending = engaged.blend.is_some();
         self.commanded = slave;
         if engaged.place.k != place.k {
             events.cycle_completed = true;
@@ -631,19 +1136,22 @@ impl<C: CamCurve> CamAxis<C> {
         let followed = FollowSample {
             cam,
             velocity_ratio,
-            following: !ramping,
+            following: !ramping
+                && !blending
+                && engaged.offsets.is_none()
+                && engaged.scaling.is_none(),
             input_offset: engaged.engagement.input_offset(&self.geometry),
             cycle: place.k.saturating_sub(engaged.engagement.k_engage),
         };
         let phase = if let Some(forward) = here.stopped {
             events.cycle_completed |= forward;
             events.stopped = true;
-            self.end_run(engaged.queued);
+            self.end_run(engaged);
             Phase::Finished
         } else if here.finished {
             events.finished = true;
             events.cycle_completed = true;
-            self.end_run(engaged.queued);
+            self.end_run(engaged);
             Phase::Finished
         } else {
             match stop_at {
@@ -696,6 +1204,11 @@ impl<C: CamCurve> CamAxis<C> {
         out.in_sync = out.sync != 0;
         out.initialised = state.is_active();
         out.busy = out.initialised || out.backlog != 0;
+        if events.engaged || events.table_switched {
+            self.missed = false;
+        }
+        self.missed |= events.activation_missed;
+        out.activation_missed = self.missed;
         out.events = events;
         out.fault = fault;
         self.last = out;

@@ -137,6 +137,45 @@ pub struct RampIn {
     pub distance: NonZeroU64,
 }
 
+impl RampIn {
+    /// PLCopen `MasterSyncPosition` and `MasterStartDistance`: the slave is
+    /// in sync when the master reaches `sync_position`; the ramp-in starts
+    /// `start_distance` before it, in the master's direction of travel
+    /// (`forward`). Returns the start mode and ramp-in for
+    /// [`AxisConfig::start`] and [`AxisConfig::ramp_in`]. With ramp-in
+    /// limits ([`crate::CamAxis::set_ramp_in_limits`]) that need a longer
+    /// ramp, the slave is in sync correspondingly later.
+    ///
+    /// ```
+    /// use core::num::NonZeroU64;
+    /// use ecam_engine::{RampIn, StartMode};
+    /// let (start, ramp) = RampIn::sync_at(5_000, NonZeroU64::new(1_000).unwrap(), true);
+    /// assert_eq!(start, StartMode::AtMasterPosition { position: 4_000, after_edge: false });
+    /// assert_eq!(ramp.distance.get(), 1_000);
+    /// ```
+    pub fn sync_at(
+        sync_position: i64,
+        start_distance: NonZeroU64,
+        forward: bool,
+    ) -> (StartMode, Self) {
+        let distance = i64::try_from(start_distance.get()).unwrap_or(i64::MAX);
+        let position = if forward {
+            sync_position.saturating_sub(distance)
+        } else {
+            sync_position.saturating_add(distance)
+        };
+        (
+            StartMode::AtMasterPosition {
+                position,
+                after_edge: false,
+            },
+            Self {
+                distance: start_distance,
+            },
+        )
+    }
+}
+
 /// Everything that decides how an axis follows its master.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AxisConfig {

@@ -113,6 +113,25 @@ impl Geometry {
         })
     }
 
+    /// One stroke in output pulses (0 for a cam that does not accumulate).
+    pub(crate) fn stroke_pulses(&self) -> f64 {
+        to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+    }
+
+    /// The master zoom's denominator (the unit of table-input offsets).
+    pub(crate) fn master_den(&self) -> i128 {
+        self.mden
+    }
+
+    /// The same geometry with another slave zoom.
+    pub(crate) fn with_slave_zoom(&self, zoom: crate::Zoom) -> Self {
+        Self {
+            snum: i128::from(zoom.num()),
+            sden: i128::from(zoom.den()),
+            ..*self
+        }
+    }
+
     /// The zoomed master in table-input units.
     pub(crate) fn zoomed_master(&self, master: i64) -> i128 {
         i128::from(master) * self.mnum
@@ -396,6 +415,82 @@ impl Engagement {
         } else {
             (start.saturating_sub(geo.period_num), start)
         });
+    }
+
+    /// The same engagement with `input_num` added to the table input
+    /// (× master-zoom-denominator units) and `output` to the output.
+    pub(crate) fn shifted(&self, input_num: i128, output: i128) -> Result<Self, EngineError> {
+        Ok(Self {
+            input_offset_num: self
+                .input_offset_num
+                .checked_add(input_num)
+                .ok_or(EngineError::SlaveOverflow)?,
+            output_offset: self
+                .output_offset
+                .checked_add(output)
+                .ok_or(EngineError::SlaveOverflow)?,
+            ..*self
+        })
+    }
+
+    /// The same engagement on `new`, a geometry that differs from `old`
+    /// only in its master zoom, with the table input at master `at` kept
+    /// (to the nearest new table unit): the cam's phase is continuous.
+    pub(crate) fn with_master_rescaled(
+        &self,
+        old: &Geometry,
+        new: &Geometry,
+        at: i64,
+    ) -> Result<Self, EngineError> {
+        let rescale = |t: i128| -> Result<i128, EngineError> {
+            let scaled = mul_exact(t, new.mden)
+                .and_then(|v| v.checked_mul(2))
+                .and_then(|v| v.checked_add(old.mden))
+                .ok_or(EngineError::SlaveOverflow)?;
+            Ok(div_floor(scaled, 2 * old.mden).0)
+        };
+        let t_new = rescale(self.table_input(old, at))?;
+        let span = match self.span {
+            Some((begin, end)) => Some((rescale(begin)?, rescale(end)?)),
+            None => None,
+        };
+        Ok(Self {
+            input_offset_num: t_new
+                .checked_sub(new.zoomed_master(at))
+                .ok_or(EngineError::SlaveOverflow)?,
+            span,
+            ..*self
+        })
+    }
+
+    /// Adds `n` whole strokes to the output (a direction-restricted
+    /// ramp-in's target on a repeat cam).
+    pub(crate) fn add_strokes(&mut self, n: i128) {
+        self.shift = self.shift.saturating_add(n);
+    }
+
+    /// The whole master count at or before (`forward`) or at or after
+    /// the boundary of cycle `k` (its end when `forward`, else its start).
+    pub(crate) fn master_at_seam(&self, geo: &Geometry, k: i128, forward: bool) -> i64 {
+        let t = geo
+            .boundary(k, forward)
+            .saturating_sub(self.input_offset_num);
+        let (q, r) = div_floor(t, geo.mnum.max(1));
+        clamp_i64(if !forward && r != 0 {
+            q.saturating_add(1)
+        } else {
+            q
+        })
+    }
+
+    /// Moves the whole output by `delta` pulses (a blend that ended
+    /// `delta` off the cam it blended onto).
+    pub(crate) fn shift_output(&mut self, delta: i128) -> Result<(), EngineError> {
+        self.output_offset = self
+            .output_offset
+            .checked_add(delta)
+            .ok_or(EngineError::SlaveOverflow)?;
+        Ok(())
     }
 
     /// Document 002 `CamInputOffset`, in table counts (floor).

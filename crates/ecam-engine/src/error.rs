@@ -29,6 +29,14 @@ pub enum EngineError {
     /// A normal (non-repeating) cam has no seam at which a queued table
     /// could take over.
     NoSeam,
+    /// The request needs a running cam (e.g. offsets changed on the fly).
+    NotRunning,
+    /// A ramp-in cannot keep to its limits: the cam alone, at the master's
+    /// speed, needs more velocity than the limit leaves for a catch-up.
+    RampInLimits,
+    /// A ramp-in restricted to one direction cannot close its gap that
+    /// way (a cam without a stroke to add).
+    RampDirection,
 }
 
 use ecam_core::{CODE_PARAMETER, CODE_TABLE};
@@ -44,7 +52,10 @@ impl EngineError {
             | Self::BadTurn
             | Self::SlaveOverflow
             | Self::MasterStep
-            | Self::NoSeam => CODE_PARAMETER,
+            | Self::NoSeam
+            | Self::NotRunning
+            | Self::RampInLimits
+            | Self::RampDirection => CODE_PARAMETER,
         }
     }
 }
@@ -71,6 +82,15 @@ impl fmt::Display for EngineError {
                 "the master moved more than the allowed step in one tick; the cam was stopped"
             }
             Self::NoSeam => "a normal cam has no seam: stop it before changing its table",
+            Self::NotRunning => {
+                "the cam is not running: engage it first, or set this in the configuration"
+            }
+            Self::RampInLimits => {
+                "the ramp-in cannot keep to its velocity limit at this master speed; the cam was stopped"
+            }
+            Self::RampDirection => {
+                "the ramp-in cannot close its gap in the allowed direction (no stroke to add); the cam was stopped"
+            }
         };
         write!(f, "{text} (error {})", self.code())
     }

@@ -44,30 +44,41 @@
 extern crate std;
 
 mod axis;
+mod blend;
 mod config;
 mod coupling;
 mod error;
 mod input;
 mod master;
+mod offset_ramp;
 mod output;
 pub mod plcopen;
+pub mod plcopen_blocks;
 mod pulse;
 mod ramp;
+mod ramp_in;
+mod scaling;
+mod speed;
 mod start;
 mod stop;
+mod switch;
 mod sync;
 mod tracker;
 mod zoom;
 
 pub use axis::{AfterPass, CamAxis};
+pub use blend::min_blend_distance;
 pub use config::{
     AxisConfig, Compare, Coupling, MAX_FREQUENCY_HZ, MasterAlign, RampIn, SlaveAlign, StartMode,
 };
 pub use error::EngineError;
 pub use input::TickInput;
 pub use master::{TimeBase, Unwrap32};
+pub use offset_ramp::OffsetChange;
 pub use output::{AxisState, Events, TickOutput};
+pub use ramp_in::{RampDirection, RampInLimits};
 pub use stop::StopKind;
+pub use switch::{MissedActivation, SwitchAt};
 pub use sync::SyncWindow;
 pub use tracker::{MasterFilter, MasterPosition, MasterTracker};
 pub use zoom::Zoom;

@@ -54,8 +54,14 @@ pub struct Events {
     /// The jump goes out under the frequency limit, never as one burst.
     pub seam_jump: bool,
     /// A table queued with [`crate::CamAxis::queue_curve`] took over at the
-    /// seam just crossed.
+    /// seam just crossed, or one handed over with
+    /// [`crate::CamAxis::switch_curve`] took over at its master position
+    /// or at once.
     pub table_switched: bool,
+    /// The master passed an activation position (a start or switch at a
+    /// master position) backwards; what followed is the axis'
+    /// [`crate::MissedActivation`] policy.
+    pub activation_missed: bool,
 }
 
 impl Events {
@@ -67,6 +73,7 @@ impl Events {
         self.stopped |= other.stopped;
         self.seam_jump |= other.seam_jump;
         self.table_switched |= other.table_switched;
+        self.activation_missed |= other.activation_missed;
     }
 }
 
@@ -107,7 +114,8 @@ pub struct TickOutput {
     pub in_sync: bool,
     /// Document 003 flag bit 0: armed, delaying, running or stopping.
     pub initialised: bool,
-    /// Running and any ramp-in complete (PLCopen `InSync`).
+    /// Running, any ramp-in and any table-switch blend complete (PLCopen
+    /// `InSync`).
     pub following: bool,
     /// Active or pulses still owed (PLC M8147..M8150 BUSY).
     pub busy: bool,
@@ -118,6 +126,9 @@ pub struct TickOutput {
     /// Document 002 `CamOutputOffset`: commanded minus the zoomed table
     /// value in the cycle (includes accumulated strokes).
     pub output_offset: i64,
+    /// An activation position was passed backwards since the last arm,
+    /// engage or switch (the status of `events.activation_missed`).
+    pub activation_missed: bool,
     /// Set on the tick a runtime fault stopped the cam.
     pub fault: Option<EngineError>,
 }

@@ -4,13 +4,29 @@
 //!
 //! It is a thin layer over [`CamAxis`]: the same exact arithmetic, the same
 //! tick. Choices where PLCopen leaves room:
-//! - a periodic table repeats with the stroke accumulated
-//!   ([`Coupling::Repeat`]), so a table whose ends differ keeps the slave
-//!   continuous; a non-periodic table runs once ([`Coupling::OneShot`]);
+//! - a periodic table with an absolute slave is re-evaluated every cycle
+//!   ([`Coupling::Periodic`]: the slave jumps at the seam where the first
+//!   and last values differ, the jump going out under the frequency
+//!   limit); with a relative slave the stroke accumulates
+//!   ([`Coupling::Repeat`]), so the slave is continuous;
+//! - a non-periodic table with an absolute master runs over the table's
+//!   own master range and then keeps the slave coupled at the end value
+//!   ([`Coupling::Normal`]; `EndOfProfile` set while the master is at or
+//!   past the end, still `Active` and `InSync`); with a relative master it
+//!   runs once from engage and ends the coupling ([`Coupling::OneShot`]);
 //! - `MC_CamOut` stops the slave where it is (the engine has no velocity
-//!   mode to continue at the last speed);
+//!   mode to continue at the last speed); [`McCamAxis::cam_out_at_end_of_cycle`]
+//!   follows to the end of the current cycle first;
 //! - `EndOfProfile` pulses for one cycle each time a cycle of the table
-//!   completes, and when a non-periodic table ends.
+//!   completes, and when a non-periodic table ends;
+//! - `InSync` is set once the slave follows the cam (ramp-in, blend and
+//!   offset or scaling ramps done) *and* no pulses are owed;
+//! - `MC_CamIn` while a cam is engaged changes it on the fly: a table
+//!   selected with [`McCamAxis::select_table`] takes over as `BufferMode`
+//!   and `ActivationMode` say (with a velocity blend over
+//!   [`CamIn::blend`]), and changed offsets or scalings are ramped in over
+//!   the same distance, never stepped. See docs/engine.md, "PLCopen
+//!   mapping".
 //!
 //! ```
 //! use ecam_core::PointTable;
@@ -33,9 +49,31 @@ use core::num::NonZeroU64;
 use ecam_core::CamCurve;
 
 use crate::{
-    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, RampIn, SlaveAlign, StartMode,
-    StopKind, TickInput, TickOutput, Zoom,
+    AxisConfig, CamAxis, Coupling, EngineError, MasterAlign, OffsetChange, RampIn, RampInLimits,
+    SlaveAlign, StartMode, StopKind, SwitchAt, TickInput, TickOutput, Zoom,
 };
+
+/// `MC_CamIn` `BufferMode` for a cam-in while a cam is engaged.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BufferMode {
+    /// Take over as `ActivationMode` says (at once by default).
+    #[default]
+    Aborting,
+    /// Take over when the running cam's cycle ends (the next seam).
+    Buffered,
+}
+
+/// `MC_CamIn` `ActivationMode`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ActivationMode {
+    /// Now (idle: on the next cycle; engaged: at once).
+    #[default]
+    Immediate,
+    /// When the master reaches this position.
+    AtMasterPosition(i64),
+    /// At the start of the next table cycle (engaged: the next seam).
+    NextCycle,
+}
 
 /// `MC_CamTableSelect`: how the selected table is interpreted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,6 +129,32 @@ pub struct CamIn {
     pub slave_scaling: Zoom,
     /// How the slave engages.
     pub start_mode: CamInStartMode,
+    /// When the coupling starts (or, engaged, the new table takes over).
+    pub activation: ActivationMode,
+    /// Engaged: how the new table relates to the running one.
+    pub buffer_mode: BufferMode,
+    /// Engaged: master counts over which a new table is blended in and
+    /// changed offsets or scalings are ramped in.
+    pub blend: NonZeroU64,
+    /// PLCopen `MasterSyncPosition` and `MasterStartDistance`: in sync
+    /// when the master reaches the first, ramping in from the second's
+    /// distance before it (the master's direction: `forward`). Overrides
+    /// `activation` and a [`CamInStartMode::RampIn`] distance.
+    pub sync_at: Option<SyncAt>,
+    /// Limits and direction of the ramp-in (PLCopen ramp-in with limits,
+    /// `ramp_in_pos`, `ramp_in_neg`); see [`crate::CamAxis::set_ramp_in_limits`].
+    pub ramp_limits: Option<RampInLimits>,
+}
+
+/// PLCopen `MasterSyncPosition` / `MasterStartDistance` (see [`RampIn::sync_at`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SyncAt {
+    /// `MasterSyncPosition`.
+    pub position: i64,
+    /// `MasterStartDistance`.
+    pub start_distance: NonZeroU64,
+    /// The master approaches the sync position forwards.
+    pub forward: bool,
 }
 
 impl Default for CamIn {
@@ -101,9 +165,20 @@ impl Default for CamIn {
             master_scaling: Zoom::ONE,
             slave_scaling: Zoom::ONE,
             start_mode: CamInStartMode::Absolute,
+            activation: ActivationMode::Immediate,
+            buffer_mode: BufferMode::Aborting,
+            blend: DEFAULT_BLEND,
+            sync_at: None,
+            ramp_limits: None,
         }
     }
 }
+
+/// The default [`CamIn::blend`]: 1000 master counts.
+pub const DEFAULT_BLEND: NonZeroU64 = match NonZeroU64::new(1000) {
+    Some(v) => v,
+    None => NonZeroU64::MIN,
+};
 
 /// `MC_CamOut`: disengage the slave (it holds its position).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -112,7 +187,8 @@ pub struct CamOut;
 /// The outputs of the cam blocks after one cycle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CamStatus {
-    /// `InSync`: the slave follows the cam (any ramp-in done).
+    /// `InSync`: the slave follows the cam (any ramp-in, blend or ramped
+    /// change done) and no pulses are owed.
     pub in_sync: bool,
     /// `EndOfProfile`: a table cycle (or the non-periodic table) ended this cycle.
     pub end_of_profile: bool,
@@ -131,6 +207,13 @@ pub struct CamStatus {
 pub struct McCamAxis<C> {
     axis: CamAxis<C>,
     select: CamTableSelect,
+    /// A table selected while engaged, for the next `cam_in`.
+    next_table: Option<C>,
+    /// The inputs of the cam-in that engaged (offsets and scalings in effect).
+    engaged_with: Option<CamIn>,
+    /// Counts the commands (`cam_in`, `cam_out`) accepted, so a function
+    /// block can tell when another command took over.
+    command: u64,
 }
 
 impl<C: CamCurve> McCamAxis<C> {
@@ -143,6 +226,9 @@ impl<C: CamCurve> McCamAxis<C> {
         Ok(Self {
             axis: CamAxis::new(curve, AxisConfig::default())?,
             select,
+            next_table: None,
+            engaged_with: None,
+            command: 0,
         })
     }
 
@@ -158,11 +244,49 @@ impl<C: CamCurve> McCamAxis<C> {
         Ok(())
     }
 
-    /// `MC_CamIn`: engage on the next cycle.
+    /// `MC_CamTableSelect` with a table (`CamTableID`): idle, the table
+    /// replaces the current one at once; engaged, it waits for the next
+    /// [`McCamAxis::cam_in`], which switches to it on the fly. The
+    /// interpretation (`select`) can only change while idle.
     ///
     /// # Errors
-    /// [`EngineError::Busy`] while a cam is engaged.
+    /// As [`CamAxis::new`] for a table that does not fit;
+    /// [`EngineError::Busy`] for a different `select` while engaged.
+    pub fn select_table(&mut self, curve: C, select: CamTableSelect) -> Result<(), EngineError> {
+        if self.axis.state().is_active() {
+            if select != self.select {
+                return Err(EngineError::Busy);
+            }
+            crate::coupling::Geometry::new(&curve, self.axis.config())?;
+            self.next_table = Some(curve);
+            return Ok(());
+        }
+        self.axis.queue_curve(curve)?;
+        self.select = select;
+        Ok(())
+    }
+
+    /// The table a switch replaced, for the caller to take back.
+    pub fn take_retired_table(&mut self) -> Option<C> {
+        self.axis.take_retired_curve()
+    }
+
+    /// `MC_CamIn`. Idle: engage as `ActivationMode` says. Engaged: switch
+    /// to a table selected with [`McCamAxis::select_table`] (buffered: at
+    /// the next seam; aborting: at once or at the activation position,
+    /// blended over [`CamIn::blend`]), else ramp changed offsets and
+    /// scalings in over [`CamIn::blend`] (one change at a time).
+    ///
+    /// # Errors
+    /// Engaged: [`EngineError::Busy`] while an earlier change still runs,
+    /// or when offsets and a scaling change together; as
+    /// [`CamAxis::switch_curve`].
     pub fn cam_in(&mut self, params: &CamIn) -> Result<(), EngineError> {
+        if self.axis.state().is_engaged() {
+            self.cam_in_engaged(params)?;
+            self.command = self.command.wrapping_add(1);
+            return Ok(());
+        }
         let master_align = if self.select.master_absolute {
             MasterAlign::Offset(params.master_offset)
         } else {
@@ -186,12 +310,19 @@ impl<C: CamCurve> McCamAxis<C> {
             CamInStartMode::Absolute | CamInStartMode::Relative => None,
         };
         let config = AxisConfig {
-            coupling: if self.select.periodic {
-                Coupling::Repeat { min_stroke: 1 }
-            } else {
-                Coupling::OneShot { repeats: 0 }
+            coupling: match (self.select.periodic, self.select.master_absolute) {
+                (true, _) if relative => Coupling::Repeat { min_stroke: 1 },
+                (true, _) => Coupling::Periodic,
+                (false, true) => Coupling::Normal,
+                (false, false) => Coupling::OneShot { repeats: 0 },
             },
-            start: StartMode::Immediate,
+            start: match params.activation {
+                ActivationMode::AtMasterPosition(position) => StartMode::AtMasterPosition {
+                    position,
+                    after_edge: false,
+                },
+                ActivationMode::Immediate | ActivationMode::NextCycle => StartMode::Immediate,
+            },
             master_align,
             slave_align,
             master_zoom: params.master_scaling,
@@ -199,13 +330,84 @@ impl<C: CamCurve> McCamAxis<C> {
             ramp_in,
             ..*self.axis.config()
         };
+        let config = match params.sync_at {
+            Some(sync) => {
+                let (start, ramp) =
+                    RampIn::sync_at(sync.position, sync.start_distance, sync.forward);
+                AxisConfig {
+                    start,
+                    ramp_in: Some(ramp),
+                    ..config
+                }
+            }
+            None => config,
+        };
         self.axis.set_config(config)?;
-        self.axis.arm()
+        self.axis.set_ramp_in_limits(params.ramp_limits);
+        self.axis.arm()?;
+        self.engaged_with = Some(*params);
+        self.command = self.command.wrapping_add(1);
+        Ok(())
+    }
+
+    /// The number of commands accepted so far (see [`crate::plcopen_blocks`]).
+    pub fn command(&self) -> u64 {
+        self.command
+    }
+
+    fn cam_in_engaged(&mut self, params: &CamIn) -> Result<(), EngineError> {
+        if let Some(curve) = self.next_table.take() {
+            let at = match (params.buffer_mode, params.activation) {
+                (BufferMode::Buffered, _) | (_, ActivationMode::NextCycle) => SwitchAt::NextSeam {
+                    blend: Some(params.blend),
+                },
+                (BufferMode::Aborting, ActivationMode::AtMasterPosition(position)) => {
+                    SwitchAt::MasterPosition {
+                        position,
+                        blend: Some(params.blend),
+                    }
+                }
+                (BufferMode::Aborting, ActivationMode::Immediate) => SwitchAt::Now {
+                    blend: Some(params.blend),
+                },
+            };
+            return self.axis.switch_curve(curve, at);
+        }
+        let was = self.engaged_with.unwrap_or_default();
+        let offsets = OffsetChange {
+            master: params.master_offset.saturating_sub(was.master_offset),
+            slave: params.slave_offset.saturating_sub(was.slave_offset),
+            distance: params.blend,
+        };
+        let master_scaling = params.master_scaling != was.master_scaling;
+        let slave_scaling = params.slave_scaling != was.slave_scaling;
+        let offsets_change = offsets.master != 0 || offsets.slave != 0;
+        match (offsets_change, master_scaling, slave_scaling) {
+            (false, false, false) => Ok(()),
+            (true, false, false) => self.axis.change_offsets(offsets),
+            (false, true, false) => self
+                .axis
+                .change_master_scaling(params.master_scaling, Some(params.blend)),
+            (false, false, true) => self
+                .axis
+                .change_slave_scaling(params.slave_scaling, params.blend),
+            _ => Err(EngineError::Busy),
+        }?;
+        self.engaged_with = Some(*params);
+        Ok(())
     }
 
     /// `MC_CamOut`: disengage now; the slave holds its position.
     pub fn cam_out(&mut self, _: CamOut) {
         self.axis.stop(StopKind::Immediate);
+        self.command = self.command.wrapping_add(1);
+    }
+
+    /// `MC_CamOut`, end-of-cycle variant (an implementation option): keeps
+    /// following to the end of the current table cycle, then holds there.
+    pub fn cam_out_at_end_of_cycle(&mut self) {
+        self.axis.stop(StopKind::EndOfCycle);
+        self.command = self.command.wrapping_add(1);
     }
 
     /// Declares the slave's current position (while not engaged).
@@ -219,9 +421,13 @@ impl<C: CamCurve> McCamAxis<C> {
     /// One control cycle with the master at `master`, `dt_us` after the last.
     pub fn tick(&mut self, master: i64, dt_us: u32) -> CamStatus {
         let output = self.axis.tick(&TickInput::at(master, dt_us));
+        // A non-periodic table on an absolute master holds its end value.
+        let past_end = self.axis.config().coupling == Coupling::Normal
+            && output.state.is_engaged()
+            && output.master_in_cycle >= self.axis.curve().master_last();
         CamStatus {
-            in_sync: output.following,
-            end_of_profile: output.events.cycle_completed || output.events.finished,
+            in_sync: output.following && output.backlog == 0,
+            end_of_profile: output.events.cycle_completed || output.events.finished || past_end,
             busy: output.busy,
             active: output.state.is_engaged(),
             error: output.fault,

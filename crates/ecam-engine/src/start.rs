@@ -4,7 +4,7 @@
 //! engages, so the phase of the cam does not depend on the tick period
 //! (a delay of N counts engages at N counts even when a tick jumps past it).
 
-use crate::{Compare, StartMode};
+use crate::{Compare, MissedActivation, StartMode};
 
 /// What the start logic decided this tick.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,11 +31,21 @@ enum Phase {
 pub(crate) struct StartWatch {
     mode: StartMode,
     phase: Phase,
+    policy: MissedActivation,
+    /// The start position was passed backwards this tick.
+    missed: bool,
 }
 
 impl StartWatch {
-    /// Armed with `mode`.
+    /// Armed with `mode`; a start position passed backwards starts there.
+    #[cfg(test)]
     pub(crate) fn arm(mode: StartMode) -> Self {
+        Self::arm_with(mode, MissedActivation::StartNow)
+    }
+
+    /// Armed with `mode`; a start position passed backwards is handled
+    /// as `policy` says.
+    pub(crate) fn arm_with(mode: StartMode, policy: MissedActivation) -> Self {
         let phase = match mode {
             StartMode::Immediate => Phase::Now,
             StartMode::OnRisingEdge
@@ -49,7 +59,17 @@ impl StartWatch {
             StartMode::AtMasterPosition { .. } => Phase::Position { fresh: false },
             StartMode::Breakpoint { .. } => Phase::Breakpoint,
         };
-        Self { mode, phase }
+        Self {
+            mode,
+            phase,
+            policy,
+            missed: false,
+        }
+    }
+
+    /// True once after a tick that passed the start position backwards.
+    pub(crate) fn take_missed(&mut self) -> bool {
+        core::mem::take(&mut self.missed)
     }
 
     /// One tick: the master moved from `previous` to `master`; `edge` is a
@@ -91,10 +111,17 @@ impl StartWatch {
             }
             (Phase::Position { fresh }, StartMode::AtMasterPosition { position, .. }) => {
                 self.phase = Phase::Position { fresh: false };
-                let crossed = !fresh
-                    && ((previous < position && position < master)
-                        || (master < position && position < previous));
-                if master == position || crossed {
+                let forward = !fresh && previous < position && position < master;
+                // Arriving on the position from above is a backward pass.
+                let backward = !fresh && master <= position && position < previous;
+                let on = master == position && (fresh || previous <= position);
+                if backward {
+                    self.missed = true;
+                    match self.policy {
+                        MissedActivation::StartNow => StartStep::Engage(position),
+                        MissedActivation::NextPass => StartStep::Waiting,
+                    }
+                } else if on || forward {
                     StartStep::Engage(position)
                 } else {
                     StartStep::Waiting

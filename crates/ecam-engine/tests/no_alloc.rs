@@ -8,13 +8,14 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
-use std::num::NonZeroU64;
+use std::num::{NonZeroU32, NonZeroU64};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use ecam_core::PointTable;
 use ecam_engine::{
-    AxisConfig, CamAxis, Compare, Coupling, MasterAlign, RampIn, SlaveAlign, StartMode, StopKind,
-    SyncWindow, TickInput, Zoom,
+    AxisConfig, CamAxis, Compare, Coupling, MasterAlign, MissedActivation, OffsetChange,
+    RampDirection, RampIn, RampInLimits, SlaveAlign, StartMode, StopKind, SwitchAt, SyncWindow,
+    TickInput, Zoom,
 };
 
 struct Counting;
@@ -131,7 +132,16 @@ fn tick_allocates_nothing() {
 
     // ...and none while the axes run.
     WATCHING.with(|w| w.set(true));
-    for axis in axes.iter_mut() {
+    for (n, axis) in axes.iter_mut().enumerate() {
+        // Every other axis ramps in under limits, in one direction.
+        if n % 2 == 1 {
+            axis.set_ramp_in_limits(Some(RampInLimits {
+                max_velocity: NonZeroU32::new(100_000).unwrap(),
+                max_acceleration: NonZeroU64::new(10_000_000).unwrap(),
+                direction: RampDirection::Positive,
+            }));
+            axis.set_missed_activation(MissedActivation::NextPass);
+        }
         axis.arm().ok();
         for (i, &master) in masters.iter().enumerate() {
             let input = TickInput {
@@ -149,6 +159,32 @@ fn tick_allocates_nothing() {
                 300 => axis.stop(StopKind::Immediate),
                 301 | 320 => {
                     axis.arm().ok();
+                }
+                500 => {
+                    axis.change_offsets(OffsetChange {
+                        master: 37,
+                        slave: -250,
+                        distance: NonZeroU64::new(400).unwrap(),
+                    })
+                    .ok();
+                }
+                // Table switches: the new table is built (and the old one
+                // taken back) outside the watch; only ticks are watched.
+                100 | 200 | 400 => {
+                    WATCHING.with(|w| w.set(false));
+                    let at = match i % 701 {
+                        100 => SwitchAt::Now {
+                            blend: NonZeroU64::new(300),
+                        },
+                        200 => SwitchAt::MasterPosition {
+                            position: master.saturating_add(50),
+                            blend: NonZeroU64::new(200),
+                        },
+                        _ => SwitchAt::Now { blend: None },
+                    };
+                    axis.switch_curve(table.clone(), at).ok();
+                    drop(axis.take_retired_curve());
+                    WATCHING.with(|w| w.set(true));
                 }
                 _ => {}
             }

@@ -6,10 +6,15 @@ mod doc001_repeat;
 mod doc002_profile;
 mod doc003_decam;
 mod master_sources;
+mod missed_activation;
+mod offsets_on_the_fly;
 mod plcopen;
 mod properties;
+mod ramp_in_limits;
 mod safe_motion;
+mod scaling_on_the_fly;
 mod starts_stops;
+mod table_switch;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.

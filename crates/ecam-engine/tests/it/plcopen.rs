@@ -5,7 +5,9 @@ use core::num::NonZeroU64;
 
 use ecam_core::PointTable;
 use ecam_engine::Zoom;
-use ecam_engine::plcopen::{CamIn, CamInStartMode, CamOut, CamTableSelect, McCamAxis};
+use ecam_engine::plcopen::{
+    ActivationMode, BufferMode, CamIn, CamInStartMode, CamOut, CamTableSelect, McCamAxis,
+};
 
 fn table() -> PointTable {
     PointTable::from_pairs(&[(0, 0), (400, 100), (1000, 600)]).unwrap()
@@ -41,10 +43,11 @@ fn absolute_offsets_and_scaling() {
         master_scaling: Zoom::new(1, 2).unwrap(),
         slave_scaling: Zoom::new(2, 1).unwrap(),
         start_mode: CamInStartMode::Absolute,
+        ..CamIn::default()
     };
     axis.cam_in(&params).unwrap();
-    // master 1200 → table input 600 + 400 = 1000 → table 600 → ×2 + 7.
-    assert_eq!(axis.tick(1200, 1_000_000).output.slave, 1207);
+    // master 1100 → table input 550 + 400 = 950 → table 558.3 → ×2 + 7.
+    assert_eq!(axis.tick(1100, 1_000_000).output.slave, 1124);
 }
 
 #[test]
@@ -79,9 +82,247 @@ fn ramp_in_reports_in_sync_when_done_and_cam_out_holds() {
     assert!(!axis.tick(550, 1_000_000).in_sync);
     let s = axis.tick(600, 1_000_000);
     assert!(s.in_sync);
-    assert!(axis.cam_in(&CamIn::default()).is_err());
+    // The same inputs again while engaged change nothing.
+    axis.cam_in(&CamIn::default()).unwrap();
     axis.cam_out(CamOut);
     let held = axis.tick(700, 1_000_000);
     assert!(!held.active && !held.in_sync);
     assert_eq!(held.output.slave, s.output.slave);
+}
+
+#[test]
+fn cam_in_while_engaged_switches_tables_aborting_with_a_blend() {
+    let line = |slope: i64| PointTable::from_pairs(&[(0, 0), (1000, 1000 * slope)]).unwrap();
+    let mut axis = McCamAxis::new(line(1)).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    for m in 0..=500 {
+        let _ = axis.tick(m, 1000);
+    }
+    axis.select_table(line(3), CamTableSelect::default())
+        .unwrap();
+    let params = CamIn {
+        blend: NonZeroU64::new(200).unwrap(),
+        ..CamIn::default()
+    };
+    axis.cam_in(&params).unwrap();
+    let mut last = 500;
+    for m in 501..=800 {
+        let s = axis.tick(m, 1000);
+        let step = s.output.slave - last;
+        assert!((1..=3).contains(&step), "master {m}: step {step}");
+        assert_eq!(s.in_sync, m >= 700, "master {m}");
+        last = s.output.slave;
+    }
+    assert_eq!(axis.tick(801, 1000).output.slave - last, 3);
+    assert!(axis.take_retired_table().is_some());
+}
+
+#[test]
+fn cam_in_while_engaged_buffered_switches_at_the_seam() {
+    let line = |slope: i64| PointTable::from_pairs(&[(0, 0), (1000, 1000 * slope)]).unwrap();
+    let mut axis = McCamAxis::new(line(1)).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    let _ = axis.tick(300, 1_000_000);
+    axis.select_table(line(2), CamTableSelect::default())
+        .unwrap();
+    axis.cam_in(&CamIn {
+        buffer_mode: BufferMode::Buffered,
+        ..CamIn::default()
+    })
+    .unwrap();
+    assert_eq!(axis.tick(900, 1_000_000).output.slave, 900);
+    // Blended over CamIn::blend (1000 counts) from the last count before
+    // the seam: the velocity goes from 1 to 2 per count without a step.
+    let s = axis.tick(1100, 1_000_000);
+    assert!(s.output.events.table_switched);
+    assert_eq!(s.output.slave, 1101);
+    let a = axis.tick(2100, 1_000_000).output.slave;
+    assert_eq!(axis.tick(2200, 1_000_000).output.slave - a, 200);
+}
+
+#[test]
+fn cam_in_while_engaged_ramps_offsets_in_and_activation_at_a_position() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn {
+        activation: ActivationMode::AtMasterPosition(100),
+        ..CamIn::default()
+    })
+    .unwrap();
+    assert!(!axis.tick(50, 1_000_000).active);
+    assert!(axis.tick(150, 1_000_000).active);
+    axis.cam_in(&CamIn {
+        slave_offset: 40,
+        activation: ActivationMode::AtMasterPosition(100),
+        blend: NonZeroU64::new(100).unwrap(),
+        ..CamIn::default()
+    })
+    .unwrap();
+    let s = axis.tick(200, 1_000_000);
+    assert!(!s.in_sync, "ramping the offset in");
+    // Past the ramp: exactly the table (400 → 100) plus the new offset.
+    let s = axis.tick(400, 1_000_000);
+    assert!(s.in_sync);
+    assert_eq!(s.output.slave, 100 + 40);
+}
+
+#[test]
+fn in_sync_waits_for_the_pulse_backlog() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    // 400 counts in 100 µs: 100 pulses owed against 20 per tick at 200 kHz.
+    let s = axis.tick(400, 100);
+    assert!(s.output.following && !s.in_sync);
+    let mut s = s;
+    for _ in 0..10 {
+        s = axis.tick(400, 100);
+    }
+    assert!(s.in_sync);
+}
+
+/// PLCopen: periodic with an absolute slave re-evaluates the table each
+/// cycle (the slave jumps back where first ≠ last); relative accumulates.
+#[test]
+fn periodic_absolute_re_evaluates_relative_accumulates() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    assert_eq!(axis.tick(999, 1_000_000).output.slave, 599);
+    assert_eq!(axis.tick(1400, 1_000_000).output.slave, 100);
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn {
+        start_mode: CamInStartMode::Relative,
+        ..CamIn::default()
+    })
+    .unwrap();
+    let _ = axis.tick(0, 1_000_000);
+    assert_eq!(axis.tick(1400, 1_000_000).output.slave, 700);
+}
+
+/// PLCopen: non-periodic with an absolute master runs over the table's own
+/// master range, then keeps the slave coupled at the last value.
+#[test]
+fn non_periodic_absolute_master_stays_coupled_at_the_end() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.select(CamTableSelect {
+        periodic: false,
+        master_absolute: true,
+        slave_absolute: true,
+    })
+    .unwrap();
+    axis.cam_in(&CamIn::default()).unwrap();
+    let s = axis.tick(400, 1_000_000);
+    assert!(!s.end_of_profile);
+    assert_eq!(s.output.slave, 100);
+    let s = axis.tick(1500, 1_000_000);
+    assert!(s.end_of_profile && s.active && s.in_sync);
+    assert_eq!(s.output.slave, 600);
+    let s = axis.tick(700, 1_000_000);
+    assert!(!s.end_of_profile && s.active);
+    assert_eq!(s.output.slave, 350);
+}
+
+#[test]
+fn cam_out_at_end_of_cycle_finishes_the_cycle() {
+    let mut axis = McCamAxis::new(table()).unwrap();
+    axis.cam_in(&CamIn {
+        start_mode: CamInStartMode::Relative,
+        ..CamIn::default()
+    })
+    .unwrap();
+    let _ = axis.tick(0, 1_000_000);
+    let _ = axis.tick(400, 1_000_000);
+    axis.cam_out_at_end_of_cycle();
+    assert!(axis.tick(900, 1_000_000).active);
+    let s = axis.tick(1300, 1_000_000);
+    assert!(!s.active);
+    assert_eq!(s.output.slave, 600);
+}
+
+#[test]
+fn cam_in_with_master_sync_position() {
+    use ecam_engine::plcopen::SyncAt;
+    let line = PointTable::from_pairs(&[(0, 0), (1000, 2000)]).unwrap();
+    let mut axis = McCamAxis::new(line).unwrap();
+    axis.cam_in(&CamIn {
+        sync_at: Some(SyncAt {
+            position: 3000,
+            start_distance: NonZeroU64::new(500).unwrap(),
+            forward: true,
+        }),
+        ..CamIn::default()
+    })
+    .unwrap();
+    for m in (2000..=3200).step_by(10) {
+        let s = axis.tick(m, 1_000_000);
+        assert_eq!(s.active, m >= 2500, "master {m}");
+        assert_eq!(s.in_sync, m >= 3000, "master {m}");
+    }
+}
+
+mod blocks {
+    use super::*;
+    use ecam_engine::EngineError;
+    use ecam_engine::plcopen_blocks::{CamInBlock, TableSelectBlock};
+
+    #[test]
+    fn execute_edges_latched_errors_and_command_aborted() {
+        let mut axis = McCamAxis::new(table()).unwrap();
+        let mut first = CamInBlock::default();
+        let mut second = CamInBlock::default();
+        let params = CamIn::default();
+        let s = axis.tick(0, 1_000_000);
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.busy && !out.error);
+        let s = axis.tick(100, 1_000_000);
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.active && out.in_sync && out.busy);
+
+        // A second MC_CamIn that cannot be done (offset and scaling at once):
+        // its error latches until its next rising edge; the first keeps control.
+        let bad = CamIn {
+            slave_offset: 5,
+            slave_scaling: Zoom::new(2, 1).unwrap(),
+            ..CamIn::default()
+        };
+        let out = second.call(&mut axis, true, &bad, &s);
+        assert_eq!(out.error_id, Some(EngineError::Busy));
+        let s = axis.tick(200, 1_000_000);
+        assert!(second.call(&mut axis, false, &bad, &s).error);
+        assert!(first.call(&mut axis, true, &params, &s).active);
+
+        // A second MC_CamIn that is accepted aborts the first.
+        let good = CamIn {
+            slave_offset: 5,
+            ..CamIn::default()
+        };
+        let out = second.call(&mut axis, true, &good, &s);
+        assert!(!out.error && out.busy);
+        let s = axis.tick(300, 1_000_000);
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.command_aborted && !out.busy && !out.active);
+        // Holding Execute does not issue it again.
+        let out = first.call(&mut axis, true, &params, &s);
+        assert!(out.command_aborted);
+
+        // MC_CamOut aborts the second.
+        axis.cam_out(CamOut);
+        let s = axis.tick(400, 1_000_000);
+        assert!(second.call(&mut axis, true, &good, &s).command_aborted);
+    }
+
+    #[test]
+    fn table_select_is_done_on_the_rising_edge() {
+        let mut axis = McCamAxis::new(table()).unwrap();
+        let mut block = TableSelectBlock::default();
+        let mut next = Some(PointTable::from_pairs(&[(0, 0), (100, 50)]).unwrap());
+        let out = block.call(&mut axis, true, &mut next, CamTableSelect::default());
+        assert!(out.done && !out.error);
+        assert!(next.is_none());
+        // Held high: nothing more happens, Done stays.
+        assert!(
+            block
+                .call(&mut axis, true, &mut next, CamTableSelect::default())
+                .done
+        );
+        assert!(axis.take_retired_table().is_some());
+    }
 }

@@ -1,0 +1,126 @@
+//! Ramp-in under limits (after PLCopen `MC_CamIn` ramp-in, `ramp_in_pos`,
+//! `ramp_in_neg`): the distance of the quintic ramp-in chosen at engage so
+//! that catching up a moving master stays within the slave's velocity and
+//! acceleration limits, and the direction of the catch-up restricted.
+//!
+//! The ramp-in commands `hold + w(u) × (cam − hold)` over a master distance
+//! `D` (see the `ramp` module). With the master at speed `V` (counts/s),
+//! the cam's velocity ratio `r` and the gap `g = cam − hold` at engage, its
+//! velocity is `V × (r × (w + u w') + w' × g / D)` and its acceleration
+//! `V² × (r × (2w' + u w'') / D + w'' × g / D²)` plus the cam's own
+//! (`w' ≤ 1.875`, `w + u w' ≤ 1.78`, `|2w' + u w''| ≤ 4.63`,
+//! `|w''| ≤ 5.78`): catching up needs up to 1.78 times the cam's velocity,
+//! and a distance of at least
+//! `D_v = 1.875 |g| V / (v_max − 1.78 |r| V)` and the `D_a` that solves
+//! `V² (5.78 |g| / D² + 4.63 |r| / D) = a_max`.
+
+use core::num::{NonZeroU32, NonZeroU64};
+
+use crate::EngineError;
+
+/// Which way the slave may move to close the gap at ramp-in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RampDirection {
+    /// The nearer way.
+    #[default]
+    Either,
+    /// Only forwards (PLCopen `ramp_in_pos`): on a repeat cam the target is
+    /// the equivalent position ahead (whole strokes added).
+    Positive,
+    /// Only backwards (PLCopen `ramp_in_neg`).
+    Negative,
+}
+
+/// Limits a ramp-in keeps to ([`crate::CamAxis::set_ramp_in_limits`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RampInLimits {
+    /// Slave velocity limit, pulses per second.
+    pub max_velocity: NonZeroU32,
+    /// Slave acceleration limit, pulses per second².
+    pub max_acceleration: NonZeroU64,
+    /// Which way the gap may be closed.
+    pub direction: RampDirection,
+}
+
+/// Constants of the quintic's derivatives (upper bounds on [0, 1]).
+const W1: f64 = 1.875;
+const H: f64 = 1.78;
+const H1: f64 = 4.63;
+const W2: f64 = 5.78;
+
+impl RampInLimits {
+    /// The shortest ramp distance (master counts) for a gap `gap` (pulses),
+    /// a cam velocity ratio `ratio` and a master speed `speed` (counts/s);
+    /// `None` for a master at rest (no speed to size it for).
+    ///
+    /// # Errors
+    /// [`EngineError::RampInLimits`] when the cam alone, at this speed, needs
+    /// more than the velocity limit allows for a catch-up.
+    pub(crate) fn distance(
+        &self,
+        gap: f64,
+        ratio: f64,
+        speed: f64,
+    ) -> Result<Option<u64>, EngineError> {
+        let v = libm::fabs(speed);
+        if v == 0.0 || !v.is_finite() {
+            return Ok(None);
+        }
+        let (g, r) = (libm::fabs(gap), libm::fabs(ratio));
+        let room = f64::from(self.max_velocity.get()) - H * r * v;
+        if room <= 0.0 {
+            return Err(EngineError::RampInLimits);
+        }
+        let d_v = W1 * g * v / room;
+        let a = W2 * g * v * v;
+        let b = H1 * r * v * v;
+        let c = self.max_acceleration.get() as f64;
+        // D² c − b D − a ≥ 0.
+        let d_a = (b + libm::sqrt(b * b + 4.0 * a * c)) / (2.0 * c);
+        let d = libm::ceil(d_v.max(d_a)).max(1.0);
+        if !d.is_finite() {
+            return Err(EngineError::RampInLimits);
+        }
+        Ok(Some(if d >= 1.8e19 { u64::MAX } else { d as u64 }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn limits() -> RampInLimits {
+        RampInLimits {
+            max_velocity: NonZeroU32::new(10_000).unwrap(),
+            max_acceleration: NonZeroU64::new(100_000).unwrap(),
+            direction: RampDirection::Either,
+        }
+    }
+
+    #[test]
+    fn the_bounds_of_the_quintic_hold() {
+        let w1 = |u: f64| 30.0 * u * u * (1.0 - u) * (1.0 - u);
+        let w2 = |u: f64| 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u);
+        let w = |u: f64| u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+        for i in 0..=10_000 {
+            let u = f64::from(i) / 10_000.0;
+            assert!(w1(u) <= W1 + 1e-12);
+            assert!(w(u) + u * w1(u) <= H);
+            assert!((2.0 * w1(u) + u * w2(u)).abs() <= H1);
+            assert!(w2(u).abs() <= W2);
+        }
+    }
+
+    #[test]
+    fn a_faster_master_needs_a_longer_ramp() {
+        let l = limits();
+        let slow = l.distance(1000.0, 1.0, 1000.0).unwrap().unwrap();
+        let fast = l.distance(1000.0, 1.0, 4000.0).unwrap().unwrap();
+        assert!(fast > slow);
+        assert_eq!(l.distance(1000.0, 1.0, 0.0), Ok(None));
+        assert_eq!(
+            l.distance(0.0, 10.0, 1000.0),
+            Err(EngineError::RampInLimits)
+        );
+    }
+}
