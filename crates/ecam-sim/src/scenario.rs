@@ -12,7 +12,7 @@ use anyhow::{Context, bail};
 use ecam_core::CamCurve;
 use ecam_engine::{
     AxisConfig, Compare, Coupling, MasterAlign, MasterFilter, SlaveAlign, StartMode, StopKind,
-    SyncWindow, Zoom,
+    SwitchAt, SyncWindow, Zoom,
 };
 use serde::Deserialize;
 
@@ -48,6 +48,23 @@ struct RawSwitch {
     master_at_least: Option<i64>,
     master_at_most: Option<i64>,
     table: toml::Table,
+    #[serde(default)]
+    mode: RawSwitchMode,
+    position: Option<i64>,
+    blend: Option<u64>,
+}
+
+/// Where a `[[switch]]`'s table takes over.
+#[derive(Deserialize, Debug, Default, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+enum RawSwitchMode {
+    /// At the next seam (PLCopen buffered).
+    #[default]
+    Seam,
+    /// When the master reaches `position`.
+    Position,
+    /// At once (PLCopen aborting).
+    Now,
 }
 
 fn default_tick_us() -> u32 {
@@ -232,13 +249,16 @@ impl StopTrigger {
     }
 }
 
-/// A table that takes over from the running one at the next seam (cycle
-/// boundary) the master crosses after `trigger` fired: the slave continues
-/// from where it stands there (`CamAxis::queue_curve`).
+/// A table handed to the running cam once `trigger` fired; it takes over
+/// where `at` says (the next seam, a master position, at once), the slave
+/// continuing from where it stands (`CamAxis::switch_curve`).
 pub struct TableSwitch {
     /// When the switch is requested (the time or master position of the
-    /// request, not of the seam).
+    /// request, not of the switch itself).
     pub trigger: StopTrigger,
+    /// Where the new table takes over, and over what master travel the
+    /// velocity blends onto it.
+    pub at: SwitchAt,
     /// The new table.
     pub curve: Box<dyn CamCurve>,
 }
@@ -394,7 +414,27 @@ impl Scenario {
                 };
                 let curve = ecam_design::load_table(&s.table, base)
                     .with_context(|| format!("in {what} table"))?;
-                Ok(TableSwitch { trigger, curve })
+                let blend = match s.blend {
+                    Some(b) => Some(
+                        NonZeroU64::new(b)
+                            .with_context(|| format!("{what} blend must be at least 1 count"))?,
+                    ),
+                    None => None,
+                };
+                let at = match (s.mode, s.position) {
+                    (RawSwitchMode::Seam, None) => SwitchAt::NextSeam { blend },
+                    (RawSwitchMode::Now, None) => SwitchAt::Now { blend },
+                    (RawSwitchMode::Position, Some(position)) => {
+                        SwitchAt::MasterPosition { position, blend }
+                    }
+                    (RawSwitchMode::Position, None) => {
+                        bail!("{what}: mode = \"position\" needs position = MASTER")
+                    }
+                    (_, Some(_)) => {
+                        bail!("{what}: position is read only with mode = \"position\"")
+                    }
+                };
+                Ok(TableSwitch { trigger, at, curve })
             })
             .collect::<anyhow::Result<Vec<_>>>()?;
         if raw.sync.len() > 4 {

@@ -122,7 +122,7 @@ pub fn simulate(
         }
         while let Some((i, switch)) = switches.next_if(|(_, s)| s.trigger.fires(t_us, master)) {
             let curve: &dyn ecam_core::CamCurve = switch.curve.as_ref();
-            axis.queue_curve(curve).map_err(|e| {
+            axis.switch_curve(curve, switch.at).map_err(|e| {
                 anyhow::anyhow!(
                     "[[switch]] {}: the engine refuses the table: {e} (table master {} .. {})",
                     i + 1,

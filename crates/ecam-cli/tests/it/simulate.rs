@@ -485,3 +485,56 @@ fn a_rotary_knife_changes_cut_length_twice_while_running() {
         last = Some(slave);
     }
 }
+
+#[test]
+fn a_switch_at_once_or_at_a_position_blends_onto_the_new_table() {
+    let dir = scratch("switch-modes");
+    for switch in [
+        "mode = \"now\"\nblend = 500",
+        "mode = \"position\"\nposition = 7000\nblend = 500",
+    ] {
+        let path = dir.join("s.toml");
+        std::fs::write(
+            &path,
+            format!(
+                "tick_us = 100\n[table]\npoints = [[0, 0], [1000, 1000]]\n[cam]\nkind = \"repeat\"\n\
+                 [master]\nmoves = [[1.0, 10000]]\n\
+                 [[switch]]\nat_s = 0.5\n{switch}\ntable = {{ points = [[0, 0], [1000, 3000]] }}\n"
+            ),
+        )
+        .unwrap();
+        let trace_file = dir.join("t.csv");
+        let out = ecam(&[
+            "simulate",
+            path.to_str().unwrap(),
+            "--trace",
+            trace_file.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(summary["table_switches"], 1, "{switch}");
+        assert_eq!(summary["direction_changes"], 0);
+        let trace = Trace::read(&trace_file);
+        let slaves: Vec<i64> = trace.rows.iter().map(|r| trace.int(r, "slave")).collect();
+        // 1 count per tick: the slave moves 1 pulse per tick before, 3
+        // after, and in between never more than 3 nor backwards.
+        for w in slaves.windows(2) {
+            assert!(
+                (0..=3).contains(&(w[1] - w[0])),
+                "{switch}: step {}",
+                w[1] - w[0]
+            );
+        }
+        let n = slaves.len();
+        assert_eq!(
+            slaves[n - 1] - slaves[n - 2],
+            3,
+            "{switch}: on the new table"
+        );
+        assert_eq!(slaves[1] - slaves[0], 1);
+    }
+}
