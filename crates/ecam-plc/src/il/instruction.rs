@@ -53,6 +53,32 @@ pub enum Source {
     Counter(u16),
 }
 
+/// One bit of a data register, `Dn.b` with b = 0–F (the FX3 family's bit
+/// specification of a word device): `D2001.0` is bit 0 of D2001.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct WordBit {
+    /// The register n of `Dn.b`.
+    pub register: u16,
+    /// The bit b, 0..=15.
+    pub bit: u8,
+}
+
+impl core::fmt::Display for WordBit {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "D{}.{:X}", self.register, self.bit)
+    }
+}
+
+/// The operand of a contact or of OUT/SET/RST: a device, or a bit of a
+/// data register.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BitRef {
+    /// X, Y, M, a counter contact C (contacts), or D/C for RST.
+    Device(Device),
+    /// `Dn.b`.
+    WordBit(WordBit),
+}
+
 /// A bit device that instructions may drive: Y or M.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BitDest(pub Device);
@@ -94,11 +120,11 @@ pub enum MasterSpec {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Instruction {
     /// LD/LDI/LDP/LDF: starts a logic block.
-    Load(Contact, Device),
+    Load(Contact, BitRef),
     /// AND/ANI/ANDP/ANDF: series contact.
-    And(Contact, Device),
+    And(Contact, BitRef),
     /// OR/ORI/ORP/ORF: parallel contact.
-    Or(Contact, Device),
+    Or(Contact, BitRef),
     /// ANB: the last two blocks in series.
     AndBlock,
     /// ORB: the last two blocks in parallel.
@@ -109,8 +135,8 @@ pub enum Instruction {
     Read,
     /// MPP: pop the pushed power flow.
     Pop,
-    /// OUT Y/M: the coil follows the power flow.
-    Out(BitDest),
+    /// OUT Y/M/Dn.b: the coil follows the power flow.
+    Out(BitRef),
     /// OUT Cn K/D: counter coil with its set value.
     OutCounter {
         /// Counter number.
@@ -118,10 +144,10 @@ pub enum Instruction {
         /// Set value (K constant, or Dn: 16-bit for C0–C199, 32-bit for C200+).
         set_value: Source,
     },
-    /// SET Y/M.
-    Set(BitDest),
-    /// RST Y/M/D/C.
-    Reset(Device),
+    /// SET Y/M/Dn.b.
+    Set(BitRef),
+    /// RST Y/M/D/C/Dn.b.
+    Reset(BitRef),
     /// PLS (rising) / PLF (falling): the coil is on for one scan on the edge.
     Pulse {
         /// True for PLS, false for PLF.

@@ -3,8 +3,8 @@
 use super::Program;
 use super::error::ParseError;
 use super::instruction::{
-    ArithOp, BitDest, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Statement,
-    Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, MasterSpec, Source,
+    Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
 use super::operand::Operand;
@@ -112,7 +112,7 @@ fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
 }
 
 fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
-    let contact = || -> Result<Device, String> {
+    let contact = || -> Result<BitRef, String> {
         arity(mnemonic, ops, &["device"])?;
         bit_source(mnemonic, 0, &ops[0])
     };
@@ -142,16 +142,24 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
         }
         "OUT" => out(ops)?,
         "SET" => {
-            arity(mnemonic, ops, &["Y/M"])?;
-            Instruction::Set(bit_dest(mnemonic, 0, &ops[0])?)
+            arity(mnemonic, ops, &["Y/M/Dn.b"])?;
+            Instruction::Set(coil(mnemonic, 0, &ops[0])?)
         }
         "RST" => {
-            arity(mnemonic, ops, &["Y/M/D/C"])?;
+            arity(mnemonic, ops, &["Y/M/D/C/Dn.b"])?;
             match ops[0] {
                 Operand::Device(
                     d @ (Device::Y(_) | Device::M(_) | Device::D(_) | Device::C(_)),
-                ) => Instruction::Reset(d),
-                ref other => return Err(wrong(mnemonic, 0, other, "a Y, M, D or C device")),
+                ) => Instruction::Reset(BitRef::Device(d)),
+                Operand::WordBit(b) => Instruction::Reset(BitRef::WordBit(b)),
+                ref other => {
+                    return Err(wrong(
+                        mnemonic,
+                        0,
+                        other,
+                        "a Y, M, D or C device or a bit Dn.b",
+                    ));
+                }
             }
         }
         "PLS" | "PLF" => {
@@ -177,7 +185,7 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
         [Operand::Device(Device::C(counter))] => Err(format!(
             "OUT C{counter} needs a set value: expected OUT C{counter} K<value> or OUT C{counter} D<n>"
         )),
-        [op] => Ok(Instruction::Out(bit_dest("OUT", 0, op)?)),
+        [op] => Ok(Instruction::Out(coil("OUT", 0, op)?)),
         [Operand::Device(Device::C(counter)), set] => {
             let width = if *counter >= C_32BIT_FIRST {
                 Width::Double
@@ -447,14 +455,31 @@ fn applied_instruction(
     })
 }
 
-fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, String> {
+fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
     match op {
-        Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))) => Ok(*d),
+        Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))) => {
+            Ok(BitRef::Device(*d))
+        }
+        Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
         other => Err(wrong(
             mnemonic,
             index,
             other,
-            "a bit device X, Y, M or a counter contact C",
+            "a bit device X, Y, M, a counter contact C or a bit of a register Dn.b",
+        )),
+    }
+}
+
+/// Operand of OUT and SET: Y, M or `Dn.b`.
+fn coil(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
+    match op {
+        Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitRef::Device(*d)),
+        Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
+        other => Err(wrong(
+            mnemonic,
+            index,
+            other,
+            "an output Y, a relay M or a bit of a register Dn.b",
         )),
     }
 }

@@ -1,11 +1,11 @@
 //! Coils and applied instructions (everything after the contacts).
 
-use super::operands::{device_error, read_source, write_word};
+use super::operands::{device_error, read_source, write_bit_ref, write_word};
 use super::{Machine, Memory, runs};
 use crate::devices::Device;
 use crate::devices::DeviceError;
 use crate::hardware::{OutputOwner, PulseTrain};
-use crate::il::{ArithOp, FloatSource, Instruction, Source, Width, ZoneDevice};
+use crate::il::{ArithOp, BitRef, FloatSource, Instruction, Source, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
 use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
 
@@ -26,13 +26,10 @@ pub(super) fn execute(
 ) -> Result<(), OperationError> {
     let devices = &mut *machine.devices;
     match *instruction {
-        Instruction::Out(dest) => devices
-            .set_bit(dest.0, power)
-            .map_err(|e| device_error(dest.0, e)),
-        Instruction::Set(dest) if power => devices
-            .set_bit(dest.0, true)
-            .map_err(|e| device_error(dest.0, e)),
-        Instruction::Reset(device) if power => reset(machine, device),
+        Instruction::Out(dest) => write_bit_ref(devices, dest, power),
+        Instruction::Set(dest) if power => write_bit_ref(devices, dest, true),
+        Instruction::Reset(BitRef::Device(device)) if power => reset(machine, device),
+        Instruction::Reset(bit @ BitRef::WordBit(_)) if power => write_bit_ref(devices, bit, false),
         Instruction::Set(_) | Instruction::Reset(_) => Ok(()),
         Instruction::Pulse { rising, dest } => {
             let edge = if rising {

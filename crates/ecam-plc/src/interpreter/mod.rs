@@ -7,12 +7,10 @@ mod applied;
 mod operands;
 
 use crate::decam::Decam;
-use crate::devices::{Device, Devices};
+use crate::devices::Devices;
 use crate::hardware::Hardware;
-use crate::il::{Contact, Exec, Instruction, Program};
+use crate::il::{BitRef, Contact, Exec, Instruction, Program};
 use crate::operation_error::OperationError;
-
-pub(crate) use operands::read_bit;
 
 /// What one instruction remembers between scans (edges, PLSY latch).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -172,11 +170,11 @@ fn power_of(blocks: &[bool]) -> bool {
 /// Reads a contact, remembering the device state for the edge forms.
 fn contact_value(
     contact: Contact,
-    device: Device,
+    device: BitRef,
     memory: &mut Memory,
     machine: &Machine<'_>,
 ) -> bool {
-    let state = read_bit(machine.devices, machine.hardware, device);
+    let state = operands::read_bit_ref(machine.devices, machine.hardware, device);
     let previous = memory.previous;
     memory.previous = state;
     match contact {

@@ -12,6 +12,7 @@ mod il_parser;
 mod instructions;
 mod parser_never_panics;
 mod pulse_output_owner;
+mod word_bits;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.
