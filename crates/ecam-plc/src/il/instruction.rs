@@ -24,6 +24,49 @@ pub enum Contact {
     Falling,
 }
 
+/// How a contact joins the power flow: LD starts a block, AND puts the
+/// contact in series, OR in parallel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Join {
+    /// LD…: a new logic block.
+    Load,
+    /// AND…: in series with the block.
+    And,
+    /// OR…: in parallel with the block.
+    Or,
+}
+
+/// The relation of a comparison contact (`LD=`, `AND<>`, `ORD>=`, …).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Relation {
+    /// `=`.
+    Equal,
+    /// `<>`.
+    NotEqual,
+    /// `>`.
+    Greater,
+    /// `<`.
+    Less,
+    /// `>=`.
+    GreaterOrEqual,
+    /// `<=`.
+    LessOrEqual,
+}
+
+impl Relation {
+    /// Whether `s1 relation s2` holds (signed BIN comparison, as the FX does).
+    pub fn holds(self, s1: i32, s2: i32) -> bool {
+        match self {
+            Self::Equal => s1 == s2,
+            Self::NotEqual => s1 != s2,
+            Self::Greater => s1 > s2,
+            Self::Less => s1 < s2,
+            Self::GreaterOrEqual => s1 >= s2,
+            Self::LessOrEqual => s1 <= s2,
+        }
+    }
+}
+
 /// Operand width of an applied instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Width {
@@ -125,6 +168,19 @@ pub enum Instruction {
     And(Contact, BitRef),
     /// OR/ORI/ORP/ORF: parallel contact.
     Or(Contact, BitRef),
+    /// Comparison contact `LD=` … `ORD>=`: on while `s1 relation s2`.
+    CompareContact {
+        /// LD, AND or OR form.
+        join: Join,
+        /// The comparison.
+        relation: Relation,
+        /// 16 bit (`LD=`) or 32 bit (`LDD=`).
+        width: Width,
+        /// First operand.
+        s1: Source,
+        /// Second operand.
+        s2: Source,
+    },
     /// ANB: the last two blocks in series.
     AndBlock,
     /// ORB: the last two blocks in parallel.

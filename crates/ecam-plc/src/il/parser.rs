@@ -3,8 +3,8 @@
 use super::Program;
 use super::error::ParseError;
 use super::instruction::{
-    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, MasterSpec, Source,
-    Statement, Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, MasterSpec, Relation,
+    Source, Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
 use super::operand::Operand;
@@ -169,6 +169,7 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
                 dest: bit_dest(mnemonic, 0, &ops[0])?,
             }
         }
+        _ if comparison(mnemonic).is_some() => compare_contact(mnemonic, ops)?,
         _ => match applied(mnemonic) {
             Some((width, base, exec)) => applied_instruction(mnemonic, width, base, exec, ops)?,
             None => {
@@ -177,6 +178,61 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
                 ));
             }
         },
+    })
+}
+
+/// Splits `ANDD<>` into (And, Double, NotEqual).
+fn comparison(mnemonic: &str) -> Option<(Join, Width, Relation)> {
+    let (join, rest) = [("LD", Join::Load), ("AND", Join::And), ("OR", Join::Or)]
+        .into_iter()
+        .find_map(|(prefix, join)| mnemonic.strip_prefix(prefix).map(|rest| (join, rest)))?;
+    let (width, rest) = match rest.strip_prefix('D') {
+        Some(rest) => (Width::Double, rest),
+        None => (Width::Word, rest),
+    };
+    let relation = match rest {
+        "=" => Relation::Equal,
+        "<>" => Relation::NotEqual,
+        ">" => Relation::Greater,
+        "<" => Relation::Less,
+        ">=" => Relation::GreaterOrEqual,
+        "<=" => Relation::LessOrEqual,
+        _ => return None,
+    };
+    Some((join, width, relation))
+}
+
+fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
+    let Some((join, width, relation)) = comparison(mnemonic) else {
+        return Err(format!("unknown instruction `{mnemonic}`"));
+    };
+    arity(mnemonic, ops, &["S1", "S2"])?;
+    let operand = |index: usize| -> Result<Source, String> {
+        let source = source(mnemonic, index, &ops[index], width)?;
+        // The FX manual: a 32-bit counter in a 16-bit comparison is an
+        // error; say so at load instead of comparing its low word.
+        match source {
+            Source::Counter(n) if width == Width::Word && n >= C_32BIT_FIRST => {
+                let prefix = match join {
+                    Join::Load => "LD",
+                    Join::And => "AND",
+                    Join::Or => "OR",
+                };
+                let relation = mnemonic.get(prefix.len()..).unwrap_or("");
+                Err(format!(
+                    "{mnemonic} operand {}: C{n} is a 32-bit counter: use the 32-bit form {prefix}D{relation}",
+                    index + 1,
+                ))
+            }
+            other => Ok(other),
+        }
+    };
+    Ok(Instruction::CompareContact {
+        join,
+        relation,
+        width,
+        s1: operand(0)?,
+        s2: operand(1)?,
     })
 }
 

@@ -212,6 +212,7 @@ pub(super) fn execute(
         Instruction::Load(..)
         | Instruction::And(..)
         | Instruction::Or(..)
+        | Instruction::CompareContact { .. }
         | Instruction::AndBlock
         | Instruction::OrBlock
         | Instruction::Push

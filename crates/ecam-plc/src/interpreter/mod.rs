@@ -9,7 +9,7 @@ mod operands;
 use crate::decam::Decam;
 use crate::devices::Devices;
 use crate::hardware::Hardware;
-use crate::il::{BitRef, Contact, Exec, Instruction, Program};
+use crate::il::{BitRef, Contact, Exec, Instruction, Join, Program};
 use crate::operation_error::OperationError;
 
 /// What one instruction remembers between scans (edges, PLSY latch).
@@ -96,6 +96,39 @@ impl Interpreter {
                         *top = *top || value;
                     }
                     Ok(())
+                }
+                Instruction::CompareContact {
+                    join,
+                    relation,
+                    width,
+                    s1,
+                    s2,
+                } => {
+                    let compared =
+                        operands::read_source(machine.devices, *s1, *width).and_then(|a| {
+                            operands::read_source(machine.devices, *s2, *width)
+                                .map(|b| relation.holds(a, b))
+                        });
+                    let value = *compared.as_ref().unwrap_or(&false);
+                    match join {
+                        Join::Load => {
+                            if after_output && self.pushed.is_empty() {
+                                self.blocks.clear();
+                            }
+                            self.blocks.push(value);
+                        }
+                        Join::And => {
+                            if let Some(top) = self.blocks.last_mut() {
+                                *top = *top && value;
+                            }
+                        }
+                        Join::Or => {
+                            if let Some(top) = self.blocks.last_mut() {
+                                *top = *top || value;
+                            }
+                        }
+                    }
+                    compared.map(|_| ())
                 }
                 Instruction::AndBlock | Instruction::OrBlock => {
                     let last = self.blocks.pop().unwrap_or(false);
