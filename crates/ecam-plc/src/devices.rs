@@ -7,6 +7,8 @@
 
 use core::fmt;
 
+use crate::timers::Timers;
+
 /// Number of data registers D0…D8511.
 pub const D_COUNT: u16 = 8512;
 /// Number of auxiliary relays M0…M8511.
@@ -186,6 +188,7 @@ pub struct Devices {
     x: Vec<bool>,
     y: Vec<bool>,
     c: Vec<i32>,
+    timers: Timers,
 }
 
 impl Default for Devices {
@@ -203,6 +206,7 @@ impl Devices {
             x: vec![false; usize::from(XY_COUNT)],
             y: vec![false; usize::from(XY_COUNT)],
             c: vec![0; usize::from(C_COUNT)],
+            timers: Timers::new(),
         }
     }
 
@@ -371,6 +375,16 @@ impl Devices {
             value
         };
         Ok(())
+    }
+
+    /// Timers T0–T255 (values and contacts).
+    pub fn timers(&self) -> &Timers {
+        &self.timers
+    }
+
+    /// Timers, to drive or reset.
+    pub fn timers_mut(&mut self) -> &mut Timers {
+        &mut self.timers
     }
 
     /// The raw word image of D0…D8511 (for the Modbus face and state files).

@@ -94,6 +94,8 @@ pub enum Source {
     Register(u16),
     /// Current value of counter Cn.
     Counter(u16),
+    /// Current value of timer Tn (in its clock units).
+    Timer(u16),
 }
 
 /// One bit of a data register, `Dn.b` with b = 0–F (the FX3 family's bit
@@ -120,6 +122,8 @@ pub enum BitRef {
     Device(Device),
     /// `Dn.b`.
     WordBit(WordBit),
+    /// Timer Tn: its contact, or (RST) the whole timer.
+    Timer(u16),
 }
 
 /// A bit device that instructions may drive: Y or M.
@@ -199,6 +203,13 @@ pub enum Instruction {
         counter: u16,
         /// Set value (K constant, or Dn: 16-bit for C0–C199, 32-bit for C200+).
         set_value: Source,
+    },
+    /// OUT Tn K/D: timer coil with its set value (clock units, 0–32767).
+    OutTimer {
+        /// Timer number.
+        timer: u16,
+        /// Set value: a K constant 0–32767 or a 16-bit register.
+        preset: Source,
     },
     /// SET Y/M/Dn.b.
     Set(BitRef),

@@ -9,6 +9,8 @@ use crate::devices::{Device, DeviceError};
 pub(crate) enum Operand {
     /// A device.
     Device(Device),
+    /// Timer Tn: its contact, its current value, or its coil.
+    Timer(u16),
     /// A bit of a data register, `Dn.b`.
     WordBit(WordBit),
     /// K constant (decimal).
@@ -41,6 +43,12 @@ impl Operand {
                 .filter(|_| !rest.starts_with('+'))
                 .map(Self::Hex)
                 .ok_or_else(|| format!("`{token}` is not an H constant (expected H and hex digits, e.g. H1F)")),
+            'T' if !rest.is_empty() && rest.bytes().all(|b| b.is_ascii_digit()) => rest
+                .parse::<u16>()
+                .ok()
+                .filter(|n| *n < crate::timers::T_COUNT)
+                .map(Self::Timer)
+                .ok_or_else(|| format!("device `{token}` is out of range (timers T0-T255)")),
             'E' => rest
                 .parse::<f32>()
                 .ok()
@@ -49,7 +57,7 @@ impl Operand {
                 .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)")),
             _ => Device::parse(&upper).map(Self::Device).map_err(|err| match err {
                 DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"),
-                _ => format!("unknown device `{token}` (expected D, M, X, Y, C and a number, X/Y in octal, or a K/H/E constant)"),
+                _ => format!("unknown device `{token}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"),
             }),
         }
     }
@@ -91,6 +99,7 @@ impl Operand {
         match self {
             Self::Device(d) => d.to_string(),
             Self::WordBit(b) => b.to_string(),
+            Self::Timer(n) => format!("T{n}"),
             Self::Decimal(v) => format!("K{v}"),
             Self::Hex(v) => format!("H{v:X}"),
             Self::Float(v) => format!("E{v}"),

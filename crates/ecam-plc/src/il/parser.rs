@@ -146,18 +146,19 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
             Instruction::Set(coil(mnemonic, 0, &ops[0])?)
         }
         "RST" => {
-            arity(mnemonic, ops, &["Y/M/D/C/Dn.b"])?;
+            arity(mnemonic, ops, &["Y/M/D/C/T/Dn.b"])?;
             match ops[0] {
                 Operand::Device(
                     d @ (Device::Y(_) | Device::M(_) | Device::D(_) | Device::C(_)),
                 ) => Instruction::Reset(BitRef::Device(d)),
                 Operand::WordBit(b) => Instruction::Reset(BitRef::WordBit(b)),
+                Operand::Timer(n) => Instruction::Reset(BitRef::Timer(n)),
                 ref other => {
                     return Err(wrong(
                         mnemonic,
                         0,
                         other,
-                        "a Y, M, D or C device or a bit Dn.b",
+                        "a Y, M, D, C or T device or a bit Dn.b",
                     ));
                 }
             }
@@ -238,6 +239,25 @@ fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, Strin
 
 fn out(ops: &[Operand]) -> Result<Instruction, String> {
     match ops {
+        [Operand::Timer(timer)] => Err(format!(
+            "OUT T{timer} needs a set value: expected OUT T{timer} K<value> or OUT T{timer} D<n>"
+        )),
+        [Operand::Timer(timer), set] => {
+            let preset = source("OUT", 1, set, Width::Word)?;
+            match preset {
+                Source::Counter(_) | Source::Timer(_) => {
+                    Err(wrong("OUT", 1, set, "a K/H constant or a D register"))
+                }
+                // FX timers take a set value of 0-32767.
+                Source::Constant(v) if v < 0 => Err(format!(
+                    "OUT T{timer} operand 2: set value {v} is out of range for a timer (K0 to K32767)"
+                )),
+                preset => Ok(Instruction::OutTimer {
+                    timer: *timer,
+                    preset,
+                }),
+            }
+        }
         [Operand::Device(Device::C(counter))] => Err(format!(
             "OUT C{counter} needs a set value: expected OUT C{counter} K<value> or OUT C{counter} D<n>"
         )),
@@ -270,10 +290,10 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             "OUT",
             0,
             first,
-            "a counter C (two operands are only for OUT Cn K<set value>)",
+            "a counter C or a timer T (two operands are only for OUT Cn/Tn K<set value>)",
         )),
         _ => Err(format!(
-            "OUT expects 1 operand (Y/M) or 2 (Cn K<set value>), found {}",
+            "OUT expects 1 operand (Y/M/Dn.b) or 2 (Cn/Tn K<set value>), found {}",
             ops.len()
         )),
     }
@@ -517,11 +537,12 @@ fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, Stri
             Ok(BitRef::Device(*d))
         }
         Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
+        Operand::Timer(n) => Ok(BitRef::Timer(*n)),
         other => Err(wrong(
             mnemonic,
             index,
             other,
-            "a bit device X, Y, M, a counter contact C or a bit of a register Dn.b",
+            "a bit device X, Y, M, a counter contact C, a timer contact T or a bit of a register Dn.b",
         )),
     }
 }
@@ -583,11 +604,12 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
             Ok(Source::Register(register(mnemonic, index, n, width)?))
         }
         (Operand::Device(Device::C(n)), _) => Ok(Source::Counter(n)),
+        (Operand::Timer(n), Width::Word) => Ok(Source::Timer(n)),
         _ => Err(wrong(
             mnemonic,
             index,
             op,
-            "a K/H constant, a D register or a counter C",
+            "a K/H constant, a D register, a counter C or (16 bit) a timer T",
         )),
     }
 }

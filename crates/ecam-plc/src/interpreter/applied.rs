@@ -29,6 +29,10 @@ pub(super) fn execute(
         Instruction::Out(dest) => write_bit_ref(devices, dest, power),
         Instruction::Set(dest) if power => write_bit_ref(devices, dest, true),
         Instruction::Reset(BitRef::Device(device)) if power => reset(machine, device),
+        Instruction::Reset(BitRef::Timer(n)) if power => devices
+            .timers_mut()
+            .reset(n)
+            .map_err(|e| device_error(format!("T{n}"), e)),
         Instruction::Reset(bit @ BitRef::WordBit(_)) if power => write_bit_ref(devices, bit, false),
         Instruction::Set(_) | Instruction::Reset(_) => Ok(()),
         Instruction::Pulse { rising, dest } => {
@@ -41,6 +45,24 @@ pub(super) fn execute(
             devices
                 .set_bit(dest.0, edge)
                 .map_err(|e| device_error(dest.0, e))
+        }
+        Instruction::OutTimer { timer, preset } => {
+            let preset = read_source(devices, preset, Width::Word)?;
+            // A register set value reads as -32768..=32767; FX timers count
+            // only up to 0..=32767, so a negative one is an operand error.
+            let preset = i16::try_from(preset)
+                .ok()
+                .filter(|p| *p >= 0)
+                .ok_or_else(|| {
+                    OperationError::new(
+                        CODE_OPERAND,
+                        format!("T{timer} set value {preset} is negative (K0 to K32767)"),
+                    )
+                })?;
+            devices
+                .timers_mut()
+                .drive(timer, power, preset, machine.now_us)
+                .map_err(|e| device_error(format!("T{timer}"), e))
         }
         Instruction::OutCounter { counter, set_value } => {
             let width = if counter >= crate::devices::C_32BIT_FIRST {

@@ -24,6 +24,7 @@ pub(crate) fn read_bit_ref(devices: &Devices, hardware: &Hardware, bit: BitRef) 
     match bit {
         BitRef::Device(device) => read_bit(devices, hardware, device),
         BitRef::WordBit(b) => devices.word_bit(b.register, b.bit).unwrap_or(false),
+        BitRef::Timer(n) => devices.timers().contact(n).unwrap_or(false),
     }
 }
 
@@ -40,6 +41,8 @@ pub(crate) fn write_bit_ref(
         BitRef::WordBit(b) => devices
             .set_word_bit(b.register, b.bit, on)
             .map_err(|e| device_error(b, e)),
+        // The parser lets no OUT/SET name a timer without its set value.
+        BitRef::Timer(n) => Err(device_error(format!("T{n}"), DeviceError::WrongKind)),
     }
 }
 
@@ -59,6 +62,11 @@ pub(crate) fn read_source(
         Source::Counter(n) => devices
             .counter(n)
             .map_err(|e| device_error(Device::C(n), e))?,
+        Source::Timer(n) => devices
+            .timers()
+            .value(n)
+            .map(i32::from)
+            .map_err(|e| device_error(format!("T{n}"), e))?,
     };
     Ok(match width {
         Width::Word => i32::from(value as i16),

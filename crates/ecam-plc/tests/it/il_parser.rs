@@ -159,7 +159,7 @@ fn applied_instructions_and_their_forms() {
 fn errors_name_file_line_and_expectation() {
     assert_eq!(
         error("LD X0\n\nOUT Q5\n"),
-        "prog.il:3: OUT operand 1: unknown device `Q5` (expected D, M, X, Y, C and a number, X/Y in octal, or a K/H/E constant)"
+        "prog.il:3: OUT operand 1: unknown device `Q5` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"
     );
     assert!(
         error("LD X0\nMOV K1 D9000\n")
@@ -169,7 +169,7 @@ fn errors_name_file_line_and_expectation() {
     assert!(error("LD X0\nFOO D0\n").starts_with("prog.il:2: unknown instruction `FOO`"));
     assert!(error("LD X0\nMOV K1\n").contains("MOV expects 2 operands (S D), found 1"));
     assert!(error("LD D0\n").contains(
-        "expected a bit device X, Y, M, a counter contact C or a bit of a register Dn.b, found D0"
+        "expected a bit device X, Y, M, a counter contact C, a timer contact T or a bit of a register Dn.b, found D0"
     ));
     assert!(
         error("LD X0\nOUT X1\n")

@@ -13,6 +13,7 @@ mod il_parser;
 mod instructions;
 mod parser_never_panics;
 mod pulse_output_owner;
+mod timers;
 mod word_bits;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
