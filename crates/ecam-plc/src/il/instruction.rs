@@ -152,6 +152,17 @@ pub enum ArithOp {
     Sub,
 }
 
+/// WAND/WOR/WXOR (DAND/DOR/DXOR): a bitwise operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LogicOp {
+    /// S1 AND S2.
+    And,
+    /// S1 OR S2.
+    Or,
+    /// S1 XOR S2.
+    Xor,
+}
+
 /// Master operand of DECAM as written in the program (S1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MasterSpec {
@@ -266,6 +277,60 @@ pub enum Instruction {
         /// Second operand.
         s2: Source,
         /// Destination D or C.
+        dst: Device,
+    },
+    /// `MUL`/`DMUL`(`P`) S1 S2 D: the signed product, twice as wide as the
+    /// operands, in D, D+1 (16 bit) or D…D+3 (32 bit), low word first.
+    Multiply {
+        /// 16 or 32 bit operands.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Multiplicand.
+        s1: Source,
+        /// Multiplier.
+        s2: Source,
+        /// First register of the product.
+        dst: u16,
+    },
+    /// `DIV`/`DDIV`(`P`) S1 S2 D: quotient in D (D, D+1 for 32 bit),
+    /// remainder in D+1 (D+2, D+3); truncated toward zero, the remainder has
+    /// the dividend's sign.
+    Divide {
+        /// 16 or 32 bit operands.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Dividend.
+        s1: Source,
+        /// Divisor.
+        s2: Source,
+        /// First register of quotient and remainder.
+        dst: u16,
+    },
+    /// `WAND`/`WOR`/`WXOR`, `DAND`/`DOR`/`DXOR`(`P`) S1 S2 D.
+    Logic {
+        /// The bitwise operation.
+        op: LogicOp,
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First operand.
+        s1: Source,
+        /// Second operand.
+        s2: Source,
+        /// Destination D or C.
+        dst: Device,
+    },
+    /// `NEG`/`DNEG`(`P`) D: two's complement in place (wrapping: NEG of
+    /// −32768 is −32768).
+    Negate {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The register or counter.
         dst: Device,
     },
     /// `INC`/`DEC`/`DINC`/`DDEC`(`P`) D: add or subtract 1, wrapping, no flags (FX).

@@ -3,8 +3,8 @@
 use super::Program;
 use super::error::ParseError;
 use super::instruction::{
-    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, MasterSpec, Relation,
-    Source, Statement, Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
+    Relation, Source, Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
 use super::operand::Operand;
@@ -92,9 +92,21 @@ fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> Str
 /// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
 /// that have 32-bit and pulse forms.
 fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
-    const BASES: [&str; 11] = [
-        "MOV", "EMOV", "ADD", "SUB", "INC", "DEC", "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+    const BASES: [&str; 17] = [
+        "MOV", "EMOV", "ADD", "SUB", "MUL", "DIV", "INC", "DEC", "NEG", "WAND", "WOR", "WXOR",
+        "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
     ];
+    // The 32-bit word logic is DAND/DOR/DXOR, not DWAND.
+    for (double, word) in [("DAND", "WAND"), ("DOR", "WOR"), ("DXOR", "WXOR")] {
+        match mnemonic.strip_prefix(double) {
+            Some("") => return Some((Width::Double, word, Exec::Continuous)),
+            Some("P") => return Some((Width::Double, word, Exec::Pulse)),
+            _ => {}
+        }
+    }
+    if mnemonic.starts_with("DW") {
+        return None;
+    }
     let (width, rest) = match mnemonic.strip_prefix('D') {
         Some(rest)
             if BASES.contains(&rest)
@@ -375,6 +387,65 @@ fn applied_instruction(
                 s1: source(mnemonic, 0, &ops[0], width)?,
                 s2: source(mnemonic, 1, &ops[1], width)?,
                 dst: word_dest(mnemonic, 2, &ops[2], width)?,
+            }
+        }
+        "MUL" | "DIV" => {
+            arity(mnemonic, ops, &["S1", "S2", "D"])?;
+            let s1 = source(mnemonic, 0, &ops[0], width)?;
+            let s2 = source(mnemonic, 1, &ops[1], width)?;
+            let words: u16 = if width == Width::Double { 4 } else { 2 };
+            let dst = match ops[2] {
+                Operand::Device(Device::D(n))
+                    if n.checked_add(words - 1).is_some_and(|l| l < D_COUNT) =>
+                {
+                    n
+                }
+                Operand::Device(Device::D(n)) => {
+                    return Err(format!(
+                        "{mnemonic} operand 3: the result takes {words} registers from D{n}, past D8511"
+                    ));
+                }
+                ref other => return Err(wrong(mnemonic, 2, other, "a D register")),
+            };
+            if base == "MUL" {
+                Instruction::Multiply {
+                    width,
+                    exec,
+                    s1,
+                    s2,
+                    dst,
+                }
+            } else {
+                Instruction::Divide {
+                    width,
+                    exec,
+                    s1,
+                    s2,
+                    dst,
+                }
+            }
+        }
+        "WAND" | "WOR" | "WXOR" => {
+            arity(mnemonic, ops, &["S1", "S2", "D"])?;
+            Instruction::Logic {
+                op: match base {
+                    "WAND" => LogicOp::And,
+                    "WOR" => LogicOp::Or,
+                    _ => LogicOp::Xor,
+                },
+                width,
+                exec,
+                s1: source(mnemonic, 0, &ops[0], width)?,
+                s2: source(mnemonic, 1, &ops[1], width)?,
+                dst: word_dest(mnemonic, 2, &ops[2], width)?,
+            }
+        }
+        "NEG" => {
+            arity(mnemonic, ops, &["D"])?;
+            Instruction::Negate {
+                width,
+                exec,
+                dst: word_dest(mnemonic, 0, &ops[0], width)?,
             }
         }
         "INC" | "DEC" => {

@@ -4,6 +4,7 @@
 
 mod decam_support;
 
+mod arithmetic;
 mod compare_contacts;
 mod decam_errors;
 mod decam_hostile;
