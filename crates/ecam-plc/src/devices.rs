@@ -7,6 +7,8 @@
 
 use core::fmt;
 
+use crate::timers::Timers;
+
 /// Number of data registers D0…D8511.
 pub const D_COUNT: u16 = 8512;
 /// Number of auxiliary relays M0…M8511.
@@ -186,6 +188,7 @@ pub struct Devices {
     x: Vec<bool>,
     y: Vec<bool>,
     c: Vec<i32>,
+    timers: Timers,
 }
 
 impl Default for Devices {
@@ -203,6 +206,7 @@ impl Devices {
             x: vec![false; usize::from(XY_COUNT)],
             y: vec![false; usize::from(XY_COUNT)],
             c: vec![0; usize::from(C_COUNT)],
+            timers: Timers::new(),
         }
     }
 
@@ -305,6 +309,30 @@ impl Devices {
         Ok(())
     }
 
+    /// Bit `bit` (0–15) of `Dn`, the FX3 family's `Dn.b`.
+    ///
+    /// # Errors
+    /// [`DeviceError::OutOfRange`] for a register past D8511 or a bit past 15.
+    pub fn word_bit(&self, n: u16, bit: u8) -> Result<bool, DeviceError> {
+        let word = self.word(n)? as u16;
+        let mask = 1u16.checked_shl(u32::from(bit)).filter(|_| bit < 16);
+        Ok(word & mask.ok_or(DeviceError::OutOfRange)? != 0)
+    }
+
+    /// Sets or clears bit `bit` (0–15) of `Dn`, leaving the other bits.
+    ///
+    /// # Errors
+    /// [`DeviceError::OutOfRange`] for a register past D8511 or a bit past 15.
+    pub fn set_word_bit(&mut self, n: u16, bit: u8, on: bool) -> Result<(), DeviceError> {
+        let mask = 1u16
+            .checked_shl(u32::from(bit))
+            .filter(|_| bit < 16)
+            .ok_or(DeviceError::OutOfRange)?;
+        let word = self.word(n)? as u16;
+        let word = if on { word | mask } else { word & !mask };
+        self.set_word(n, word as i16)
+    }
+
     /// Shorthand for `bit(Device::M(n))`.
     ///
     /// # Errors
@@ -349,6 +377,16 @@ impl Devices {
         Ok(())
     }
 
+    /// Timers T0–T255 (values and contacts).
+    pub fn timers(&self) -> &Timers {
+        &self.timers
+    }
+
+    /// Timers, to drive or reset.
+    pub fn timers_mut(&mut self) -> &mut Timers {
+        &mut self.timers
+    }
+
     /// The raw word image of D0…D8511 (for the Modbus face and state files).
     pub fn words(&self) -> &[u16] {
         &self.d
@@ -386,6 +424,22 @@ mod tests {
         dev.set_dword(100, -3).unwrap();
         assert_eq!(dev.dword(100), Ok(-3));
         assert_eq!(dev.set_dword(8511, 1), Err(DeviceError::OutOfRange));
+    }
+
+    #[test]
+    fn word_bits_touch_one_bit() {
+        let mut dev = Devices::new();
+        dev.set_word(5, 0x00F0).unwrap();
+        dev.set_word_bit(5, 15, true).unwrap();
+        dev.set_word_bit(5, 4, false).unwrap();
+        assert_eq!(dev.word(5), Ok(0x80E0u16 as i16));
+        assert_eq!(dev.word_bit(5, 15), Ok(true));
+        assert_eq!(dev.word_bit(5, 4), Ok(false));
+        assert_eq!(dev.word_bit(5, 16), Err(DeviceError::OutOfRange));
+        assert_eq!(
+            dev.set_word_bit(8512, 0, true),
+            Err(DeviceError::OutOfRange)
+        );
     }
 
     #[test]

@@ -36,6 +36,7 @@ mod hardware;
 mod interpreter;
 mod operation_error;
 mod scan;
+mod timers;
 mod view;
 
 pub use devices::{
@@ -48,4 +49,5 @@ pub use hardware::{
 };
 pub use operation_error::{CODE_DEVICE_RANGE, CODE_OPERAND, OperationError};
 pub use scan::Plc;
+pub use timers::{T_COUNT, Timers, timer_clock};
 pub use view::{Value, View, ViewError};

@@ -78,7 +78,8 @@ impl Counters {
         }
         let value = devices.counter(counter).unwrap_or(0);
         if counter < C_32BIT_FIRST {
-            if value < set_value {
+            // K0 counts as K1 (FX3U manual).
+            if value < set_value.max(1) {
                 let _ = devices.set_counter(counter, value.saturating_add(1));
             }
         } else {
@@ -87,11 +88,14 @@ impl Counters {
     }
 
     /// The counter's contact: value ≥ set value (off before the coil ran).
+    /// A 16-bit counter with set value K0 behaves as with K1, as the FX3U
+    /// manual says: its contact turns on at the first count.
     pub fn contact(&self, devices: &Devices, counter: u16) -> bool {
         match (
             self.set_values.get(usize::from(counter)),
             devices.counter(counter),
         ) {
+            (Some(Some(sv)), Ok(value)) if counter < C_32BIT_FIRST => value >= (*sv).max(1),
             (Some(Some(sv)), Ok(value)) => value >= *sv,
             _ => false,
         }
@@ -182,6 +186,20 @@ mod tests {
         }
         assert_eq!(devices.counter(3), Ok(3));
         assert!(counters.contact(&devices, 3));
+    }
+
+    #[test]
+    fn a_16_bit_set_value_0_acts_as_1() {
+        let mut devices = Devices::new();
+        let mut counters = Counters::default();
+        counters.drive_coil(&mut devices, 4, false, 0);
+        assert!(!counters.contact(&devices, 4), "no count yet");
+        counters.drive_coil(&mut devices, 4, true, 0);
+        assert_eq!(devices.counter(4), Ok(1), "the first count");
+        assert!(counters.contact(&devices, 4));
+        counters.drive_coil(&mut devices, 4, false, 0);
+        counters.drive_coil(&mut devices, 4, true, 0);
+        assert_eq!(devices.counter(4), Ok(1), "and no further");
     }
 
     #[test]

@@ -24,6 +24,49 @@ pub enum Contact {
     Falling,
 }
 
+/// How a contact joins the power flow: LD starts a block, AND puts the
+/// contact in series, OR in parallel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Join {
+    /// LD…: a new logic block.
+    Load,
+    /// AND…: in series with the block.
+    And,
+    /// OR…: in parallel with the block.
+    Or,
+}
+
+/// The relation of a comparison contact (`LD=`, `AND<>`, `ORD>=`, …).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Relation {
+    /// `=`.
+    Equal,
+    /// `<>`.
+    NotEqual,
+    /// `>`.
+    Greater,
+    /// `<`.
+    Less,
+    /// `>=`.
+    GreaterOrEqual,
+    /// `<=`.
+    LessOrEqual,
+}
+
+impl Relation {
+    /// Whether `s1 relation s2` holds (signed BIN comparison, as the FX does).
+    pub fn holds(self, s1: i32, s2: i32) -> bool {
+        match self {
+            Self::Equal => s1 == s2,
+            Self::NotEqual => s1 != s2,
+            Self::Greater => s1 > s2,
+            Self::Less => s1 < s2,
+            Self::GreaterOrEqual => s1 >= s2,
+            Self::LessOrEqual => s1 <= s2,
+        }
+    }
+}
+
 /// Operand width of an applied instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Width {
@@ -51,6 +94,36 @@ pub enum Source {
     Register(u16),
     /// Current value of counter Cn.
     Counter(u16),
+    /// Current value of timer Tn (in its clock units).
+    Timer(u16),
+}
+
+/// One bit of a data register, `Dn.b` with b = 0–F (the FX3 family's bit
+/// specification of a word device): `D2001.0` is bit 0 of D2001.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct WordBit {
+    /// The register n of `Dn.b`.
+    pub register: u16,
+    /// The bit b, 0..=15.
+    pub bit: u8,
+}
+
+impl core::fmt::Display for WordBit {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "D{}.{:X}", self.register, self.bit)
+    }
+}
+
+/// The operand of a contact or of OUT/SET/RST: a device, or a bit of a
+/// data register.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BitRef {
+    /// X, Y, M, a counter contact C (contacts), or D/C for RST.
+    Device(Device),
+    /// `Dn.b`.
+    WordBit(WordBit),
+    /// Timer Tn: its contact, or (RST) the whole timer.
+    Timer(u16),
 }
 
 /// A bit device that instructions may drive: Y or M.
@@ -79,6 +152,17 @@ pub enum ArithOp {
     Sub,
 }
 
+/// WAND/WOR/WXOR (DAND/DOR/DXOR): a bitwise operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LogicOp {
+    /// S1 AND S2.
+    And,
+    /// S1 OR S2.
+    Or,
+    /// S1 XOR S2.
+    Xor,
+}
+
 /// Master operand of DECAM as written in the program (S1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MasterSpec {
@@ -94,11 +178,24 @@ pub enum MasterSpec {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Instruction {
     /// LD/LDI/LDP/LDF: starts a logic block.
-    Load(Contact, Device),
+    Load(Contact, BitRef),
     /// AND/ANI/ANDP/ANDF: series contact.
-    And(Contact, Device),
+    And(Contact, BitRef),
     /// OR/ORI/ORP/ORF: parallel contact.
-    Or(Contact, Device),
+    Or(Contact, BitRef),
+    /// Comparison contact `LD=` … `ORD>=`: on while `s1 relation s2`.
+    CompareContact {
+        /// LD, AND or OR form.
+        join: Join,
+        /// The comparison.
+        relation: Relation,
+        /// 16 bit (`LD=`) or 32 bit (`LDD=`).
+        width: Width,
+        /// First operand.
+        s1: Source,
+        /// Second operand.
+        s2: Source,
+    },
     /// ANB: the last two blocks in series.
     AndBlock,
     /// ORB: the last two blocks in parallel.
@@ -109,8 +206,8 @@ pub enum Instruction {
     Read,
     /// MPP: pop the pushed power flow.
     Pop,
-    /// OUT Y/M: the coil follows the power flow.
-    Out(BitDest),
+    /// OUT Y/M/Dn.b: the coil follows the power flow.
+    Out(BitRef),
     /// OUT Cn K/D: counter coil with its set value.
     OutCounter {
         /// Counter number.
@@ -118,10 +215,17 @@ pub enum Instruction {
         /// Set value (K constant, or Dn: 16-bit for C0–C199, 32-bit for C200+).
         set_value: Source,
     },
-    /// SET Y/M.
-    Set(BitDest),
-    /// RST Y/M/D/C.
-    Reset(Device),
+    /// OUT Tn K/D: timer coil with its set value (clock units, 0–32767).
+    OutTimer {
+        /// Timer number.
+        timer: u16,
+        /// Set value: a K constant 0–32767 or a 16-bit register.
+        preset: Source,
+    },
+    /// SET Y/M/Dn.b.
+    Set(BitRef),
+    /// RST Y/M/D/C/Dn.b.
+    Reset(BitRef),
     /// PLS (rising) / PLF (falling): the coil is on for one scan on the edge.
     Pulse {
         /// True for PLS, false for PLF.
@@ -173,6 +277,60 @@ pub enum Instruction {
         /// Second operand.
         s2: Source,
         /// Destination D or C.
+        dst: Device,
+    },
+    /// `MUL`/`DMUL`(`P`) S1 S2 D: the signed product, twice as wide as the
+    /// operands, in D, D+1 (16 bit) or D…D+3 (32 bit), low word first.
+    Multiply {
+        /// 16 or 32 bit operands.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Multiplicand.
+        s1: Source,
+        /// Multiplier.
+        s2: Source,
+        /// First register of the product.
+        dst: u16,
+    },
+    /// `DIV`/`DDIV`(`P`) S1 S2 D: quotient in D (D, D+1 for 32 bit),
+    /// remainder in D+1 (D+2, D+3); truncated toward zero, the remainder has
+    /// the dividend's sign.
+    Divide {
+        /// 16 or 32 bit operands.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Dividend.
+        s1: Source,
+        /// Divisor.
+        s2: Source,
+        /// First register of quotient and remainder.
+        dst: u16,
+    },
+    /// `WAND`/`WOR`/`WXOR`, `DAND`/`DOR`/`DXOR`(`P`) S1 S2 D.
+    Logic {
+        /// The bitwise operation.
+        op: LogicOp,
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First operand.
+        s1: Source,
+        /// Second operand.
+        s2: Source,
+        /// Destination D or C.
+        dst: Device,
+    },
+    /// `NEG`/`DNEG`(`P`) D: two's complement in place (wrapping: NEG of
+    /// −32768 is −32768).
+    Negate {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The register or counter.
         dst: Device,
     },
     /// `INC`/`DEC`/`DINC`/`DDEC`(`P`) D: add or subtract 1, wrapping, no flags (FX).

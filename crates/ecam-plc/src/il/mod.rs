@@ -17,8 +17,8 @@ pub(crate) use validate::is_output;
 
 pub use error::ParseError;
 pub use instruction::{
-    ArithOp, BitDest, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Statement,
-    Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
+    Relation, Source, Statement, Width, WordBit, ZoneDevice,
 };
 pub use parser::parse;
 

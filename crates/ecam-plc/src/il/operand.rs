@@ -1,6 +1,7 @@
 //! Operand tokens: devices (`D100`, `X17`, `C231`), constants (`K-5`, `H1F`)
 //! and float constants (`E1.6667`).
 
+use super::instruction::WordBit;
 use crate::devices::{Device, DeviceError};
 
 /// A lexed operand before the instruction checks its kind.
@@ -8,6 +9,10 @@ use crate::devices::{Device, DeviceError};
 pub(crate) enum Operand {
     /// A device.
     Device(Device),
+    /// Timer Tn: its contact, its current value, or its coil.
+    Timer(u16),
+    /// A bit of a data register, `Dn.b`.
+    WordBit(WordBit),
     /// K constant (decimal).
     Decimal(i64),
     /// H constant (hexadecimal bit pattern).
@@ -20,6 +25,11 @@ impl Operand {
     /// Parses one token; the message says what was expected.
     pub(crate) fn parse(token: &str) -> Result<Self, String> {
         let upper = token.to_ascii_uppercase();
+        if let Some((word, bit)) = upper.split_once('.') {
+            if word.starts_with(['D', 'M', 'X', 'Y', 'C']) {
+                return Self::word_bit(token, word, bit);
+            }
+        }
         let mut chars = upper.chars();
         let prefix = chars.next().unwrap_or(' ');
         let rest = chars.as_str();
@@ -33,6 +43,12 @@ impl Operand {
                 .filter(|_| !rest.starts_with('+'))
                 .map(Self::Hex)
                 .ok_or_else(|| format!("`{token}` is not an H constant (expected H and hex digits, e.g. H1F)")),
+            'T' if !rest.is_empty() && rest.bytes().all(|b| b.is_ascii_digit()) => rest
+                .parse::<u16>()
+                .ok()
+                .filter(|n| *n < crate::timers::T_COUNT)
+                .map(Self::Timer)
+                .ok_or_else(|| format!("device `{token}` is out of range (timers T0-T255)")),
             'E' => rest
                 .parse::<f32>()
                 .ok()
@@ -41,15 +57,49 @@ impl Operand {
                 .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)")),
             _ => Device::parse(&upper).map(Self::Device).map_err(|err| match err {
                 DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"),
-                _ => format!("unknown device `{token}` (expected D, M, X, Y, C and a number, X/Y in octal, or a K/H/E constant)"),
+                _ => format!("unknown device `{token}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"),
             }),
         }
+    }
+
+    /// `Dn.b`: only data registers have addressable bits here, and b is one
+    /// hex digit 0–F as in the FX3 programming manual.
+    fn word_bit(token: &str, word: &str, bit: &str) -> Result<Self, String> {
+        let register = match Device::parse(word) {
+            Ok(Device::D(n)) => n,
+            Ok(_) => {
+                return Err(format!(
+                    "`{token}`: only data registers D have addressable bits (Dn.b, b = 0-F)"
+                ));
+            }
+            Err(DeviceError::OutOfRange) => {
+                return Err(format!("device `{token}` is out of range (D0-D8511)"));
+            }
+            Err(_) => {
+                return Err(format!(
+                    "`{token}` is not a bit of a word (expected Dn.b with b = 0-F, e.g. D2001.0)"
+                ));
+            }
+        };
+        let bit = match bit.as_bytes() {
+            [digit] => char::from(*digit).to_digit(16),
+            _ => None,
+        }
+        .ok_or_else(|| {
+            format!("`{token}`: the bit number must be one hex digit 0-F (e.g. D2001.F)")
+        })?;
+        Ok(Self::WordBit(WordBit {
+            register,
+            bit: bit as u8,
+        }))
     }
 
     /// How the operand reads in messages.
     pub(crate) fn describe(&self) -> String {
         match self {
             Self::Device(d) => d.to_string(),
+            Self::WordBit(b) => b.to_string(),
+            Self::Timer(n) => format!("T{n}"),
             Self::Decimal(v) => format!("K{v}"),
             Self::Hex(v) => format!("H{v:X}"),
             Self::Float(v) => format!("E{v}"),
@@ -77,5 +127,38 @@ mod tests {
         assert!(Operand::parse("H+1").is_err());
         assert!(Operand::parse("Einf").is_err());
         assert!(Operand::parse("X8").unwrap_err().contains("unknown device"));
+        assert_eq!(
+            Operand::parse("d2001.f"),
+            Ok(Operand::WordBit(WordBit {
+                register: 2001,
+                bit: 15
+            }))
+        );
+        assert!(
+            Operand::parse("D0.G")
+                .unwrap_err()
+                .contains("one hex digit")
+        );
+        assert!(
+            Operand::parse("D0.10")
+                .unwrap_err()
+                .contains("one hex digit")
+        );
+        assert!(Operand::parse("D0.").unwrap_err().contains("one hex digit"));
+        assert!(
+            Operand::parse("M0.1")
+                .unwrap_err()
+                .contains("only data registers")
+        );
+        assert!(
+            Operand::parse("D8512.0")
+                .unwrap_err()
+                .contains("out of range")
+        );
+        assert!(
+            Operand::parse("D.1")
+                .unwrap_err()
+                .contains("not a bit of a word")
+        );
     }
 }

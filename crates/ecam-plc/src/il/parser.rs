@@ -3,8 +3,8 @@
 use super::Program;
 use super::error::ParseError;
 use super::instruction::{
-    ArithOp, BitDest, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Statement,
-    Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
+    Relation, Source, Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
 use super::operand::Operand;
@@ -92,9 +92,21 @@ fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> Str
 /// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
 /// that have 32-bit and pulse forms.
 fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
-    const BASES: [&str; 11] = [
-        "MOV", "EMOV", "ADD", "SUB", "INC", "DEC", "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+    const BASES: [&str; 17] = [
+        "MOV", "EMOV", "ADD", "SUB", "MUL", "DIV", "INC", "DEC", "NEG", "WAND", "WOR", "WXOR",
+        "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
     ];
+    // The 32-bit word logic is DAND/DOR/DXOR, not DWAND.
+    for (double, word) in [("DAND", "WAND"), ("DOR", "WOR"), ("DXOR", "WXOR")] {
+        match mnemonic.strip_prefix(double) {
+            Some("") => return Some((Width::Double, word, Exec::Continuous)),
+            Some("P") => return Some((Width::Double, word, Exec::Pulse)),
+            _ => {}
+        }
+    }
+    if mnemonic.starts_with("DW") {
+        return None;
+    }
     let (width, rest) = match mnemonic.strip_prefix('D') {
         Some(rest)
             if BASES.contains(&rest)
@@ -112,7 +124,7 @@ fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
 }
 
 fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
-    let contact = || -> Result<Device, String> {
+    let contact = || -> Result<BitRef, String> {
         arity(mnemonic, ops, &["device"])?;
         bit_source(mnemonic, 0, &ops[0])
     };
@@ -142,16 +154,25 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
         }
         "OUT" => out(ops)?,
         "SET" => {
-            arity(mnemonic, ops, &["Y/M"])?;
-            Instruction::Set(bit_dest(mnemonic, 0, &ops[0])?)
+            arity(mnemonic, ops, &["Y/M/Dn.b"])?;
+            Instruction::Set(coil(mnemonic, 0, &ops[0])?)
         }
         "RST" => {
-            arity(mnemonic, ops, &["Y/M/D/C"])?;
+            arity(mnemonic, ops, &["Y/M/D/C/T/Dn.b"])?;
             match ops[0] {
                 Operand::Device(
                     d @ (Device::Y(_) | Device::M(_) | Device::D(_) | Device::C(_)),
-                ) => Instruction::Reset(d),
-                ref other => return Err(wrong(mnemonic, 0, other, "a Y, M, D or C device")),
+                ) => Instruction::Reset(BitRef::Device(d)),
+                Operand::WordBit(b) => Instruction::Reset(BitRef::WordBit(b)),
+                Operand::Timer(n) => Instruction::Reset(BitRef::Timer(n)),
+                ref other => {
+                    return Err(wrong(
+                        mnemonic,
+                        0,
+                        other,
+                        "a Y, M, D, C or T device or a bit Dn.b",
+                    ));
+                }
             }
         }
         "PLS" | "PLF" => {
@@ -161,6 +182,7 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
                 dest: bit_dest(mnemonic, 0, &ops[0])?,
             }
         }
+        _ if comparison(mnemonic).is_some() => compare_contact(mnemonic, ops)?,
         _ => match applied(mnemonic) {
             Some((width, base, exec)) => applied_instruction(mnemonic, width, base, exec, ops)?,
             None => {
@@ -172,12 +194,86 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
     })
 }
 
+/// Splits `ANDD<>` into (And, Double, NotEqual).
+fn comparison(mnemonic: &str) -> Option<(Join, Width, Relation)> {
+    let (join, rest) = [("LD", Join::Load), ("AND", Join::And), ("OR", Join::Or)]
+        .into_iter()
+        .find_map(|(prefix, join)| mnemonic.strip_prefix(prefix).map(|rest| (join, rest)))?;
+    let (width, rest) = match rest.strip_prefix('D') {
+        Some(rest) => (Width::Double, rest),
+        None => (Width::Word, rest),
+    };
+    let relation = match rest {
+        "=" => Relation::Equal,
+        "<>" => Relation::NotEqual,
+        ">" => Relation::Greater,
+        "<" => Relation::Less,
+        ">=" => Relation::GreaterOrEqual,
+        "<=" => Relation::LessOrEqual,
+        _ => return None,
+    };
+    Some((join, width, relation))
+}
+
+fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
+    let Some((join, width, relation)) = comparison(mnemonic) else {
+        return Err(format!("unknown instruction `{mnemonic}`"));
+    };
+    arity(mnemonic, ops, &["S1", "S2"])?;
+    let operand = |index: usize| -> Result<Source, String> {
+        let source = source(mnemonic, index, &ops[index], width)?;
+        // The FX manual: a 32-bit counter in a 16-bit comparison is an
+        // error; say so at load instead of comparing its low word.
+        match source {
+            Source::Counter(n) if width == Width::Word && n >= C_32BIT_FIRST => {
+                let prefix = match join {
+                    Join::Load => "LD",
+                    Join::And => "AND",
+                    Join::Or => "OR",
+                };
+                let relation = mnemonic.get(prefix.len()..).unwrap_or("");
+                Err(format!(
+                    "{mnemonic} operand {}: C{n} is a 32-bit counter: use the 32-bit form {prefix}D{relation}",
+                    index + 1,
+                ))
+            }
+            other => Ok(other),
+        }
+    };
+    Ok(Instruction::CompareContact {
+        join,
+        relation,
+        width,
+        s1: operand(0)?,
+        s2: operand(1)?,
+    })
+}
+
 fn out(ops: &[Operand]) -> Result<Instruction, String> {
     match ops {
+        [Operand::Timer(timer)] => Err(format!(
+            "OUT T{timer} needs a set value: expected OUT T{timer} K<value> or OUT T{timer} D<n>"
+        )),
+        [Operand::Timer(timer), set] => {
+            let preset = source("OUT", 1, set, Width::Word)?;
+            match preset {
+                Source::Counter(_) | Source::Timer(_) => {
+                    Err(wrong("OUT", 1, set, "a K/H constant or a D register"))
+                }
+                // FX timers take a set value of 0-32767.
+                Source::Constant(v) if v < 0 => Err(format!(
+                    "OUT T{timer} operand 2: set value {v} is out of range for a timer (K0 to K32767)"
+                )),
+                preset => Ok(Instruction::OutTimer {
+                    timer: *timer,
+                    preset,
+                }),
+            }
+        }
         [Operand::Device(Device::C(counter))] => Err(format!(
             "OUT C{counter} needs a set value: expected OUT C{counter} K<value> or OUT C{counter} D<n>"
         )),
-        [op] => Ok(Instruction::Out(bit_dest("OUT", 0, op)?)),
+        [op] => Ok(Instruction::Out(coil("OUT", 0, op)?)),
         [Operand::Device(Device::C(counter)), set] => {
             let width = if *counter >= C_32BIT_FIRST {
                 Width::Double
@@ -206,10 +302,10 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             "OUT",
             0,
             first,
-            "a counter C (two operands are only for OUT Cn K<set value>)",
+            "a counter C or a timer T (two operands are only for OUT Cn/Tn K<set value>)",
         )),
         _ => Err(format!(
-            "OUT expects 1 operand (Y/M) or 2 (Cn K<set value>), found {}",
+            "OUT expects 1 operand (Y/M/Dn.b) or 2 (Cn/Tn K<set value>), found {}",
             ops.len()
         )),
     }
@@ -291,6 +387,65 @@ fn applied_instruction(
                 s1: source(mnemonic, 0, &ops[0], width)?,
                 s2: source(mnemonic, 1, &ops[1], width)?,
                 dst: word_dest(mnemonic, 2, &ops[2], width)?,
+            }
+        }
+        "MUL" | "DIV" => {
+            arity(mnemonic, ops, &["S1", "S2", "D"])?;
+            let s1 = source(mnemonic, 0, &ops[0], width)?;
+            let s2 = source(mnemonic, 1, &ops[1], width)?;
+            let words: u16 = if width == Width::Double { 4 } else { 2 };
+            let dst = match ops[2] {
+                Operand::Device(Device::D(n))
+                    if n.checked_add(words - 1).is_some_and(|l| l < D_COUNT) =>
+                {
+                    n
+                }
+                Operand::Device(Device::D(n)) => {
+                    return Err(format!(
+                        "{mnemonic} operand 3: the result takes {words} registers from D{n}, past D8511"
+                    ));
+                }
+                ref other => return Err(wrong(mnemonic, 2, other, "a D register")),
+            };
+            if base == "MUL" {
+                Instruction::Multiply {
+                    width,
+                    exec,
+                    s1,
+                    s2,
+                    dst,
+                }
+            } else {
+                Instruction::Divide {
+                    width,
+                    exec,
+                    s1,
+                    s2,
+                    dst,
+                }
+            }
+        }
+        "WAND" | "WOR" | "WXOR" => {
+            arity(mnemonic, ops, &["S1", "S2", "D"])?;
+            Instruction::Logic {
+                op: match base {
+                    "WAND" => LogicOp::And,
+                    "WOR" => LogicOp::Or,
+                    _ => LogicOp::Xor,
+                },
+                width,
+                exec,
+                s1: source(mnemonic, 0, &ops[0], width)?,
+                s2: source(mnemonic, 1, &ops[1], width)?,
+                dst: word_dest(mnemonic, 2, &ops[2], width)?,
+            }
+        }
+        "NEG" => {
+            arity(mnemonic, ops, &["D"])?;
+            Instruction::Negate {
+                width,
+                exec,
+                dst: word_dest(mnemonic, 0, &ops[0], width)?,
             }
         }
         "INC" | "DEC" => {
@@ -447,14 +602,32 @@ fn applied_instruction(
     })
 }
 
-fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, String> {
+fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
     match op {
-        Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))) => Ok(*d),
+        Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))) => {
+            Ok(BitRef::Device(*d))
+        }
+        Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
+        Operand::Timer(n) => Ok(BitRef::Timer(*n)),
         other => Err(wrong(
             mnemonic,
             index,
             other,
-            "a bit device X, Y, M or a counter contact C",
+            "a bit device X, Y, M, a counter contact C, a timer contact T or a bit of a register Dn.b",
+        )),
+    }
+}
+
+/// Operand of OUT and SET: Y, M or `Dn.b`.
+fn coil(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
+    match op {
+        Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitRef::Device(*d)),
+        Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
+        other => Err(wrong(
+            mnemonic,
+            index,
+            other,
+            "an output Y, a relay M or a bit of a register Dn.b",
         )),
     }
 }
@@ -502,11 +675,12 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
             Ok(Source::Register(register(mnemonic, index, n, width)?))
         }
         (Operand::Device(Device::C(n)), _) => Ok(Source::Counter(n)),
+        (Operand::Timer(n), Width::Word) => Ok(Source::Timer(n)),
         _ => Err(wrong(
             mnemonic,
             index,
             op,
-            "a K/H constant, a D register or a counter C",
+            "a K/H constant, a D register, a counter C or (16 bit) a timer T",
         )),
     }
 }

@@ -2,7 +2,7 @@
 //! ANB/ORB/MRD/MPP has nothing to work on is refused at load time with its
 //! line, instead of misbehaving at run time.
 
-use super::instruction::{Instruction, Statement};
+use super::instruction::{Instruction, Join, Statement};
 
 /// MPS depth of the FX family.
 pub(crate) const MPS_DEPTH: usize = 11;
@@ -15,6 +15,7 @@ pub(crate) fn is_output(instruction: &Instruction) -> bool {
         Instruction::Load(..)
             | Instruction::And(..)
             | Instruction::Or(..)
+            | Instruction::CompareContact { .. }
             | Instruction::AndBlock
             | Instruction::OrBlock
             | Instruction::Push
@@ -45,13 +46,18 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
             }
         };
         match instruction {
-            Instruction::Load(..) => {
+            Instruction::Load(..)
+            | Instruction::CompareContact {
+                join: Join::Load, ..
+            } => {
                 if after_output && pushed == 0 {
                     blocks = 0;
                 }
                 blocks += 1;
             }
-            Instruction::And(..) | Instruction::Or(..) => need_flow(blocks, "AND/OR contact")?,
+            Instruction::And(..) | Instruction::Or(..) | Instruction::CompareContact { .. } => {
+                need_flow(blocks, "AND/OR contact")?
+            }
             Instruction::AndBlock | Instruction::OrBlock => {
                 if blocks < 2 {
                     return Err((

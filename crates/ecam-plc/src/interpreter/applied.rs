@@ -1,11 +1,11 @@
 //! Coils and applied instructions (everything after the contacts).
 
-use super::operands::{device_error, read_source, write_word};
+use super::operands::{device_error, read_source, write_bit_ref, write_word};
 use super::{Machine, Memory, runs};
 use crate::devices::Device;
 use crate::devices::DeviceError;
 use crate::hardware::{OutputOwner, PulseTrain};
-use crate::il::{ArithOp, FloatSource, Instruction, Source, Width, ZoneDevice};
+use crate::il::{ArithOp, BitRef, FloatSource, Instruction, LogicOp, Source, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
 use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
 
@@ -26,13 +26,14 @@ pub(super) fn execute(
 ) -> Result<(), OperationError> {
     let devices = &mut *machine.devices;
     match *instruction {
-        Instruction::Out(dest) => devices
-            .set_bit(dest.0, power)
-            .map_err(|e| device_error(dest.0, e)),
-        Instruction::Set(dest) if power => devices
-            .set_bit(dest.0, true)
-            .map_err(|e| device_error(dest.0, e)),
-        Instruction::Reset(device) if power => reset(machine, device),
+        Instruction::Out(dest) => write_bit_ref(devices, dest, power),
+        Instruction::Set(dest) if power => write_bit_ref(devices, dest, true),
+        Instruction::Reset(BitRef::Device(device)) if power => reset(machine, device),
+        Instruction::Reset(BitRef::Timer(n)) if power => devices
+            .timers_mut()
+            .reset(n)
+            .map_err(|e| device_error(format!("T{n}"), e)),
+        Instruction::Reset(bit @ BitRef::WordBit(_)) if power => write_bit_ref(devices, bit, false),
         Instruction::Set(_) | Instruction::Reset(_) => Ok(()),
         Instruction::Pulse { rising, dest } => {
             let edge = if rising {
@@ -44,6 +45,24 @@ pub(super) fn execute(
             devices
                 .set_bit(dest.0, edge)
                 .map_err(|e| device_error(dest.0, e))
+        }
+        Instruction::OutTimer { timer, preset } => {
+            let preset = read_source(devices, preset, Width::Word)?;
+            // A register set value reads as -32768..=32767; FX timers count
+            // only up to 0..=32767, so a negative one is an operand error.
+            let preset = i16::try_from(preset)
+                .ok()
+                .filter(|p| *p >= 0)
+                .ok_or_else(|| {
+                    OperationError::new(
+                        CODE_OPERAND,
+                        format!("T{timer} set value {preset} is negative (K0 to K32767)"),
+                    )
+                })?;
+            devices
+                .timers_mut()
+                .drive(timer, power, preset, machine.now_us)
+                .map_err(|e| device_error(format!("T{timer}"), e))
         }
         Instruction::OutCounter { counter, set_value } => {
             let width = if counter >= crate::devices::C_32BIT_FIRST {
@@ -135,6 +154,114 @@ pub(super) fn execute(
             set_flag(devices, M_ZERO, wrapped == 0)?;
             write_word(devices, dst, width, wrapped)
         }
+        Instruction::Multiply {
+            width,
+            exec,
+            s1,
+            s2,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let a = i64::from(read_source(devices, s1, width)?);
+            let b = i64::from(read_source(devices, s2, width)?);
+            // |a·b| ≤ 2^62 for 32-bit operands: exact in i64, never wraps.
+            let product = a.saturating_mul(b);
+            match width {
+                Width::Word => devices
+                    .set_dword(dst, product as i32)
+                    .map_err(|e| device_error(Device::D(dst), e)),
+                Width::Double => write_quad(devices, dst, product),
+            }
+        }
+        Instruction::Divide {
+            width,
+            exec,
+            s1,
+            s2,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let a = read_source(devices, s1, width)?;
+            let b = read_source(devices, s2, width)?;
+            // FX3U manual (DIV, "Error"): divisor 0 is an operation error and
+            // the instruction is not executed; it names no code, we use the
+            // operand-value one.
+            if b == 0 {
+                return Err(OperationError::new(
+                    CODE_OPERAND,
+                    format!("division of {a} by zero (the result registers are unchanged)"),
+                ));
+            }
+            // FX3U manual (DIV, "Error"): a quotient over 32767 (16 bit) or
+            // 2147483647 (32 bit) is an operation error too.
+            let too_big = match width {
+                Width::Word => a == i32::from(i16::MIN) && b == -1,
+                Width::Double => a == i32::MIN && b == -1,
+            };
+            if too_big {
+                return Err(OperationError::new(
+                    CODE_OPERAND,
+                    format!(
+                        "{a} / {b} is past the signed range (the result registers are unchanged)"
+                    ),
+                ));
+            }
+            match width {
+                Width::Word => {
+                    let (a, b) = (a as i16, b as i16);
+                    devices
+                        .set_word(dst, a.wrapping_div(b))
+                        .and_then(|()| devices.set_word(dst.saturating_add(1), a.wrapping_rem(b)))
+                        .map_err(|e| device_error(Device::D(dst), e))
+                }
+                Width::Double => devices
+                    .set_dword(dst, a.wrapping_div(b))
+                    .and_then(|()| devices.set_dword(dst.saturating_add(2), a.wrapping_rem(b)))
+                    .map_err(|e| device_error(Device::D(dst), e)),
+            }
+        }
+        Instruction::Logic {
+            op,
+            width,
+            exec,
+            s1,
+            s2,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let a = read_source(devices, s1, width)?;
+            let b = read_source(devices, s2, width)?;
+            let value = match op {
+                LogicOp::And => a & b,
+                LogicOp::Or => a | b,
+                LogicOp::Xor => a ^ b,
+            };
+            write_word(devices, dst, width, value)
+        }
+        Instruction::Negate { width, exec, dst } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let source = match dst {
+                Device::C(n) => Source::Counter(n),
+                Device::D(n) => Source::Register(n),
+                other => {
+                    return Err(device_error(other, DeviceError::WrongKind));
+                }
+            };
+            let value = read_source(devices, source, width)?;
+            let negated = match width {
+                Width::Word => i32::from((value as i16).wrapping_neg()),
+                Width::Double => value.wrapping_neg(),
+            };
+            write_word(devices, dst, width, negated)
+        }
         Instruction::Step {
             up,
             width,
@@ -215,6 +342,7 @@ pub(super) fn execute(
         Instruction::Load(..)
         | Instruction::And(..)
         | Instruction::Or(..)
+        | Instruction::CompareContact { .. }
         | Instruction::AndBlock
         | Instruction::OrBlock
         | Instruction::Push
@@ -223,6 +351,25 @@ pub(super) fn execute(
         | Instruction::Nop
         | Instruction::Decam { .. } => Ok(()),
     }
+}
+
+/// Writes a 64-bit value into D n…n+3, lowest word first (DMUL).
+fn write_quad(
+    devices: &mut crate::devices::Devices,
+    n: u16,
+    value: i64,
+) -> Result<(), OperationError> {
+    let high = n
+        .checked_add(2)
+        .ok_or_else(|| device_error(Device::D(n), DeviceError::OutOfRange))?;
+    // The parser checked that D n+3 exists; check again before writing anything.
+    devices
+        .word(high.saturating_add(1))
+        .map_err(|e| device_error(Device::D(n), e))?;
+    devices
+        .set_dword(n, value as i32)
+        .and_then(|()| devices.set_dword(high, (value >> 32) as i32))
+        .map_err(|e| device_error(Device::D(n), e))
 }
 
 fn set_flag(devices: &mut crate::devices::Devices, m: u16, on: bool) -> Result<(), OperationError> {

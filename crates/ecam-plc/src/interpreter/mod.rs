@@ -7,12 +7,10 @@ mod applied;
 mod operands;
 
 use crate::decam::Decam;
-use crate::devices::{Device, Devices};
+use crate::devices::Devices;
 use crate::hardware::Hardware;
-use crate::il::{Contact, Exec, Instruction, Program};
+use crate::il::{BitRef, Contact, Exec, Instruction, Join, Program};
 use crate::operation_error::OperationError;
-
-pub(crate) use operands::read_bit;
 
 /// What one instruction remembers between scans (edges, PLSY latch).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -99,6 +97,39 @@ impl Interpreter {
                     }
                     Ok(())
                 }
+                Instruction::CompareContact {
+                    join,
+                    relation,
+                    width,
+                    s1,
+                    s2,
+                } => {
+                    let compared =
+                        operands::read_source(machine.devices, *s1, *width).and_then(|a| {
+                            operands::read_source(machine.devices, *s2, *width)
+                                .map(|b| relation.holds(a, b))
+                        });
+                    let value = *compared.as_ref().unwrap_or(&false);
+                    match join {
+                        Join::Load => {
+                            if after_output && self.pushed.is_empty() {
+                                self.blocks.clear();
+                            }
+                            self.blocks.push(value);
+                        }
+                        Join::And => {
+                            if let Some(top) = self.blocks.last_mut() {
+                                *top = *top && value;
+                            }
+                        }
+                        Join::Or => {
+                            if let Some(top) = self.blocks.last_mut() {
+                                *top = *top || value;
+                            }
+                        }
+                    }
+                    compared.map(|_| ())
+                }
                 Instruction::AndBlock | Instruction::OrBlock => {
                     let last = self.blocks.pop().unwrap_or(false);
                     if let Some(top) = self.blocks.last_mut() {
@@ -172,11 +203,11 @@ fn power_of(blocks: &[bool]) -> bool {
 /// Reads a contact, remembering the device state for the edge forms.
 fn contact_value(
     contact: Contact,
-    device: Device,
+    device: BitRef,
     memory: &mut Memory,
     machine: &Machine<'_>,
 ) -> bool {
-    let state = read_bit(machine.devices, machine.hardware, device);
+    let state = operands::read_bit_ref(machine.devices, machine.hardware, device);
     let previous = memory.previous;
     memory.previous = state;
     match contact {

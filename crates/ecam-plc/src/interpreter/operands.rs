@@ -2,7 +2,7 @@
 
 use crate::devices::{C_32BIT_FIRST, Device, DeviceError, Devices};
 use crate::hardware::Hardware;
-use crate::il::{Source, Width};
+use crate::il::{BitRef, Source, Width};
 use crate::operation_error::{CODE_DEVICE_RANGE, OperationError};
 
 /// A device error at run time (the parser checks ranges, so this is rare).
@@ -16,6 +16,33 @@ pub(crate) fn read_bit(devices: &Devices, hardware: &Hardware, device: Device) -
         Device::C(n) => hardware.counters().contact(devices, n),
         Device::D(_) => false,
         bit => devices.bit(bit).unwrap_or(false),
+    }
+}
+
+/// State of a contact operand: a bit device, a counter contact or `Dn.b`.
+pub(crate) fn read_bit_ref(devices: &Devices, hardware: &Hardware, bit: BitRef) -> bool {
+    match bit {
+        BitRef::Device(device) => read_bit(devices, hardware, device),
+        BitRef::WordBit(b) => devices.word_bit(b.register, b.bit).unwrap_or(false),
+        BitRef::Timer(n) => devices.timers().contact(n).unwrap_or(false),
+    }
+}
+
+/// Drives a coil operand: Y, M or `Dn.b` (read-modify-write of the word).
+pub(crate) fn write_bit_ref(
+    devices: &mut Devices,
+    bit: BitRef,
+    on: bool,
+) -> Result<(), OperationError> {
+    match bit {
+        BitRef::Device(device) => devices
+            .set_bit(device, on)
+            .map_err(|e| device_error(device, e)),
+        BitRef::WordBit(b) => devices
+            .set_word_bit(b.register, b.bit, on)
+            .map_err(|e| device_error(b, e)),
+        // The parser lets no OUT/SET name a timer without its set value.
+        BitRef::Timer(n) => Err(device_error(format!("T{n}"), DeviceError::WrongKind)),
     }
 }
 
@@ -35,6 +62,11 @@ pub(crate) fn read_source(
         Source::Counter(n) => devices
             .counter(n)
             .map_err(|e| device_error(Device::C(n), e))?,
+        Source::Timer(n) => devices
+            .timers()
+            .value(n)
+            .map(i32::from)
+            .map_err(|e| device_error(format!("T{n}"), e))?,
     };
     Ok(match width {
         Width::Word => i32::from(value as i16),

@@ -3,7 +3,8 @@
 
 use ecam_plc::Device;
 use ecam_plc::il::{
-    ArithOp, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Width, ZoneDevice, parse,
+    ArithOp, BitRef, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Width,
+    ZoneDevice, parse,
 };
 
 fn one(line: &str) -> Instruction {
@@ -24,11 +25,23 @@ fn contacts_and_stack_instructions() {
         .iter()
         .map(|s| s.instruction.clone())
         .collect();
-    assert_eq!(got[0], Instruction::Load(Contact::Open, Device::X(0)));
-    assert_eq!(got[1], Instruction::Load(Contact::Closed, Device::X(1)));
+    assert_eq!(
+        got[0],
+        Instruction::Load(Contact::Open, BitRef::Device(Device::X(0)))
+    );
+    assert_eq!(
+        got[1],
+        Instruction::Load(Contact::Closed, BitRef::Device(Device::X(1)))
+    );
     assert_eq!(got[2], Instruction::AndBlock);
-    assert_eq!(got[3], Instruction::And(Contact::Rising, Device::M(5)));
-    assert_eq!(got[4], Instruction::Or(Contact::Falling, Device::C(231)));
+    assert_eq!(
+        got[3],
+        Instruction::And(Contact::Rising, BitRef::Device(Device::M(5)))
+    );
+    assert_eq!(
+        got[4],
+        Instruction::Or(Contact::Falling, BitRef::Device(Device::C(231)))
+    );
     assert_eq!(got[5], Instruction::Push);
     assert_eq!(got[8], Instruction::Read);
     assert_eq!(got[10], Instruction::Pop);
@@ -146,7 +159,7 @@ fn applied_instructions_and_their_forms() {
 fn errors_name_file_line_and_expectation() {
     assert_eq!(
         error("LD X0\n\nOUT Q5\n"),
-        "prog.il:3: OUT operand 1: unknown device `Q5` (expected D, M, X, Y, C and a number, X/Y in octal, or a K/H/E constant)"
+        "prog.il:3: OUT operand 1: unknown device `Q5` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"
     );
     assert!(
         error("LD X0\nMOV K1 D9000\n")
@@ -155,10 +168,13 @@ fn errors_name_file_line_and_expectation() {
     assert!(error("LD X8\n").starts_with("prog.il:1: LD operand 1: unknown device `X8`"));
     assert!(error("LD X0\nFOO D0\n").starts_with("prog.il:2: unknown instruction `FOO`"));
     assert!(error("LD X0\nMOV K1\n").contains("MOV expects 2 operands (S D), found 1"));
+    assert!(error("LD D0\n").contains(
+        "expected a bit device X, Y, M, a counter contact C, a timer contact T or a bit of a register Dn.b, found D0"
+    ));
     assert!(
-        error("LD D0\n").contains("expected a bit device X, Y, M or a counter contact C, found D0")
+        error("LD X0\nOUT X1\n")
+            .contains("expected an output Y, a relay M or a bit of a register Dn.b, found X1")
     );
-    assert!(error("LD X0\nOUT X1\n").contains("expected an output Y or a relay M, found X1"));
     assert!(error("LD X0\nMOV K40000 D0\n").contains("out of range (K-32768 to K32767)"));
     assert!(error("LD X0\nDMOV K1 D8511\n").contains("D8511 has no D8512"));
     assert!(error("LD X0\nMOV D0 K1\n").contains("expected a D register or a counter C"));

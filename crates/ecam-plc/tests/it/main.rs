@@ -4,6 +4,8 @@
 
 mod decam_support;
 
+mod arithmetic;
+mod compare_contacts;
 mod decam_errors;
 mod decam_hostile;
 mod decam_registers;
@@ -12,6 +14,8 @@ mod il_parser;
 mod instructions;
 mod parser_never_panics;
 mod pulse_output_owner;
+mod timers;
+mod word_bits;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.
