@@ -1,7 +1,8 @@
 //! Device views for tools: how `ecam plc run --set/--dump/--trace` name a
 //! value. `D100` is a signed 16-bit word, `DD100` the signed 32-bit value in
 //! D100/D101 (low word first), `DE100` the float in D100/D101, `M0`/`X17`/`Y7`
-//! a bit (0/1), `C231` a counter's value.
+//! a bit (0/1), `C231` a counter's value, `D2001.1` one bit of a word (0/1,
+//! bit 0–F), `T0` a timer's current value.
 
 use core::fmt;
 
@@ -20,6 +21,10 @@ pub enum View {
     Bit(Device),
     /// `Cn`: the counter's value.
     Counter(u16),
+    /// `Dn.b`: bit `b` (0–15) of a word, 0 or 1.
+    WordBit(u16, u8),
+    /// `Tn`: the timer's current value.
+    Timer(u16),
 }
 
 /// A value read through a [`View`].
@@ -78,6 +83,33 @@ impl View {
     /// ```
     pub fn parse(text: &str) -> Result<Self, ViewError> {
         let upper = text.trim().to_ascii_uppercase();
+        if let Some((word, bit)) = upper.split_once('.') {
+            let n = match Device::parse(word) {
+                Ok(Device::D(n)) => n,
+                Ok(_) => {
+                    return Err(ViewError(format!(
+                        "`{text}`: only D registers have bits (Dn.b, b = 0-F)"
+                    )));
+                }
+                Err(err) => return Err(device_message(text, err)),
+            };
+            let bit = u8::from_str_radix(bit, 16)
+                .ok()
+                .filter(|b| *b < 16 && bit.len() == 1)
+                .ok_or_else(|| ViewError(format!("`{text}`: the bit is one hex digit 0-F")))?;
+            return Ok(Self::WordBit(n, bit));
+        }
+        if let Some(number) = upper.strip_prefix('T')
+            && !number.is_empty()
+            && number.bytes().all(|b| b.is_ascii_digit())
+        {
+            let n = number
+                .parse::<u16>()
+                .ok()
+                .filter(|n| *n < crate::timers::T_COUNT)
+                .ok_or_else(|| ViewError(format!("timer `{text}` is out of range (T0-T255)")))?;
+            return Ok(Self::Timer(n));
+        }
         for (prefix, double) in [("DD", true), ("DE", false)] {
             if let Some(rest) = upper.strip_prefix(prefix) {
                 let n = match Device::parse(&format!("D{rest}")) {
@@ -119,6 +151,13 @@ impl View {
             Self::Double(n) => step(n, 2).map(Self::Double),
             Self::Float(n) => step(n, 2).map(Self::Float),
             Self::Counter(n) => step(n, 1).map(Self::Counter),
+            Self::Timer(n) => step(n, 1)
+                .filter(|n| *n < crate::timers::T_COUNT)
+                .map(Self::Timer),
+            Self::WordBit(n, b) => {
+                let bit = u16::from(b).checked_add(k).filter(|b| *b < 16);
+                bit.map(|b| Self::WordBit(n, b as u8))
+            }
             Self::Bit(Device::M(n)) => step(n, 1).map(|n| Self::Bit(Device::M(n))),
             Self::Bit(Device::X(n)) => step(n, 1).map(|n| Self::Bit(Device::X(n))),
             Self::Bit(Device::Y(n)) => step(n, 1).map(|n| Self::Bit(Device::Y(n))),
@@ -134,7 +173,7 @@ impl View {
         let next = next.ok_or_else(out_of_range)?;
         let last_word = match next {
             Self::Double(n) | Self::Float(n) => n.checked_add(1),
-            Self::Word(n) => Some(n),
+            Self::Word(n) | Self::WordBit(n, _) => Some(n),
             _ => Some(0),
         };
         let exists = last_word.is_some_and(|n| n < D_COUNT)
@@ -158,6 +197,8 @@ impl View {
             Self::Float(n) => Value::Float(devices.float(n).unwrap_or(f32::NAN)),
             Self::Bit(d) => Value::Int(i64::from(devices.bit(d).unwrap_or(false))),
             Self::Counter(n) => Value::Int(devices.counter(n).map_or(0, i64::from)),
+            Self::WordBit(n, b) => Value::Int(i64::from(devices.word_bit(n, b).unwrap_or(false))),
+            Self::Timer(n) => Value::Int(devices.timers().value(n).map_or(0, i64::from)),
         }
     }
 
@@ -213,6 +254,10 @@ impl View {
                 };
                 devices.set_counter(n, value as i32)
             }
+            Self::WordBit(n, b) => devices.set_word_bit(n, b, int(0, 1, "0 or 1")? == 1),
+            Self::Timer(n) => devices
+                .timers_mut()
+                .set_value(n, int(0, 32767, "an integer 0..32767")? as i16),
         };
         result.map_err(|err| device_message(&self.to_string(), err))
     }
@@ -226,6 +271,8 @@ impl fmt::Display for View {
             Self::Float(n) => write!(f, "DE{n}"),
             Self::Bit(d) => write!(f, "{d}"),
             Self::Counter(n) => write!(f, "C{n}"),
+            Self::WordBit(n, b) => write!(f, "D{n}.{b:X}"),
+            Self::Timer(n) => write!(f, "T{n}"),
         }
     }
 }

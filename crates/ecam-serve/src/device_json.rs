@@ -113,6 +113,14 @@ fn sets_from_json(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
                     "{view} is a counter: the program and inputs drive it"
                 ));
             }
+            View::Timer(_) => {
+                return Err(format!("{view} is a timer: the program drives it"));
+            }
+            View::WordBit(n, _) => {
+                // One bit of a word is a read-modify-write of the word, which a
+                // batch of plain word writes cannot express atomically.
+                return Err(format!("{view}: write the whole word D{n}"));
+            }
             _ => {}
         }
         view.write(&mut scratch, &text).map_err(|e| e.to_string())?;
@@ -129,7 +137,7 @@ fn sets_from_json(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
             View::Bit(device) => {
                 batch.bit(device, scratch.bit(device).unwrap_or(false));
             }
-            View::Counter(_) => {}
+            View::Counter(_) | View::Timer(_) | View::WordBit(..) => {}
         }
         views.push(view);
     }

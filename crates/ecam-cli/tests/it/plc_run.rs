@@ -374,3 +374,42 @@ fn stop_flag_set_from_outside_holds_the_output() {
     ]);
     assert_eq!(out, "{\"DD8140\": 0, \"M8147\": 0}\n");
 }
+
+#[test]
+fn word_bits_and_timers_are_dump_and_set_names() {
+    let p = program(
+        "bits_timers.il",
+        "LD M8000\nOUT T0 K5\nLD T0\nSET D100.3\nLD D200.F\nOUT Y7\n",
+    );
+    let out = ok_stdout(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--ms",
+        "1000",
+        "--set",
+        "D200.F=1",
+        "--dump",
+        "T0",
+        "--dump",
+        "D100.3",
+        "--dump",
+        "D100",
+        "--dump",
+        "Y7",
+    ]);
+    // T0 counts 100 ms units up to its set value 5; then D100 bit 3 is set.
+    assert_eq!(out.trim(), r#"{"T0": 5, "D100.3": 1, "D100": 8, "Y7": 1}"#);
+    assert!(
+        failure(&[
+            "plc",
+            "run",
+            p.to_str().unwrap(),
+            "--ms",
+            "1",
+            "--dump",
+            "D100.G"
+        ])
+        .contains("hex digit")
+    );
+}
