@@ -53,8 +53,7 @@ use ecam_core::generator::key_points::{self, CurveType, KeyPoint, MAX_KEY_POINTS
 use ecam_core::generator::{CamPlacement, CutParams, Field, schema};
 use ecam_core::generator::{flying_saw, rotary_cut, s_curve};
 use ecam_core::{
-    CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamPoint, PointTable, TableError,
-    register_image,
+    CODE_PARAMETER, CODE_SECTION_COUNT, CamPoint, PointTable, TableError, register_image,
 };
 
 use crate::decam::offsets::{TABLE_END, TABLE_END_REPEAT, TABLE_END_STOP};
@@ -550,41 +549,31 @@ fn generated_table(devices: &Devices, base: u16, kind: TableKind) -> Result<Gene
 
 /// Writes the points at `D1 + 38…` after checking they all fit.
 fn write_table(devices: &mut Devices, base: u16, points: &[CamPoint]) -> Result<(), Failure> {
+    let failure = |code: u16, message: String, position: u16| Failure {
+        code,
+        message,
+        position,
+        new_table: None,
+    };
     if points.len() > MAX_POINTS || points.len() < 2 {
-        return Err(Failure {
-            code: CODE_SECTION_COUNT,
-            message: format!("{} table points; a DECAM table holds 2-512", points.len()),
-            position: 0,
-            new_table: None,
-        });
+        return Err(failure(
+            CODE_SECTION_COUNT,
+            format!("{} table points; a DECAM table holds 2-512", points.len()),
+            0,
+        ));
     }
-    let end = u32::from(base) + u32::from(TABLE_START) + 4 * points.len() as u32;
-    if end > u32::from(D_COUNT) {
-        return Err(Failure {
-            code: CODE_SECTION_COUNT,
-            message: format!(
-                "a table of {} points at D{base} does not fit below D8512",
-                points.len()
-            ),
-            position: 0,
-            new_table: None,
-        });
-    }
-    // The image (count, offset 40, the points) has its home in ecam-core.
     let table = PointTable::new(points.to_vec()).map_err(|e| Failure::from_table(&e))?;
-    let words = register_image::table_words(&table).map_err(|e| match e {
-        TableError::ValueOutOfRange { section } => Failure {
-            code: CODE_TABLE,
-            message: format!("table point {section} does not fit 32-bit registers"),
-            position: u16::try_from(section).unwrap_or(u16::MAX),
-            new_table: None,
-        },
-        other => Failure::from_table(&other),
-    })?;
-    for (i, word) in words.into_iter().enumerate() {
-        let _ = devices.set_word(base + TABLE_SECTIONS + i as u16, word);
-    }
-    Ok(())
+    // One writer of the image for ECAMTBX and `--load`: the DECAM face's.
+    crate::decam::load_table(devices, base, &table)
+        .map(|_| ())
+        .map_err(|e| {
+            // 6782 names the point: D2's partner S0+1 reports its number.
+            let position = points
+                .iter()
+                .position(|p| i32::try_from(p.master).is_err() || i32::try_from(p.slave).is_err())
+                .map_or(0, |i| u16::try_from(i).unwrap_or(u16::MAX));
+            failure(e.code, e.message, position)
+        })
 }
 
 #[cfg(test)]

@@ -45,6 +45,11 @@ pub struct RunArgs {
     /// Wire a pulse output to a counter input, e.g. Y1:X0.
     #[arg(long = "wire", value_name = "Yn:Xm")]
     pub wires: Vec<String>,
+    /// Load a point table (CSV or JSON file) into a DECAM block before the
+    /// first scan, as its register image: D2000=table.csv writes D2038 (the
+    /// point count), D2039 and the points from D2040.
+    #[arg(long = "load", value_name = "Dn=FILE")]
+    pub loads: Vec<String>,
     /// Print a device (or COUNT consecutive ones) after the run: D2000, D2019:2, DD2019, Y7.
     #[arg(long = "dump", value_name = "DEV[:COUNT]")]
     pub dumps: Vec<String>,
@@ -87,6 +92,9 @@ fn run_program(args: &RunArgs) -> anyhow::Result<()> {
         View::parse(name)
             .and_then(|view| view.write(plc.devices_mut(), value))
             .with_context(|| format!("--set `{set}`"))?;
+    }
+    for load in &args.loads {
+        load_table(plc.devices_mut(), load).with_context(|| format!("--load `{load}`"))?;
     }
     let length = match (args.scans, args.ms) {
         (Some(n), _) => RunLength::Scans(n),
@@ -182,4 +190,21 @@ fn dump_views(dumps: &[String]) -> anyhow::Result<Vec<View>> {
         }
     }
     Ok(views)
+}
+
+/// `--load Dn=FILE`: the file's point table written as the block's image.
+fn load_table(devices: &mut ecam_plc::Devices, load: &str) -> anyhow::Result<()> {
+    let (block, file) = load
+        .split_once('=')
+        .context("expected Dn=FILE, e.g. D2000=table.csv")?;
+    let block = match ecam_plc::Device::parse(block.trim()) {
+        Ok(ecam_plc::Device::D(n)) => n,
+        _ => bail!("`{block}` is not a D register (the DECAM block's first word, e.g. D2000)"),
+    };
+    let table = match ecam_core::io::read(std::path::Path::new(file.trim()))? {
+        ecam_core::io::AnyTable::Points(file) => file.table,
+        _ => bail!("a DECAM table is a point table: give a CSV or JSON of master,slave points"),
+    };
+    ecam_plc::decam::load_table(devices, block, &table)?;
+    Ok(())
 }

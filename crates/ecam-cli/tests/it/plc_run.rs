@@ -413,3 +413,56 @@ fn word_bits_and_timers_are_dump_and_set_names() {
         .contains("hex digit")
     );
 }
+
+#[test]
+fn load_writes_a_table_file_as_the_blocks_register_image() {
+    let p = program(
+        "load_table.il",
+        "LD M8000\nMOV K1 D2005\nDECAM K1 D2000 X2 Y0 Y4\nEND\n",
+    );
+    let table = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/tables/rotary-cut.csv"
+    );
+    let load = format!("D2000={table}");
+    let out = ok_stdout(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--ms",
+        "100",
+        "--load",
+        &load,
+        "--dump",
+        "D2038",
+        "--dump",
+        "D2002",
+        "--dump",
+        "DD2044",
+    ]);
+    let dump: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(dump["D2038"], 100, "the table's point count");
+    assert_eq!(dump["D2002"], 0, "a good block");
+    assert_eq!(dump["DD2044"], 201, "point 1's master, as in the file");
+    // A block whose table would run past D8511, and a non-D block.
+    let err = failure(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--ms",
+        "1",
+        "--load",
+        &format!("D8400={table}"),
+    ]);
+    assert!(err.contains("6783") && err.contains("D8512"), "{err}");
+    let err = failure(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--ms",
+        "1",
+        "--load",
+        &format!("M0={table}"),
+    ]);
+    assert!(err.contains("not a D register"), "{err}");
+}

@@ -57,6 +57,7 @@ mod operands;
 mod run;
 mod start_gate;
 mod sync_output;
+mod table_load;
 
 pub use block::{LiveSettings, MAX_FREQUENCY_HZ, StartSetup, ZoomRatio, clamp_frequency};
 pub use block_error::BlockError;
@@ -64,6 +65,7 @@ pub use master::MasterReader;
 pub use operands::{DecamOperands, MasterOperand};
 pub use start_gate::{CamMode, GateAction, RESTART_OFF_US, StartGate};
 pub use sync_output::SyncOutput;
+pub use table_load::load_table;
 
 use core::sync::atomic::{AtomicU64, Ordering};
 
