@@ -649,7 +649,7 @@ mod tests {
         ];
         assert_eq!(
             write_table(&mut dev, 0, &points).unwrap_err().code,
-            CODE_TABLE
+            ecam_core::CODE_TABLE
         );
     }
 }
