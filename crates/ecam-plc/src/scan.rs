@@ -75,6 +75,15 @@ impl Plc {
         })
     }
 
+    /// True while a DECAM whose register block starts at `D{block}` is
+    /// armed or following its cam (a table written there now takes over
+    /// at the next seam, see docs/plc.md).
+    pub fn cam_running(&self, block: u16) -> bool {
+        self.decams
+            .iter()
+            .any(|d| d.operands().block == block && d.is_running())
+    }
+
     /// Device memory.
     pub fn devices(&self) -> &Devices {
         &self.devices

@@ -64,6 +64,7 @@ mod pdu;
 mod retain;
 mod state;
 mod state_file;
+mod table_load;
 mod write;
 
 pub use answer::answer_request;
@@ -87,4 +88,5 @@ pub use retain::{
 };
 pub use state::{Event, ServeInfo, Shared, Stats};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
+pub use table_load::{TableLoad, WhileRunning, parse_table_load};
 pub use write::{LineError, Slot, WriteBatch};

@@ -13,6 +13,7 @@
 //! | `GET /api/generators` | generator names, parameters, defaults |
 //! | `POST /api/table/gen` `{"generator": "rotary-cut", "params": {...}}` | a generated table with its curves |
 //! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
+//! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block, one durable write (409 while its cam runs, unless `at-seam`) |
 //!
 //! Errors answer `{"error": "message"}` with status 400 (bad request), 404
 //! (unknown route) or 500 (the write could not be made durable).
@@ -208,6 +209,7 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         )
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
+        .route("/api/table/load", post(table_load))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
         .with_state(shared)
         .layer(middleware::from_fn_with_state(Arc::new(access), guard))
@@ -285,6 +287,45 @@ async fn law(Path(name): Path<String>, Query(query): Query<HashMap<String, Strin
         }
     })
     .await
+}
+
+async fn table_load(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    let load = match ecam_serve::parse_table_load(&body) {
+        Ok(load) => load,
+        Err(message) => return error(StatusCode::BAD_REQUEST, &message),
+    };
+    let running = shared.with_plc(|plc| plc.cam_running(load.block));
+    if running && load.while_running == ecam_serve::WhileRunning::Refuse {
+        return error(
+            StatusCode::CONFLICT,
+            &format!(
+                "the cam of the block at D{} is running: send \"while_running\": \"at-seam\" to switch tables at its next seam",
+                load.block
+            ),
+        );
+    }
+    let (block, points) = (load.block, load.points);
+    // One journal record for the whole image (a sync to disk: off the
+    // async workers); the scan sees the table complete or not at all.
+    let writer = Arc::clone(&shared);
+    let written = tokio::task::spawn_blocking(move || writer.write(&load.batch))
+        .await
+        .map_err(|e| e.to_string())
+        .and_then(|r| r.map_err(|e| e.to_string()));
+    match written {
+        Ok(()) => json_value(
+            StatusCode::OK,
+            &json!({
+                "block": block,
+                "points": points,
+                "switch": if running { "at-seam" } else { "now" },
+            }),
+        ),
+        Err(message) => error(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            &format!("not written: {message}"),
+        ),
+    }
 }
 
 async fn table_gen(body: Bytes) -> Response {

@@ -1043,3 +1043,59 @@ async fn a_start_that_cannot_compact_serves_read_only() {
         .unwrap()
         .unwrap();
 }
+
+#[tokio::test]
+async fn a_table_loaded_over_http_is_one_write_and_waits_for_the_seam_while_running() {
+    let dir = state_dir("table-load");
+    let il = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plc/rotary_knife.il");
+    let server = Server::start(
+        &dir,
+        &["--program", il.to_str().unwrap(), "--wire", "Y1:X0"],
+    );
+    let mut ctx = server.client().await;
+    cam_moves(&mut ctx).await;
+    let table = r#""points": [[0, 0], [3183, 1000]]"#;
+    // The knife's cam runs: refused unless asked to switch at the seam.
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/load",
+        Some(&format!(r#"{{"block": 2000, {table}}}"#)),
+    );
+    assert_eq!(status, 409, "{body}");
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/load",
+        Some(&format!(
+            r#"{{"block": 2000, {table}, "while_running": "at-seam"}}"#
+        )),
+    );
+    assert_eq!(status, 200, "{body}");
+    assert!(body.contains("\"switch\":\"at-seam\""), "{body}");
+    assert_eq!(
+        server.get_json("/api/devices?names=D2038,D2002"),
+        json!({"D2038": 2, "D2002": 0})
+    );
+    // An idle block takes it at once; a bad table changes nothing.
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/load",
+        Some(&format!(r#"{{"block": "D3000", {table}}}"#)),
+    );
+    assert_eq!(status, 200, "{body}");
+    assert!(body.contains("\"switch\":\"now\""), "{body}");
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/load",
+        Some(r#"{"block": 3000, "points": [[9, 0], [1, 1]]}"#),
+    );
+    assert_eq!(status, 400, "{body}");
+    assert!(body.contains("6782"), "{body}");
+    assert_eq!(
+        server.get_json("/api/devices?names=D3038"),
+        json!({"D3038": 2})
+    );
+    // The knife keeps turning forwards across the switch.
+    let before = y0_pulses(&mut ctx).await;
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    assert!(y0_pulses(&mut ctx).await > before);
+}
