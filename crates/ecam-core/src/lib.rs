@@ -46,6 +46,9 @@ extern crate std;
 
 mod curve;
 mod error;
+#[cfg(feature = "std")]
+#[doc(hidden)]
+pub mod fuzz;
 pub mod generator;
 #[cfg(feature = "std")]
 pub mod io;

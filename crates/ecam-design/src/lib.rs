@@ -44,6 +44,8 @@
 
 mod designer;
 mod expr;
+#[doc(hidden)]
+pub mod fuzz;
 mod generate;
 mod params;
 mod table_source;

@@ -33,6 +33,8 @@
 mod cam_type;
 mod controller;
 mod error;
+#[doc(hidden)]
+pub mod fuzz;
 pub mod script;
 mod units;
 

@@ -27,6 +27,8 @@
 // needs of it is re-exported below.
 pub mod decam;
 pub mod ecamtbx;
+#[doc(hidden)]
+pub mod fuzz;
 pub mod il;
 pub mod sim;
 pub mod special;

@@ -45,6 +45,8 @@ mod buffer;
 mod buffer_cam;
 mod cam_param;
 mod error;
+#[doc(hidden)]
+pub mod fuzz;
 mod processor;
 mod runner;
 mod running_cam;

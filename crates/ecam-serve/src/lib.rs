@@ -57,6 +57,8 @@
 mod answer;
 mod clock;
 mod device_json;
+#[doc(hidden)]
+pub mod fuzz;
 mod journal;
 mod map;
 mod mbap;

@@ -46,6 +46,8 @@
 //! # Ok::<(), anyhow::Error>(())
 //! ```
 
+#[doc(hidden)]
+pub mod fuzz;
 mod scenario;
 mod simulate;
 mod trace;

@@ -3,6 +3,7 @@
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 mod formats;
+mod fuzz;
 mod generators_design;
 mod generators_flying_saw;
 mod generators_props;

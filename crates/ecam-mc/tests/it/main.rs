@@ -4,6 +4,7 @@
 
 mod document_001;
 mod faults;
+mod fuzz;
 mod properties;
 mod scripts;
 

@@ -10,6 +10,7 @@ mod decam_errors;
 mod decam_hostile;
 mod decam_registers;
 mod ecamtbx_generators;
+mod fuzz;
 mod il_parser;
 mod instructions;
 mod parser_never_panics;

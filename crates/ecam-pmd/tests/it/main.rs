@@ -3,6 +3,7 @@
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 mod document_002;
+mod fuzz;
 mod properties;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
