@@ -392,6 +392,30 @@ pub enum Instruction {
         /// D2: result register.
         result: u16,
     },
+    /// `Pn` standing alone on a line: the pointer label of CJ and CALL
+    /// (P0–P127, P63 excepted).
+    Label(u8),
+    /// `CJ`/`CJP Pn`: while the power flow is on, continue at label Pn,
+    /// skipping the instructions between (they keep their outputs). `CJ P63`
+    /// jumps to the end of the main program.
+    Jump {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The pointer number n of Pn.
+        pointer: u8,
+    },
+    /// `CALL`/`CALLP Pn`: run the subroutine at label Pn (after FEND) up to
+    /// its SRET, then continue after the CALL.
+    Call {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The pointer number n of Pn.
+        pointer: u8,
+    },
+    /// `SRET`: end of a subroutine.
+    SubReturn,
+    /// `FEND`: end of the main program; subroutines follow it.
+    MainEnd,
     /// NOP.
     Nop,
 }

@@ -7,12 +7,14 @@
 //! run time. `docs/plc-instructions.md` lists every instruction.
 
 mod error;
+mod flow;
 mod instruction;
 mod lexer;
 mod operand;
 mod parser;
 mod validate;
 
+pub(crate) use flow::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
 pub(crate) use validate::is_output;
 
 pub use error::ParseError;

@@ -13,6 +13,7 @@ mod ecamtbx_generators;
 mod il_parser;
 mod instructions;
 mod parser_never_panics;
+mod program_flow;
 mod pulse_output_owner;
 mod timers;
 mod word_bits;
