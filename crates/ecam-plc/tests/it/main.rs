@@ -6,6 +6,7 @@ mod decam_support;
 
 mod arithmetic;
 mod compare_contacts;
+mod counters;
 mod decam_errors;
 mod decam_hostile;
 mod decam_registers;
