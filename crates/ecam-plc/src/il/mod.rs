@@ -19,8 +19,8 @@ pub(crate) use validate::is_output;
 
 pub use error::ParseError;
 pub use instruction::{
-    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
-    Relation, Source, Statement, Width, WordBit, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, GroupKind, Instruction, Join, LogicOp,
+    MasterSpec, Relation, Source, Statement, Width, WordBit, WordGroup, ZoneDevice,
 };
 pub use parser::parse;
 

@@ -773,11 +773,17 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
         }
         (Operand::Device(Device::C(n)), _) => Ok(Source::Counter(n)),
         (Operand::Timer(n), Width::Word) => Ok(Source::Timer(n)),
+        (Operand::Group(g), Width::Word) if g.digits > 4 => Err(format!(
+            "{mnemonic} operand {}: {g} has {} digits; a 16-bit instruction takes K1 to K4",
+            index + 1,
+            g.digits
+        )),
+        (Operand::Group(g), _) => Ok(Source::Group(g)),
         _ => Err(wrong(
             mnemonic,
             index,
             op,
-            "a K/H constant, a D register, a counter C or (16 bit) a timer T",
+            "a K/H constant, a D register, a counter C, a word group KnM/KnX/KnY or (16 bit) a timer T",
         )),
     }
 }

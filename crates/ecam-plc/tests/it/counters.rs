@@ -46,7 +46,10 @@ fn sixteen_bit_counter_counts_edges_stops_at_set_value_and_resets() {
     pulse(&mut plc, false);
     assert_eq!(plc.devices().counter(0), Ok(0));
     pulse(&mut plc, false);
-    assert!(!y0(&plc), "RST turns the contact off (seen by the next scan's LD C0)");
+    assert!(
+        !y0(&plc),
+        "RST turns the contact off (seen by the next scan's LD C0)"
+    );
     // While RST is on the counter does not count (RST after OUT in the scan).
     pulse(&mut plc, true);
     assert_eq!(plc.devices().counter(0), Ok(0));

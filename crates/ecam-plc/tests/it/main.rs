@@ -18,6 +18,7 @@ mod program_flow;
 mod pulse_output_owner;
 mod timers;
 mod word_bits;
+mod word_groups;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.
