@@ -77,11 +77,20 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
         }
     }
     // CALL nesting: each subroutine body runs from its label to its SRET.
+    let mut depths: [Option<usize>; POINTER_COUNT] = [None; POINTER_COUNT];
+    let mut running = [false; POINTER_COUNT];
     for (index, statement) in statements.iter().enumerate() {
         if in_main(index) {
             if let Instruction::Call { pointer, .. } = statement.instruction {
-                let mut chain = vec![pointer];
-                nesting(statements, &labels, pointer, &mut chain, statement.line)?;
+                let levels = depth(statements, &labels, pointer, &mut depths, &mut running)?;
+                if levels > CALL_DEPTH {
+                    return Err((
+                        statement.line,
+                        format!(
+                            "CALL P{pointer}: subroutines nested deeper than {CALL_DEPTH} levels ({levels} levels from here)"
+                        ),
+                    ));
+                }
             }
         }
     }
@@ -104,22 +113,31 @@ fn subroutine_end(statements: &[Statement], label: usize) -> Result<usize, (usiz
     ))
 }
 
-/// Follows the CALLs of the subroutine `pointer` (reached through `chain`),
-/// refusing recursion and nesting beyond [`CALL_DEPTH`].
-fn nesting(
+/// How many CALL levels running subroutine `pointer` takes (1 when it
+/// calls nothing), each subroutine computed once; a recursive CALL is an
+/// error at its line.
+fn depth(
     statements: &[Statement],
     labels: &[Option<usize>; POINTER_COUNT],
     pointer: u8,
-    chain: &mut Vec<u8>,
-    first_line: usize,
-) -> Result<(), (usize, String)> {
-    let Some(start) = labels.get(usize::from(pointer)).copied().flatten() else {
-        return Ok(());
+    depths: &mut [Option<usize>; POINTER_COUNT],
+    running: &mut [bool; POINTER_COUNT],
+) -> Result<usize, (usize, String)> {
+    let slot = usize::from(pointer);
+    if let Some(Some(known)) = depths.get(slot) {
+        return Ok(*known);
+    }
+    let Some(start) = labels.get(slot).copied().flatten() else {
+        return Ok(1);
     };
     let end = subroutine_end(statements, start)?;
+    if let Some(flag) = running.get_mut(slot) {
+        *flag = true;
+    }
+    let mut deepest = 0usize;
     for statement in statements.get(start..end).unwrap_or(&[]) {
         if let Instruction::Call { pointer: inner, .. } = statement.instruction {
-            if chain.contains(&inner) {
+            if running.get(usize::from(inner)).copied().unwrap_or(false) {
                 return Err((
                     statement.line,
                     format!(
@@ -127,18 +145,15 @@ fn nesting(
                     ),
                 ));
             }
-            if chain.len() >= CALL_DEPTH {
-                return Err((
-                    statement.line,
-                    format!(
-                        "CALL P{inner}: subroutines nested deeper than {CALL_DEPTH} levels (from the CALL at line {first_line})"
-                    ),
-                ));
-            }
-            chain.push(inner);
-            nesting(statements, labels, inner, chain, first_line)?;
-            chain.pop();
+            deepest = deepest.max(depth(statements, labels, inner, depths, running)?);
         }
     }
-    Ok(())
+    if let Some(flag) = running.get_mut(slot) {
+        *flag = false;
+    }
+    let levels = deepest.saturating_add(1);
+    if let Some(known) = depths.get_mut(slot) {
+        *known = Some(levels);
+    }
+    Ok(levels)
 }

@@ -222,3 +222,23 @@ fn flow_errors_name_file_and_line() {
         );
     }
 }
+
+#[test]
+fn many_subroutines_calling_each_other_load_in_linear_time() {
+    // 120 subroutines, each calling the 60 after it: each is looked at once.
+    let mut src = String::from("LD M8000\nCALL P0\nFEND\n");
+    for n in 0..120u32 {
+        src.push_str(&format!("P{n}\nLD M8000\n"));
+        for m in (n + 1..120).take(60) {
+            if m != 63 {
+                src.push_str(&format!("CALL P{m}\n"));
+            }
+        }
+        src.push_str("SRET\n");
+    }
+    let src = src.replace("P63\nLD M8000\n", "P127\nLD M8000\n");
+    let started = std::time::Instant::now();
+    let message = error(&src);
+    assert!(message.contains("nested deeper than 5 levels"), "{message}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(5));
+}
