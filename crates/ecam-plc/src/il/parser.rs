@@ -18,7 +18,9 @@ use crate::devices::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
 /// # Errors
 /// The first problem found: unknown mnemonic, wrong operand count or kind,
 /// unknown or out-of-range device, constant out of range, unbalanced
-/// ANB/ORB/MPS/MRD/MPP.
+/// ANB/ORB/MPS/MRD/MPP, a CJ/CALL to a missing label, a duplicate label, a
+/// subroutine label before FEND, SRET in the main program, a subroutine
+/// without SRET, recursive or too deeply nested CALLs.
 ///
 /// ```
 /// let program = ecam_plc::il::parse("LD X0\nOUT Y0\nEND\n", "demo.il").unwrap();
