@@ -49,7 +49,10 @@ pub use hardware::{
     Counters, HIGH_SPEED_COUNTERS, Hardware, OutputOwner, PULSE_OUTPUTS, PulseTrain, Wire,
     WireError, record_pulses,
 };
-pub use operation_error::{CODE_DEVICE_RANGE, CODE_OPERAND, OperationError};
+pub use interpreter::MAX_STEPS_PER_SCAN;
+pub use operation_error::{
+    CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, CODE_SCAN_LIMIT, OperationError,
+};
 pub use scan::Plc;
 pub use timers::{T_COUNT, Timers, timer_clock};
 pub use view::{Value, View, ViewError};

@@ -309,3 +309,38 @@ fn bad_table_sets_6782_and_clears_when_corrected() {
     assert_eq!(d["D2002"], 0);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `decam_flow.il`: the manual's flow charts as a program. Cycles of 200 ms
+/// (5000 counts at 25 kHz); three cuts a run, then a 500 ms dwell (T0), then
+/// the next run. Times are chosen away from the cycle seams.
+#[test]
+fn decam_flow_counts_cuts_stops_after_n_and_dwells() {
+    let dumps = [
+        "D2001", "D2002", "D8067", "D100", "D101", "D102", "M0", "M1", "Y10",
+    ];
+    // (ms, cuts in this run D101, runs completed D102, running M0)
+    for (ms, cuts, runs, running) in [
+        ("100", 0, 0, true),
+        ("300", 1, 0, true),
+        ("500", 2, 0, true),
+        ("700", 3, 1, false),
+        ("1000", 3, 1, false),
+        ("1400", 1, 1, true),
+        ("2000", 3, 2, false),
+        ("2500", 1, 2, true),
+        ("3000", 3, 3, false),
+    ] {
+        let d = run("decam_flow.il", &["--wire", "Y1:X0", "--ms", ms], &dumps);
+        assert_eq!(int(&d, "D2002"), 0, "no block error at {ms} ms");
+        assert_eq!(int(&d, "D8067"), 0, "no operation error at {ms} ms");
+        assert_eq!(int(&d, "D100"), 3);
+        assert_eq!(int(&d, "D101"), cuts, "cuts at {ms} ms");
+        assert_eq!(int(&d, "D102"), runs, "runs at {ms} ms");
+        assert_eq!(int(&d, "M0") == 1, running, "M0 at {ms} ms");
+        assert_eq!(int(&d, "M1") == 1, !running, "dwell M1 at {ms} ms");
+        let flags = int(&d, "D2001");
+        assert_eq!(flags & 1 != 0, running, "flag bit 0 at {ms} ms");
+        assert_eq!(flags & 2, 0, "flag bit 1 is reset once counted ({ms} ms)");
+        assert_eq!(int(&d, "Y10") == 1, running, "Y10 follows bit 0 ({ms} ms)");
+    }
+}

@@ -96,6 +96,52 @@ pub enum Source {
     Counter(u16),
     /// Current value of timer Tn (in its clock units).
     Timer(u16),
+    /// A word group `KnM`/`KnX`/`KnY`: n × 4 bits read as a number.
+    Group(WordGroup),
+}
+
+/// The bit devices a word group is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupKind {
+    /// Inputs X (numbered in octal).
+    X,
+    /// Outputs Y (numbered in octal).
+    Y,
+    /// Auxiliary relays M.
+    M,
+}
+
+/// `KnM0`, `K2X10`, …: `digits` × 4 consecutive bits from `first`, the
+/// lowest bit first (FX "digit specification").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WordGroup {
+    /// X, Y or M.
+    pub kind: GroupKind,
+    /// Index of the first bit (X/Y already decoded from octal).
+    pub first: u16,
+    /// n of Kn: 1–8 digits of 4 bits.
+    pub digits: u8,
+}
+
+impl WordGroup {
+    /// The device of the `i`-th bit of the group.
+    pub fn bit(&self, i: u16) -> Option<crate::devices::Device> {
+        let n = self.first.checked_add(i)?;
+        Some(match self.kind {
+            GroupKind::X => crate::devices::Device::X(n),
+            GroupKind::Y => crate::devices::Device::Y(n),
+            GroupKind::M => crate::devices::Device::M(n),
+        })
+    }
+}
+
+impl core::fmt::Display for WordGroup {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self.bit(0) {
+            Some(first) => write!(f, "K{}{first}", self.digits),
+            None => write!(f, "K{}?", self.digits),
+        }
+    }
 }
 
 /// One bit of a data register, `Dn.b` with b = 0–F (the FX3 family's bit
@@ -392,6 +438,30 @@ pub enum Instruction {
         /// D2: result register.
         result: u16,
     },
+    /// `Pn` standing alone on a line: the pointer label of CJ and CALL
+    /// (P0–P127, P63 excepted).
+    Label(u8),
+    /// `CJ`/`CJP Pn`: while the power flow is on, continue at label Pn,
+    /// skipping the instructions between (they keep their outputs). `CJ P63`
+    /// jumps to the end of the main program.
+    Jump {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The pointer number n of Pn.
+        pointer: u8,
+    },
+    /// `CALL`/`CALLP Pn`: run the subroutine at label Pn (after FEND) up to
+    /// its SRET, then continue after the CALL.
+    Call {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The pointer number n of Pn.
+        pointer: u8,
+    },
+    /// `SRET`: end of a subroutine.
+    SubReturn,
+    /// `FEND`: end of the main program; subroutines follow it.
+    MainEnd,
     /// NOP.
     Nop,
 }

@@ -7,18 +7,20 @@
 //! run time. `docs/plc-instructions.md` lists every instruction.
 
 mod error;
+mod flow;
 mod instruction;
 mod lexer;
 mod operand;
 mod parser;
 mod validate;
 
+pub(crate) use flow::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
 pub(crate) use validate::is_output;
 
 pub use error::ParseError;
 pub use instruction::{
-    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
-    Relation, Source, Statement, Width, WordBit, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, GroupKind, Instruction, Join, LogicOp,
+    MasterSpec, Relation, Source, Statement, Width, WordBit, WordGroup, ZoneDevice,
 };
 pub use parser::parse;
 

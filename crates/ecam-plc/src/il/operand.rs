@@ -1,7 +1,7 @@
 //! Operand tokens: devices (`D100`, `X17`, `C231`), constants (`K-5`, `H1F`)
 //! and float constants (`E1.6667`).
 
-use super::instruction::WordBit;
+use super::instruction::{GroupKind, WordBit, WordGroup};
 use crate::devices::{Device, DeviceError};
 
 /// A lexed operand before the instruction checks its kind.
@@ -19,6 +19,8 @@ pub(crate) enum Operand {
     Hex(u64),
     /// E constant.
     Float(f32),
+    /// A word group `KnM`/`KnX`/`KnY`.
+    Group(WordGroup),
 }
 
 impl Operand {
@@ -29,6 +31,9 @@ impl Operand {
             if word.starts_with(['D', 'M', 'X', 'Y', 'C']) {
                 return Self::word_bit(token, word, bit);
             }
+        }
+        if let Some(group) = Self::group(token, &upper) {
+            return group;
         }
         let mut chars = upper.chars();
         let prefix = chars.next().unwrap_or(' ');
@@ -94,6 +99,44 @@ impl Operand {
         }))
     }
 
+    /// `Kn` followed by an X, Y or M device: a word group (`None` when the
+    /// token is not shaped so, e.g. a K constant).
+    fn group(token: &str, upper: &str) -> Option<Result<Self, String>> {
+        let rest = upper.strip_prefix('K')?;
+        let digit = rest.bytes().next().filter(u8::is_ascii_digit)?;
+        let device = rest.get(1..)?;
+        if !device.starts_with(['X', 'Y', 'M']) {
+            return None;
+        }
+        let digits = digit - b'0';
+        if !(1..=8).contains(&digits) {
+            return Some(Err(format!(
+                "`{token}`: a word group has 1 to 8 digits (K1M0 to K8M0)"
+            )));
+        }
+        let (kind, first, count) = match Device::parse(device) {
+            Ok(Device::X(n)) => (GroupKind::X, n, crate::devices::XY_COUNT),
+            Ok(Device::Y(n)) => (GroupKind::Y, n, crate::devices::XY_COUNT),
+            Ok(Device::M(n)) => (GroupKind::M, n, crate::devices::M_COUNT),
+            _ => {
+                return Some(Err(format!(
+                    "`{token}` is not a word group (expected Kn and an X, Y or M device, e.g. K4M0)"
+                )));
+            }
+        };
+        if u32::from(first) + 4 * u32::from(digits) > u32::from(count) {
+            return Some(Err(format!(
+                "word group `{token}` runs past the last {} device",
+                device.get(..1).unwrap_or("")
+            )));
+        }
+        Some(Ok(Self::Group(WordGroup {
+            kind,
+            first,
+            digits,
+        })))
+    }
+
     /// How the operand reads in messages.
     pub(crate) fn describe(&self) -> String {
         match self {
@@ -103,6 +146,7 @@ impl Operand {
             Self::Decimal(v) => format!("K{v}"),
             Self::Hex(v) => format!("H{v:X}"),
             Self::Float(v) => format!("E{v}"),
+            Self::Group(g) => g.to_string(),
         }
     }
 }

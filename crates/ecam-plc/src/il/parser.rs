@@ -2,6 +2,7 @@
 
 use super::Program;
 use super::error::ParseError;
+use super::flow;
 use super::instruction::{
     ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
     Relation, Source, Statement, Width, ZoneDevice,
@@ -17,7 +18,9 @@ use crate::devices::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
 /// # Errors
 /// The first problem found: unknown mnemonic, wrong operand count or kind,
 /// unknown or out-of-range device, constant out of range, unbalanced
-/// ANB/ORB/MPS/MRD/MPP.
+/// ANB/ORB/MPS/MRD/MPP, a CJ/CALL to a missing label, a duplicate label, a
+/// subroutine label before FEND, SRET in the main program, a subroutine
+/// without SRET, recursive or too deeply nested CALLs.
 ///
 /// ```
 /// let program = ecam_plc::il::parse("LD X0\nOUT Y0\nEND\n", "demo.il").unwrap();
@@ -47,6 +50,26 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
             }
             break;
         }
+        if let Some(label) = label(&mnemonic) {
+            if !operand_tokens.is_empty() {
+                return Err(error(
+                    line.number,
+                    format!("a pointer label {mnemonic} stands alone on its line"),
+                ));
+            }
+            statements.push(Statement {
+                line: line.number,
+                instruction: Instruction::Label(label.map_err(|m| error(line.number, m))?),
+            });
+            continue;
+        }
+        if let Some(flow) = flow_instruction(&mnemonic, operand_tokens) {
+            statements.push(Statement {
+                line: line.number,
+                instruction: flow.map_err(|m| error(line.number, m))?,
+            });
+            continue;
+        }
         let mut operands = Vec::with_capacity(operand_tokens.len());
         for (i, token) in operand_tokens.iter().enumerate() {
             let operand = Operand::parse(token)
@@ -60,9 +83,85 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
         });
     }
     validate::check(&statements).map_err(|(line, message)| error(line, message))?;
+    flow::check(&statements).map_err(|(line, message)| error(line, message))?;
     Ok(Program {
         file: file.to_string(),
         statements,
+    })
+}
+
+/// `Some` when `mnemonic` is a pointer label `Pn` (P and digits only):
+/// its number, or why it is not a usable label.
+fn label(mnemonic: &str) -> Option<Result<u8, String>> {
+    let digits = mnemonic.strip_prefix('P')?;
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some(pointer_number(mnemonic).and_then(|n| {
+        if n == flow::END_POINTER {
+            Err("P63 is the END pointer (`CJ P63` jumps to END); it cannot label a line".into())
+        } else {
+            Ok(n)
+        }
+    }))
+}
+
+/// The n of a pointer `Pn`, n = 0–127.
+fn pointer_number(token: &str) -> Result<u8, String> {
+    let upper = token.to_ascii_uppercase();
+    let number = upper
+        .strip_prefix('P')
+        .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+        .ok_or_else(|| format!("expected a pointer P0–P127, found `{token}`"))?;
+    match number.parse::<u8>() {
+        Ok(n) if usize::from(n) < flow::POINTER_COUNT => Ok(n),
+        _ => Err(format!(
+            "pointer {upper} out of range: the LX3V has P0–P{}",
+            flow::POINTER_COUNT - 1
+        )),
+    }
+}
+
+/// CJ/CJP/CALL/CALLP/SRET/FEND, whose operand is a pointer rather than a
+/// device: `None` for other mnemonics.
+fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instruction, String>> {
+    let pointer = |exec: Exec, call: bool| -> Result<Instruction, String> {
+        match tokens {
+            [token] => {
+                let pointer =
+                    pointer_number(token).map_err(|m| format!("{mnemonic} operand 1: {m}"))?;
+                if call && pointer == flow::END_POINTER {
+                    return Err(format!(
+                        "{mnemonic} P63: P63 is the END pointer, only CJ may use it"
+                    ));
+                }
+                Ok(if call {
+                    Instruction::Call { exec, pointer }
+                } else {
+                    Instruction::Jump { exec, pointer }
+                })
+            }
+            _ => Err(format!(
+                "{mnemonic} expects 1 operand (Pn), found {}",
+                tokens.len()
+            )),
+        }
+    };
+    let bare = |instruction: Instruction| -> Result<Instruction, String> {
+        if tokens.is_empty() {
+            Ok(instruction)
+        } else {
+            Err(format!("{mnemonic} takes no operands"))
+        }
+    };
+    Some(match mnemonic {
+        "CJ" => pointer(Exec::Continuous, false),
+        "CJP" => pointer(Exec::Pulse, false),
+        "CALL" => pointer(Exec::Continuous, true),
+        "CALLP" => pointer(Exec::Pulse, true),
+        "SRET" => bare(Instruction::SubReturn),
+        "FEND" => bare(Instruction::MainEnd),
+        _ => return None,
     })
 }
 
@@ -676,11 +775,17 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
         }
         (Operand::Device(Device::C(n)), _) => Ok(Source::Counter(n)),
         (Operand::Timer(n), Width::Word) => Ok(Source::Timer(n)),
+        (Operand::Group(g), Width::Word) if g.digits > 4 => Err(format!(
+            "{mnemonic} operand {}: {g} has {} digits; a 16-bit instruction takes K1 to K4",
+            index + 1,
+            g.digits
+        )),
+        (Operand::Group(g), _) => Ok(Source::Group(g)),
         _ => Err(wrong(
             mnemonic,
             index,
             op,
-            "a K/H constant, a D register, a counter C or (16 bit) a timer T",
+            "a K/H constant, a D register, a counter C, a word group KnM/KnX/KnY or (16 bit) a timer T",
         )),
     }
 }

@@ -88,6 +88,10 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
                 open_mps.pop();
             }
             Instruction::Nop => {}
+            // A label starts a new rung; SRET and FEND take no power flow.
+            Instruction::Label(_) | Instruction::SubReturn | Instruction::MainEnd => {
+                blocks = 0;
+            }
             _ => {
                 need_flow(blocks, "this instruction")?;
                 if blocks > 1 {

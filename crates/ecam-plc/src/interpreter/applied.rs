@@ -349,6 +349,11 @@ pub(super) fn execute(
         | Instruction::Read
         | Instruction::Pop
         | Instruction::Nop
+        | Instruction::Label(_)
+        | Instruction::Jump { .. }
+        | Instruction::Call { .. }
+        | Instruction::SubReturn
+        | Instruction::MainEnd
         | Instruction::Decam { .. } => Ok(()),
     }
 }

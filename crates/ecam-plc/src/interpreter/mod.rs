@@ -49,15 +49,57 @@ pub struct Interpreter {
     memory: Vec<Memory>,
     blocks: Vec<bool>,
     pushed: Vec<bool>,
+    /// Statement index of each pointer label (P63: the end of the main program).
+    labels: Vec<Option<usize>>,
+    /// For each statement, the number of the DECAM it is (program order).
+    decam_of: Vec<Option<usize>>,
+}
+
+/// Most instructions one scan may execute: a backward CJ whose condition
+/// never changes within the scan would otherwise loop for ever (the FX stops
+/// on its watchdog timer). The scan ends with an operation error instead.
+pub const MAX_STEPS_PER_SCAN: usize = 1_000_000;
+
+/// A CALL being executed: where to continue and the stacks to restore.
+struct Frame {
+    return_to: usize,
+    blocks: Vec<bool>,
+    pushed: Vec<bool>,
 }
 
 impl Interpreter {
     /// Fresh state for `program`.
     pub fn new(program: &Program) -> Self {
+        let mut labels = vec![None; crate::il::POINTER_COUNT];
+        let mut decam_of = Vec::with_capacity(program.statements.len());
+        let mut decams = 0usize;
+        let mut main_end = None;
+        for (index, statement) in program.statements.iter().enumerate() {
+            match statement.instruction {
+                Instruction::Label(n) => {
+                    if let Some(slot) = labels.get_mut(usize::from(n)) {
+                        *slot = Some(index);
+                    }
+                }
+                Instruction::MainEnd if main_end.is_none() => main_end = Some(index),
+                _ => {}
+            }
+            if matches!(statement.instruction, Instruction::Decam { .. }) {
+                decam_of.push(Some(decams));
+                decams += 1;
+            } else {
+                decam_of.push(None);
+            }
+        }
+        if let Some(slot) = labels.get_mut(usize::from(crate::il::END_POINTER)) {
+            *slot = Some(main_end.unwrap_or(program.statements.len()));
+        }
         Self {
             memory: vec![Memory::default(); program.statements.len()],
             blocks: Vec::new(),
             pushed: Vec::new(),
+            labels,
+            decam_of,
         }
     }
 
@@ -68,8 +110,29 @@ impl Interpreter {
         self.blocks.clear();
         self.pushed.clear();
         let mut after_output = true;
-        let mut decam_index = 0usize;
-        for (index, statement) in program.statements.iter().enumerate() {
+        let mut calls: Vec<Frame> = Vec::new();
+        let mut next = 0usize;
+        let mut steps = 0usize;
+        // The line of the last jump taken: the loop an over-long scan names.
+        let mut last_jump: Option<usize> = None;
+        while let Some(statement) = program.statements.get(next) {
+            let index = next;
+            next += 1;
+            steps += 1;
+            if steps > MAX_STEPS_PER_SCAN {
+                let error = OperationError::new(
+                    crate::operation_error::CODE_SCAN_LIMIT,
+                    format!(
+                        "the scan executed more than {MAX_STEPS_PER_SCAN} instructions (a CJ loop that never ends?): scan stopped"
+                    ),
+                );
+                report(machine, &error);
+                errors.push(LineError {
+                    line: last_jump.unwrap_or(statement.line),
+                    error,
+                });
+                break;
+            }
             let Some(memory) = self.memory.get_mut(index) else {
                 break;
             };
@@ -156,15 +219,68 @@ impl Interpreter {
                     }
                     Ok(())
                 }
-                Instruction::Nop => Ok(()),
+                Instruction::Nop | Instruction::Label(_) => Ok(()),
+                Instruction::MainEnd => break,
+                Instruction::SubReturn => match calls.pop() {
+                    Some(frame) => {
+                        next = frame.return_to;
+                        self.blocks = frame.blocks;
+                        self.pushed = frame.pushed;
+                        Ok(())
+                    }
+                    None => break,
+                },
+                Instruction::Jump { exec, pointer } => {
+                    let power = power_of(&self.blocks);
+                    if runs(*exec, power, memory) {
+                        if let Some(to) = self.labels.get(usize::from(*pointer)).copied().flatten()
+                        {
+                            next = to;
+                            last_jump = Some(statement.line);
+                            self.blocks.clear();
+                            self.pushed.clear();
+                        }
+                    }
+                    Ok(())
+                }
+                Instruction::Call { exec, pointer } => {
+                    let power = power_of(&self.blocks);
+                    if !runs(*exec, power, memory) {
+                        Ok(())
+                    } else if calls.len() >= crate::il::CALL_DEPTH {
+                        Err(OperationError::new(
+                            crate::operation_error::CODE_CALL_NESTING,
+                            format!(
+                                "CALL P{pointer}: subroutines nested deeper than {} levels",
+                                crate::il::CALL_DEPTH
+                            ),
+                        ))
+                    } else if let Some(to) =
+                        self.labels.get(usize::from(*pointer)).copied().flatten()
+                    {
+                        calls.push(Frame {
+                            return_to: next,
+                            blocks: core::mem::take(&mut self.blocks),
+                            pushed: core::mem::take(&mut self.pushed),
+                        });
+                        next = to;
+                        Ok(())
+                    } else {
+                        Ok(())
+                    }
+                }
                 Instruction::Decam { .. } => {
                     let power = power_of(&self.blocks);
-                    let result = match machine.decams.get_mut(decam_index) {
+                    match self
+                        .decam_of
+                        .get(index)
+                        .copied()
+                        .flatten()
+                        .and_then(|d| machine.decams.get_mut(d))
+                    {
                         Some(decam) => decam.execute(power, machine.devices, machine.now_us),
                         None => Ok(()),
-                    };
-                    decam_index += 1;
-                    result
+                    }
                 }
                 other => {
                     let power = power_of(&self.blocks);
@@ -172,14 +288,7 @@ impl Interpreter {
                 }
             };
             if let Err(error) = &result {
-                // The FX way, at once: an instruction later in this scan can
-                // test M8067 (or reset it) and see this error.
-                let _ = machine
-                    .devices
-                    .set_word(crate::special::D_OPERATION_ERROR, error.code as i16);
-                let _ = machine
-                    .devices
-                    .set_m(crate::special::M_OPERATION_ERROR, true);
+                report(machine, error);
             }
             if let Err(error) = result {
                 errors.push(LineError {
@@ -193,6 +302,17 @@ impl Interpreter {
         }
         errors
     }
+}
+
+/// Writes an operation error the FX way, at once: an instruction later in
+/// this scan can test M8067 (or reset it) and see it.
+fn report(machine: &mut Machine<'_>, error: &OperationError) {
+    let _ = machine
+        .devices
+        .set_word(crate::special::D_OPERATION_ERROR, error.code as i16);
+    let _ = machine
+        .devices
+        .set_m(crate::special::M_OPERATION_ERROR, true);
 }
 
 /// The power flow: the top logic block (off when there is none).

@@ -67,10 +67,35 @@ pub(crate) fn read_source(
             .value(n)
             .map(i32::from)
             .map_err(|e| device_error(format!("T{n}"), e))?,
+        Source::Group(group) => return read_group(devices, group, width),
     };
     Ok(match width {
         Width::Word => i32::from(value as i16),
         Width::Double => value,
+    })
+}
+
+/// The number a word group holds: its n × 4 bits, lowest first. A group as
+/// wide as the instruction (K4 at 16 bit, K8 at 32 bit) is signed, a
+/// shorter one is positive (the FX fills the upper bits with 0).
+fn read_group(
+    devices: &Devices,
+    group: crate::il::WordGroup,
+    width: Width,
+) -> Result<i32, OperationError> {
+    let mut value: u32 = 0;
+    for i in 0..u16::from(group.digits) * 4 {
+        let device = group
+            .bit(i)
+            .ok_or_else(|| device_error(group, DeviceError::OutOfRange))?;
+        if devices.bit(device).map_err(|e| device_error(device, e))? {
+            value |= 1 << i;
+        }
+    }
+    Ok(if group.digits == 4 && width == Width::Word {
+        i32::from(value as u16 as i16)
+    } else {
+        value as i32
     })
 }
 

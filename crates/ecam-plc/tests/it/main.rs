@@ -6,6 +6,7 @@ mod decam_support;
 
 mod arithmetic;
 mod compare_contacts;
+mod counters;
 mod decam_errors;
 mod decam_hostile;
 mod decam_registers;
@@ -14,9 +15,11 @@ mod fuzz;
 mod il_parser;
 mod instructions;
 mod parser_never_panics;
+mod program_flow;
 mod pulse_output_owner;
 mod timers;
 mod word_bits;
+mod word_groups;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
 /// `PROPTEST_CASES=10000 cargo test`), else the module's own `default`.

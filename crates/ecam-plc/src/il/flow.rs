@@ -1,0 +1,159 @@
+//! Load-time checks of program flow: pointer labels, CJ, CALL/SRET and FEND,
+//! so that a jump to nowhere or a subroutine that never returns is refused
+//! with its line instead of misbehaving at run time.
+
+use super::instruction::{Instruction, Statement};
+
+/// Pointers P0–P127 (the LX3V's range).
+pub(crate) const POINTER_COUNT: usize = 128;
+/// `CJ P63` jumps to the end of the main program; P63 labels no line.
+pub(crate) const END_POINTER: u8 = 63;
+/// CALL nesting of the FX3U: five levels (a CALL in the main program and
+/// four more inside subroutines).
+pub(crate) const CALL_DEPTH: usize = 5;
+
+/// Returns the line and message of the first flow error.
+pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
+    let mut labels: [Option<usize>; POINTER_COUNT] = [None; POINTER_COUNT];
+    for (index, statement) in statements.iter().enumerate() {
+        if let Instruction::Label(n) = statement.instruction {
+            let slot = labels
+                .get_mut(usize::from(n))
+                .ok_or((statement.line, format!("pointer P{n} out of range")))?;
+            if let Some(first) = *slot {
+                let first_line = statements.get(first).map_or(0, |s| s.line);
+                return Err((
+                    statement.line,
+                    format!("duplicate label P{n}: already at line {first_line}"),
+                ));
+            }
+            *slot = Some(index);
+        }
+    }
+    let fend = statements
+        .iter()
+        .position(|s| matches!(s.instruction, Instruction::MainEnd));
+    let in_main = |index: usize| fend.is_none_or(|f| index < f);
+    let target = |line: usize, mnemonic: &str, n: u8| -> Result<usize, (usize, String)> {
+        labels.get(usize::from(n)).copied().flatten().ok_or((
+            line,
+            format!("{mnemonic} P{n}: no label P{n} in the program"),
+        ))
+    };
+    for (index, statement) in statements.iter().enumerate() {
+        let line = statement.line;
+        match statement.instruction {
+            Instruction::Jump { pointer, .. } if pointer != END_POINTER => {
+                let to = target(line, "CJ", pointer)?;
+                if in_main(index) != in_main(to) {
+                    return Err((
+                        line,
+                        format!(
+                            "CJ P{pointer}: the label is on the other side of FEND (a jump stays in the main program or in the subroutines)"
+                        ),
+                    ));
+                }
+            }
+            Instruction::Call { pointer, .. } => {
+                let to = target(line, "CALL", pointer)?;
+                if in_main(to) {
+                    return Err((
+                        line,
+                        format!(
+                            "CALL P{pointer}: the subroutine label must come after FEND (line {} is in the main program)",
+                            statements.get(to).map_or(0, |s| s.line)
+                        ),
+                    ));
+                }
+                subroutine_end(statements, to)?;
+            }
+            Instruction::SubReturn if in_main(index) => {
+                return Err((
+                    line,
+                    "SRET in the main program: subroutines go after FEND".into(),
+                ));
+            }
+            _ => {}
+        }
+    }
+    // CALL nesting: each subroutine body runs from its label to its SRET.
+    let mut depths: [Option<usize>; POINTER_COUNT] = [None; POINTER_COUNT];
+    let mut running = [false; POINTER_COUNT];
+    for (index, statement) in statements.iter().enumerate() {
+        if in_main(index) {
+            if let Instruction::Call { pointer, .. } = statement.instruction {
+                let levels = depth(statements, &labels, pointer, &mut depths, &mut running)?;
+                if levels > CALL_DEPTH {
+                    return Err((
+                        statement.line,
+                        format!(
+                            "CALL P{pointer}: subroutines nested deeper than {CALL_DEPTH} levels ({levels} levels from here)"
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The index of the SRET closing the subroutine that starts at `label`.
+fn subroutine_end(statements: &[Statement], label: usize) -> Result<usize, (usize, String)> {
+    let label_line = statements.get(label).map_or(0, |s| s.line);
+    for (offset, statement) in statements.iter().enumerate().skip(label) {
+        match statement.instruction {
+            Instruction::SubReturn => return Ok(offset),
+            Instruction::MainEnd => break,
+            _ => {}
+        }
+    }
+    Err((
+        label_line,
+        "subroutine never returns: expected SRET after its label".into(),
+    ))
+}
+
+/// How many CALL levels running subroutine `pointer` takes (1 when it
+/// calls nothing), each subroutine computed once; a recursive CALL is an
+/// error at its line.
+fn depth(
+    statements: &[Statement],
+    labels: &[Option<usize>; POINTER_COUNT],
+    pointer: u8,
+    depths: &mut [Option<usize>; POINTER_COUNT],
+    running: &mut [bool; POINTER_COUNT],
+) -> Result<usize, (usize, String)> {
+    let slot = usize::from(pointer);
+    if let Some(Some(known)) = depths.get(slot) {
+        return Ok(*known);
+    }
+    let Some(start) = labels.get(slot).copied().flatten() else {
+        return Ok(1);
+    };
+    let end = subroutine_end(statements, start)?;
+    if let Some(flag) = running.get_mut(slot) {
+        *flag = true;
+    }
+    let mut deepest = 0usize;
+    for statement in statements.get(start..end).unwrap_or(&[]) {
+        if let Instruction::Call { pointer: inner, .. } = statement.instruction {
+            if running.get(usize::from(inner)).copied().unwrap_or(false) {
+                return Err((
+                    statement.line,
+                    format!(
+                        "CALL P{inner}: recursive subroutine call (P{inner} is already running)"
+                    ),
+                ));
+            }
+            deepest = deepest.max(depth(statements, labels, inner, depths, running)?);
+        }
+    }
+    if let Some(flag) = running.get_mut(slot) {
+        *flag = false;
+    }
+    let levels = deepest.saturating_add(1);
+    if let Some(known) = depths.get_mut(slot) {
+        *known = Some(levels);
+    }
+    Ok(levels)
+}

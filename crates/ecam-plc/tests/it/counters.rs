@@ -1,0 +1,109 @@
+//! Counters the FX3U way, through IL: C0–C199 16-bit up counters, C200–C234
+//! 32-bit up/down counters whose direction is M8200+n.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use ecam_plc::il::parse;
+use ecam_plc::{Device, Plc};
+
+fn plc(src: &str) -> Plc {
+    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+}
+
+fn set(plc: &mut Plc, device: Device, on: bool) {
+    plc.devices_mut().set_bit(device, on).unwrap();
+}
+
+fn y0(plc: &Plc) -> bool {
+    plc.devices().bit(Device::Y(0)).unwrap()
+}
+
+/// One scan with X0 at `level`.
+fn pulse(plc: &mut Plc, level: bool) {
+    set(plc, Device::X(0), level);
+    assert!(plc.scan().is_empty());
+}
+
+#[test]
+fn sixteen_bit_counter_counts_edges_stops_at_set_value_and_resets() {
+    let mut plc = plc("LD X0\nOUT C0 K3\nLD C0\nOUT Y0\nLD X1\nRST C0\nEND\n");
+    for _ in 0..2 {
+        pulse(&mut plc, true);
+        pulse(&mut plc, true); // a held input counts once
+        pulse(&mut plc, false);
+    }
+    assert_eq!(plc.devices().counter(0), Ok(2));
+    assert!(!y0(&plc));
+    pulse(&mut plc, true);
+    assert_eq!(plc.devices().counter(0), Ok(3));
+    assert!(
+        y0(&plc),
+        "the contact switches when the count reaches the set value"
+    );
+    pulse(&mut plc, false);
+    pulse(&mut plc, true);
+    assert_eq!(plc.devices().counter(0), Ok(3), "stops at the set value");
+    set(&mut plc, Device::X(1), true);
+    pulse(&mut plc, false);
+    assert_eq!(plc.devices().counter(0), Ok(0));
+    pulse(&mut plc, false);
+    assert!(
+        !y0(&plc),
+        "RST turns the contact off (seen by the next scan's LD C0)"
+    );
+    // While RST is on the counter does not count (RST after OUT in the scan).
+    pulse(&mut plc, true);
+    assert_eq!(plc.devices().counter(0), Ok(0));
+}
+
+#[test]
+fn sixteen_bit_set_value_from_a_register() {
+    let mut plc = plc("LD M8000\nMOV K2 D5\nLD X0\nOUT C10 D5\nLD C10\nOUT Y0\nEND\n");
+    pulse(&mut plc, true);
+    pulse(&mut plc, false);
+    assert!(!y0(&plc));
+    pulse(&mut plc, true);
+    assert!(y0(&plc));
+}
+
+#[test]
+fn thirty_two_bit_counter_counts_up_and_down_by_m8200_n() {
+    let mut plc = plc("LD X0\nOUT C200 K2\nLD C200\nOUT Y0\nEND\n");
+    pulse(&mut plc, true);
+    pulse(&mut plc, false);
+    assert!(!y0(&plc));
+    pulse(&mut plc, true);
+    assert_eq!(plc.devices().counter(200), Ok(2));
+    assert!(y0(&plc), "on at value ≥ set value, counting up");
+    pulse(&mut plc, false);
+    pulse(&mut plc, true);
+    assert_eq!(
+        plc.devices().counter(200),
+        Ok(3),
+        "a 32-bit counter goes past its set value"
+    );
+    assert!(y0(&plc));
+    plc.devices_mut().set_m(8200, true).unwrap();
+    for expected in [2, 1] {
+        pulse(&mut plc, false);
+        pulse(&mut plc, true);
+        assert_eq!(plc.devices().counter(200), Ok(expected));
+    }
+    assert!(!y0(&plc), "off below the set value, counting down");
+    for _ in 0..3 {
+        pulse(&mut plc, false);
+        pulse(&mut plc, true);
+    }
+    assert_eq!(
+        plc.devices().counter(200),
+        Ok(-2),
+        "32-bit counters go negative"
+    );
+}
+
+#[test]
+fn thirty_two_bit_counter_is_a_ring() {
+    let mut plc = plc("LD X0\nOUT C234 K5\nEND\n");
+    plc.devices_mut().set_counter(234, i32::MAX).unwrap();
+    pulse(&mut plc, true);
+    assert_eq!(plc.devices().counter(234), Ok(i32::MIN));
+}
