@@ -8,6 +8,10 @@
 /// million points is already far finer than any drive can follow.
 pub const MAX_TABLE_POINTS: usize = 1_000_000;
 
+/// Largest table file `ecam_core::io::read` reads (64 MiB): far above a
+/// million points as text, so reading is bounded before parsing starts.
+pub const MAX_TABLE_FILE_BYTES: u64 = 64 * 1024 * 1024;
+
 /// Longest expression the `function` generator parses, in bytes.
 pub const MAX_EXPRESSION_LEN: usize = 4_096;
 

@@ -81,3 +81,16 @@ fn huge_runs_are_refused() {
         "the limit is 100000000",
     );
 }
+
+#[test]
+fn huge_table_files_are_refused_before_they_are_read() {
+    let dir = scratch_dir("limits-file");
+    let path = dir.join("huge.csv");
+    let file = std::fs::File::create(&path).unwrap();
+    // A sparse 65 MiB file: nothing is written, the size alone is refused.
+    file.set_len(65 * 1024 * 1024).unwrap();
+    refused(
+        &["table", "show", path.to_str().unwrap()],
+        "limited to 67108864 bytes",
+    );
+}

@@ -57,10 +57,20 @@ impl FileFormat {
 /// ([`FileError::Format`], whose source says what is wrong).
 pub fn read(path: &Path) -> Result<AnyTable, FileError> {
     let format = FileFormat::of(path)?;
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Read {
+    let read_error = |source| FileError::Read {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    // Bounded work: the size is checked before anything is read.
+    let limit = crate::limits::MAX_TABLE_FILE_BYTES;
+    let size = std::fs::metadata(path).map_err(read_error)?.len();
+    if size > limit {
+        return Err(read_error(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            std::format!("the file is {size} bytes; table files are limited to {limit} bytes"),
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(read_error)?;
     let parsed = match format {
         FileFormat::Csv => TableFile::from_csv(&text).map(AnyTable::Points),
         FileFormat::Json => AnyTable::from_json(&text),
