@@ -17,29 +17,40 @@ use tokio_modbus::prelude::*;
 /// Longest any single step may take before the test fails.
 const STEP: Duration = Duration::from_secs(20);
 
-/// A running `ecam serve`, killed (SIGKILL) and reaped on drop.
-struct Server {
+/// A running `ecam serve` on ephemeral loopback ports, killed (SIGKILL)
+/// and reaped on drop. The other serve test modules use it too.
+pub(crate) struct Server {
     child: Child,
-    modbus: SocketAddr,
-    http: SocketAddr,
+    /// Its Modbus TCP address.
+    pub(crate) modbus: SocketAddr,
+    /// Its HTTP address.
+    pub(crate) http: SocketAddr,
 }
 
 impl Server {
-    fn start(state: &Path, extra: &[&str]) -> Self {
-        Self::start_with_stderr(state, extra, Stdio::null())
+    /// Starts with its state in `state`.
+    pub(crate) fn start(state: &Path, extra: &[&str]) -> Self {
+        Self::start_with_stderr(Some(state), extra, Stdio::null())
+    }
+
+    /// Starts without `--state`.
+    pub(crate) fn start_stateless(extra: &[&str]) -> Self {
+        Self::start_with_stderr(None, extra, Stdio::null())
     }
 
     /// Starts with stderr going to the file `log` (truncated first).
     fn start_logged(state: &Path, extra: &[&str], log: &Path) -> Self {
         let file = std::fs::File::create(log).unwrap();
-        Self::start_with_stderr(state, extra, Stdio::from(file))
+        Self::start_with_stderr(Some(state), extra, Stdio::from(file))
     }
 
-    fn start_with_stderr(state: &Path, extra: &[&str], stderr: Stdio) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
-            .args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"])
-            .arg("--state")
-            .arg(state)
+    fn start_with_stderr(state: Option<&Path>, extra: &[&str], stderr: Stdio) -> Self {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_ecam"));
+        command.args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"]);
+        if let Some(state) = state {
+            command.arg("--state").arg(state);
+        }
+        let mut child = command
             .args(extra)
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
@@ -80,7 +91,7 @@ impl Server {
     }
 
     /// `kill -9` and wait for it to be gone.
-    fn kill_9(mut self) {
+    pub(crate) fn kill_9(mut self) {
         self.child.kill().unwrap();
         self.child.wait().unwrap();
     }

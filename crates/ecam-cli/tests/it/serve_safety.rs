@@ -3,52 +3,13 @@
 //! a web face that refuses foreign hosts, foreign pages, non-JSON writes and
 //! writes without the token. Loopback only; every wait is bounded.
 
-use std::io::{BufRead as _, BufReader, Read as _, Write as _};
+use std::io::{Read as _, Write as _};
 use std::net::{SocketAddr, TcpStream};
-use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+use crate::serve::Server;
+
 const STEP: Duration = Duration::from_secs(20);
-
-struct Server {
-    child: Child,
-    modbus: SocketAddr,
-    http: SocketAddr,
-}
-
-impl Server {
-    fn start(extra: &[&str]) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
-            .args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"])
-            .args(extra)
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
-        let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
-        let mut addr = |kind: &str| {
-            let line = lines.next().unwrap().unwrap();
-            let (k, a) = line.split_once(' ').unwrap();
-            assert_eq!(k, kind);
-            a.parse().unwrap()
-        };
-        let modbus = addr("modbus");
-        let http = addr("http");
-        Self {
-            child,
-            modbus,
-            http,
-        }
-    }
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
 
 fn connect(addr: SocketAddr) -> TcpStream {
     let s = TcpStream::connect_timeout(&addr, STEP).unwrap();
@@ -79,7 +40,7 @@ fn closed_within(s: &mut TcpStream) -> Duration {
 
 #[test]
 fn modbus_connections_are_capped_and_idle_ones_closed() {
-    let server = Server::start(&["--max-connections", "3", "--idle-timeout", "1"]);
+    let server = Server::start_stateless(&["--max-connections", "3", "--idle-timeout", "1"]);
     let mut served: Vec<TcpStream> = (0..3).map(|_| connect(server.modbus)).collect();
     for s in &mut served {
         assert!(modbus_answers(s));
@@ -142,7 +103,7 @@ fn d100(addr: SocketAddr) -> String {
 
 #[test]
 fn the_web_face_refuses_foreign_hosts_pages_and_non_json_writes() {
-    let server = Server::start(&[]);
+    let server = Server::start_stateless(&[]);
     let http = server.http;
     let own = http.to_string();
     // DNS rebinding: another name for this address.
@@ -184,7 +145,7 @@ fn a_token_file_protects_writes() {
     let dir = crate::common::scratch_dir("serve-token");
     let token_file = dir.join("token");
     std::fs::write(&token_file, "s3cret-token-0123456789\n").unwrap();
-    let server = Server::start(&["--token-file", token_file.to_str().unwrap()]);
+    let server = Server::start_stateless(&["--token-file", token_file.to_str().unwrap()]);
     let own = server.http.to_string();
     assert_eq!(
         post(server.http, &own, "", "application/json", r#"{"D100": 5}"#),
@@ -218,7 +179,7 @@ fn a_token_file_protects_writes() {
 
 #[test]
 fn design_work_does_not_hold_up_modbus() {
-    let server = Server::start(&[]);
+    let server = Server::start_stateless(&[]);
     let http = server.http;
     let own = http.to_string();
     let body = r#"{"generator": "function", "params": {"expr": "1000*sin(x/1000)+x/7", "from": 0, "to": 2000000, "points": 20000}}"#;

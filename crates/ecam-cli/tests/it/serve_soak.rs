@@ -4,34 +4,16 @@
 //! there. Loopback only; a few seconds in all.
 
 use std::collections::HashMap;
-use std::io::{BufRead as _, BufReader, Read as _, Write as _};
+use std::io::{Read as _, Write as _};
 use std::net::{SocketAddr, TcpStream};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-const TIMEOUT: Duration = Duration::from_secs(5);
+use crate::serve::Server;
 
-fn start(state: &std::path::Path) -> (Child, SocketAddr, SocketAddr) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
-        .args(["serve", "--modbus", "127.0.0.1:0", "--http", "127.0.0.1:0"])
-        .arg("--state")
-        .arg(state)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
-    let mut next = || {
-        let line = lines.next().unwrap().unwrap();
-        line.split_once(' ').unwrap().1.parse().unwrap()
-    };
-    let (modbus, http) = (next(), next());
-    std::thread::spawn(move || for _ in lines {});
-    (child, modbus, http)
-}
+const TIMEOUT: Duration = Duration::from_secs(5);
 
 /// Register -> (last acknowledged value, value possibly in flight).
 type Ledger = Arc<Mutex<HashMap<u16, (u16, Option<u16>)>>>;
@@ -124,7 +106,8 @@ fn acknowledged_writes_survive_kill_9_under_concurrent_and_hostile_clients() {
     let state = crate::common::scratch_dir("serve-soak");
     let ledger: Ledger = Arc::new(Mutex::new(HashMap::new()));
     for round in 0..4u16 {
-        let (mut child, modbus, http) = start(&state);
+        let server = Server::start(&state, &[]);
+        let (modbus, http) = (server.modbus, server.http);
         let stop = Arc::new(AtomicBool::new(false));
         let mut workers = Vec::new();
         for w in 0..3u16 {
@@ -144,8 +127,7 @@ fn acknowledged_writes_survive_kill_9_under_concurrent_and_hostile_clients() {
             workers.push(std::thread::spawn(move || garbage(modbus, stop)));
         }
         std::thread::sleep(Duration::from_millis(800 + 200 * u64::from(round)));
-        child.kill().unwrap();
-        child.wait().unwrap();
+        server.kill_9();
         stop.store(true, Ordering::Relaxed);
         for w in workers {
             w.join().unwrap();
@@ -163,7 +145,8 @@ fn acknowledged_writes_survive_kill_9_under_concurrent_and_hostile_clients() {
         recovering.kill().unwrap();
         recovering.wait().unwrap();
     }
-    let (mut child, _, http) = start(&state);
+    let server = Server::start(&state, &[]);
+    let http = server.http;
     let ledger = ledger.lock().unwrap();
     assert!(
         ledger.values().filter(|(v, _)| *v != 0).count() > 10,
@@ -192,6 +175,5 @@ fn acknowledged_writes_survive_kill_9_under_concurrent_and_hostile_clients() {
             "D{register}: {got}, acknowledged {acknowledged}, in flight {in_flight:?}"
         );
     }
-    child.kill().unwrap();
-    child.wait().unwrap();
+    server.kill_9();
 }
