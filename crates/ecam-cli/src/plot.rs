@@ -1,5 +1,4 @@
-//! Drawing `ecam`'s plots: `ecam_plot` draws them; this says on stderr
-//! when it has to do so without text.
+//! Drawing `ecam`'s plots with `ecam_plot` (its font is embedded).
 
 use std::path::Path;
 
@@ -12,7 +11,8 @@ pub use ecam_plot::Format;
 /// # Errors
 /// As [`ecam_plot::draw`].
 pub fn draw(figure: &Figure, out: &Path) -> anyhow::Result<()> {
-    draw_plot(Plot::of_figure(figure, out)?)
+    Plot::of_figure(figure, out)?.draw()?;
+    Ok(())
 }
 
 /// Draws `chart` to `out` (SVG or PNG by extension).
@@ -20,15 +20,6 @@ pub fn draw(figure: &Figure, out: &Path) -> anyhow::Result<()> {
 /// # Errors
 /// As [`ecam_plot::draw_chart`].
 pub fn draw_chart(chart: Chart, out: &Path) -> anyhow::Result<()> {
-    draw_plot(Plot::new(chart, out)?)
-}
-
-fn draw_plot(plot: Plot) -> anyhow::Result<()> {
-    if !plot.has_text() {
-        eprintln!(
-            "ecam: no TrueType font found (set ECAM_FONT=/path/to/font.ttf); plot drawn without text"
-        );
-    }
-    plot.draw()?;
+    Plot::new(chart, out)?.draw()?;
     Ok(())
 }

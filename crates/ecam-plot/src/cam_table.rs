@@ -7,11 +7,22 @@
 //!   vertical edges, with the table's rounded points dotted over the
 //!   displacement;
 //! - **derivatives at each point** (a generator that knows its curve only
-//!   there, or a file with `velocity,acceleration,jerk` columns): lines
-//!   through those values;
+//!   there, or a file with `velocity,acceleration,jerk` columns): the
+//!   velocity the table commands (its section slopes, a staircase) with the
+//!   file's velocity column dotted, and the acceleration and jerk columns
+//!   each held until the next point (a staircase). Nothing is known between
+//!   two points, so nothing is drawn there as if it were: a straight line
+//!   from one acceleration sample to the next would show a ramp across a
+//!   constant-velocity zone that has none;
 //! - **only the points** (a plain `master,slave` file): the section
 //!   velocities as a staircase, acceleration and jerk estimated from the
-//!   points (see [`derivatives`]); the title says so.
+//!   points (see [`derivatives`]) and dotted, one dot per estimate; the
+//!   title says so.
+//!
+//! Wherever a quantity steps (a design's acceleration at a joint, or a
+//! file's acceleration column by more than its jerk column explains), the
+//! next derivative has an impulse there, not a flat 0: it is drawn as an
+//! arrow ([`Style::Impulses`]) labelled with the step's size.
 //!
 //! `ecam_core`'s other table kinds are drawn from the curve itself:
 //! - **a segment profile** ([`profile_chart`]): each segment's motion law,
@@ -31,6 +42,18 @@ use crate::{Chart, ChartPanel, Style, Trace};
 
 /// Samples of the design curve drawn in all (spread over its pieces).
 const DESIGN_SAMPLES: usize = 2000;
+/// A step in a sampled column is drawn as an impulse of the next
+/// derivative when the step is at least this share of the column's peak
+/// and the next column does not account for it (see [`unexplained_steps`]).
+/// A smooth law sampled at 10 points per stroke leaves about 2 % of its
+/// peak unexplained; a real step is a sizeable share of the peak.
+const STEP_SHARE: f64 = 0.05;
+/// Relative size of a jump between the two ends of a joint of an exact
+/// curve that counts as a step (laws in `f64` agree to ~1e-12).
+const JOINT_TOLERANCE: f64 = 1e-7;
+const ACCELERATION_IMPULSE: &str = "impulse: velocity step (pulses/count)";
+const JERK_IMPULSE: &str = "impulse: acceleration step (pulses/count²)";
+
 /// Sections on each side of a joint whose chords estimate a plain table's
 /// acceleration and jerk (see [`derivatives::over_sections`]).
 const SMOOTHING_SECTIONS: usize = 4;
@@ -51,14 +74,17 @@ pub fn chart(file: &TableFile, design: Option<&DesignCurve>, name: &str) -> Char
     let (title, panels) = match (design, &file.kinematics) {
         (Some(design), _) => (
             format!(
-                "cam table: {name} (lines: design curve; dots: the table's {} points)",
+                "cam table: {name} (lines: design curve; arrows: its steps as impulses; dots: the table's {} points)",
                 points.len()
             ),
             design_panels(points, design),
         ),
-        (None, Some(known)) if known.len() == points.len() => {
-            (format!("cam table: {name}"), known_panels(points, known))
-        }
+        (None, Some(known)) if known.len() == points.len() => (
+            format!(
+                "cam table: {name} (the file's derivative columns, each value held to the next point)"
+            ),
+            known_panels(points, known),
+        ),
         _ => (
             format!(
                 "cam table: {name} (velocity per section; acceleration, jerk estimated from the points)"
@@ -80,6 +106,17 @@ fn line(name: &str, x: Vec<f64>, y: Vec<f64>) -> Trace {
         x,
         y,
         style: LINE,
+    }
+}
+
+/// Estimates at points, as dots: joining them with lines would draw a
+/// ramp across a long section where none is known.
+fn estimates(name: &str, x: Vec<f64>, y: Vec<f64>) -> Trace {
+    Trace {
+        name: name.into(),
+        x,
+        y,
+        style: Style::Markers,
     }
 }
 
@@ -117,23 +154,141 @@ fn design_panels(points: &[CamPoint], design: &DesignCurve) -> Vec<ChartPanel> {
             ],
         ),
         panel(VELOCITY, vec![line("design", x.clone(), of(|k| k.v))]),
-        panel(ACCELERATION, vec![line("design", x.clone(), of(|k| k.a))]),
-        panel(JERK, vec![line("design", x, of(|k| k.j))]),
+        exact_panel(
+            ACCELERATION,
+            "design",
+            &x,
+            of(|k| k.a),
+            &of(|k| k.v),
+            ACCELERATION_IMPULSE,
+        ),
+        exact_panel(JERK, "design", &x, of(|k| k.j), &of(|k| k.a), JERK_IMPULSE),
     ]
+}
+
+/// A panel of an exact curve's derivative `y` over `x`, with an impulse
+/// wherever the quantity it derives from (`integral`) steps at a joint.
+fn exact_panel(
+    title: &str,
+    name: &str,
+    x: &[f64],
+    y: Vec<f64>,
+    integral: &[f64],
+    impulse: &str,
+) -> ChartPanel {
+    let mut traces = vec![line(name, x.to_vec(), y)];
+    let (at, size) = joint_steps(x, integral);
+    if !at.is_empty() {
+        traces.push(Trace {
+            name: impulse.into(),
+            x: at,
+            y: size,
+            style: Style::Impulses,
+        });
+    }
+    panel(title, traces)
+}
+
+/// Steps of a densely sampled exact curve: two samples at the same x (both
+/// ends of a joint) whose values differ. Returns their x and the step sizes.
+pub fn joint_steps(x: &[f64], y: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let span = x.last().copied().unwrap_or(0.0) - x.first().copied().unwrap_or(0.0);
+    let same_x = 1e-12 * span.abs().max(1.0);
+    x.windows(2)
+        .zip(y.windows(2))
+        .filter_map(|(x, y)| match (x, y) {
+            ([x0, x1], [y0, y1])
+                if (x1 - x0).abs() <= same_x && (y1 - y0).abs() > JOINT_TOLERANCE * scale =>
+            {
+                Some((*x1, y1 - y0))
+            }
+            _ => None,
+        })
+        .unzip()
+}
+
+/// Steps of a column `y` sampled at points `x` that its derivative column
+/// `dy` does not account for: from one point to the next, `y` changes by
+/// what `dy` integrates to (held from the left point, or averaged over the
+/// section; a column of values that hold between points, or one sampled
+/// from a smooth law), give or take [`STEP_SHARE`] of `y`'s peak; the rest
+/// is a step at the later point. Returns their x and sizes.
+pub fn unexplained_steps(x: &[f64], y: &[f64], dy: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let n = x.len().min(y.len()).min(dy.len());
+    (1..n)
+        .filter_map(|i| {
+            let (x0, x1) = (*x.get(i - 1)?, *x.get(i)?);
+            let (y0, y1) = (*y.get(i - 1)?, *y.get(i)?);
+            let (d0, d1) = (*dy.get(i - 1)?, *dy.get(i)?);
+            let (h, change) = (x1 - x0, y1 - y0);
+            let held = change - d0 * h;
+            let averaged = change - 0.5 * (d0 + d1) * h;
+            // A step when neither reading explains the change; its size is
+            // the rest after the section's mean derivative.
+            (held.abs().min(averaged.abs()) > STEP_SHARE * scale).then_some((x1, averaged))
+        })
+        .unzip()
 }
 
 fn known_panels(points: &[CamPoint], known: &[Kinematics]) -> Vec<ChartPanel> {
     let x = masters(points);
     let of = |f: fn(&Kinematics) -> f64| known.iter().map(f).collect::<Vec<_>>();
-    let single = |title: &str, y: Vec<f64>| {
-        let name = title.split(' ').next().unwrap_or(title);
-        panel(title, vec![line(name, x.clone(), y)])
+    let held = |name: &str, y: Vec<f64>| Trace {
+        name: name.into(),
+        x: x.clone(),
+        y,
+        style: Style::Steps,
     };
+    let (v, a, j) = (of(|k| k.v), of(|k| k.a), of(|k| k.j));
+    let sections = derivatives::forward(&x, &slaves(points));
+    let mut acceleration = vec![held("acceleration column", a.clone())];
+    let mut jerk = vec![held("jerk column", j.clone())];
+    for (traces, (at, size), name) in [
+        (
+            &mut acceleration,
+            unexplained_steps(&x, &v, &a),
+            ACCELERATION_IMPULSE,
+        ),
+        (&mut jerk, unexplained_steps(&x, &a, &j), JERK_IMPULSE),
+    ] {
+        if !at.is_empty() {
+            traces.push(Trace {
+                name: name.into(),
+                x: at,
+                y: size,
+                style: Style::Impulses,
+            });
+        }
+    }
     vec![
-        single(DISPLACEMENT, slaves(points)),
-        single(VELOCITY, of(|k| k.v)),
-        single(ACCELERATION, of(|k| k.a)),
-        single(JERK, of(|k| k.j)),
+        panel(
+            DISPLACEMENT,
+            vec![
+                line("table", x.clone(), slaves(points)),
+                Trace {
+                    name: "points".into(),
+                    x: x.clone(),
+                    y: slaves(points),
+                    style: Style::Markers,
+                },
+            ],
+        ),
+        panel(
+            VELOCITY,
+            vec![
+                held("table as run (section slopes)", sections),
+                Trace {
+                    name: "velocity column".into(),
+                    x: x.clone(),
+                    y: v,
+                    style: Style::Markers,
+                },
+            ],
+        ),
+        panel(ACCELERATION, acceleration),
+        panel(JERK, jerk),
     ]
 }
 
@@ -207,14 +362,14 @@ fn straight_panels(straight: Straight, dots: &str) -> Vec<ChartPanel> {
                     name: "per joint (neighbouring sections)".into(),
                     x: x_inner,
                     y: per_joint,
-                    style: Style::Line { width: 1 },
+                    style: Style::Markers,
                 },
-                line(&smoothed, xs.clone(), a),
+                estimates(&smoothed, xs.clone(), a),
             ],
         ),
         panel(
             "jerk (pulses/count³, estimated)",
-            vec![line(&smoothed, xs, j)],
+            vec![estimates(&smoothed, xs, j)],
         ),
     ]
 }
@@ -336,11 +491,18 @@ pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &
             ],
         ),
         panel(VELOCITY, vec![line("profile", x.clone(), of(|k| k.v))]),
-        panel(ACCELERATION, vec![line("profile", x.clone(), of(|k| k.a))]),
-        panel(JERK, vec![line("profile", x, of(|k| k.j))]),
+        exact_panel(
+            ACCELERATION,
+            "profile",
+            &x,
+            of(|k| k.a),
+            &of(|k| k.v),
+            ACCELERATION_IMPULSE,
+        ),
+        exact_panel(JERK, "profile", &x, of(|k| k.j), &of(|k| k.a), JERK_IMPULSE),
     ];
     let title = format!(
-        "cam table: {name} (lines: its motion laws, exact; dots: its {} key points)",
+        "cam table: {name} (lines: its motion laws, exact; arrows: their steps as impulses; dots: its {} key points)",
         key_points.len()
     );
     chart_over(title, panels, sync)
@@ -381,6 +543,10 @@ mod tests {
         let c = chart(&file(t, None), None, "t.csv");
         assert!(c.title.contains("estimated from the points"));
         assert_eq!(c.panels[1].traces[0].style, Style::Steps);
+        // Estimates are dots: no line joins them across a long section.
+        for panel in &c.panels[2..] {
+            assert!(panel.traces.iter().all(|t| t.style == Style::Markers));
+        }
         // Interior joints only: masters 10 and 40.
         assert_eq!(c.panels[2].traces[0].x, vec![10.0, 40.0]);
         assert!((c.panels[2].traces[0].y[0] - 0.1).abs() < 1e-12);
@@ -448,15 +614,89 @@ mod tests {
                 .collect();
         assert_eq!(at_200.len(), 2);
         assert!(at_200[0].abs() < 1e-9 && (at_200[1] - 10.0).abs() < 1e-9);
+        // That velocity step is an acceleration impulse of 10 at 200; the
+        // cycloid's acceleration ends at 0, as the dwell's and the
+        // constant velocity's are: no jerk impulse.
+        let impulses = &c.panels[2].traces[1];
+        assert_eq!(impulses.style, Style::Impulses);
+        assert_eq!(impulses.x, vec![200.0]);
+        assert!((impulses.y[0] - 10.0).abs() < 1e-9);
+        assert_eq!(c.panels[3].traces.len(), 1);
+    }
+
+    fn kin(v: f64, a: f64, j: f64) -> Kinematics {
+        Kinematics { s: 0.0, v, a, j }
     }
 
     #[test]
-    fn known_derivatives_are_drawn_as_given() {
-        let t = PointTable::from_pairs(&[(0, 0), (10, 10)]).unwrap();
-        let k = vec![Kinematics::at_rest(0.0), Kinematics::at_rest(10.0)];
+    fn known_derivatives_are_held_not_joined() {
+        // A rotary cut's columns: constant velocity to 200, deceleration to
+        // 600, dwell to 2800. A line from the acceleration at 0 to the one
+        // at 200 would ramp across the synchronised zone.
+        let t = PointTable::from_pairs(&[(0, 0), (200, 333), (600, 666), (2800, 666)]).unwrap();
+        let a = -1.0 / 240.0;
+        let k = vec![
+            kin(5.0 / 3.0, 0.0, 0.0),
+            kin(5.0 / 3.0, a, 0.0),
+            kin(0.0, 0.0, 0.0),
+            kin(0.0, 0.0, 0.0),
+        ];
         let c = chart(&file(t, Some(k)), None, "t.csv");
-        assert_eq!(c.title, "cam table: t.csv");
-        assert_eq!(c.panels[1].traces[0].y, vec![0.0, 0.0]);
-        assert_eq!(c.panels[1].traces[0].name, "velocity");
+        assert!(c.title.contains("held to the next point"), "{}", c.title);
+        let acceleration = &c.panels[2].traces[0];
+        assert_eq!(acceleration.style, Style::Steps);
+        assert_eq!(acceleration.y, vec![0.0, a, 0.0, 0.0]);
+        // The velocity the table commands is its section slopes.
+        assert_eq!(c.panels[1].traces[0].style, Style::Steps);
+        assert_eq!(c.panels[1].traces[1].style, Style::Markers);
+        // The jerk column is 0, but the acceleration steps at 200 and 600:
+        // impulses there, sized by the steps.
+        let impulses = &c.panels[3].traces[1];
+        assert_eq!(impulses.style, Style::Impulses);
+        assert_eq!(impulses.x, vec![200.0, 600.0]);
+        assert!((impulses.y[0] - a).abs() < 1e-15 && (impulses.y[1] + a).abs() < 1e-15);
+        // The velocity column is explained by the held acceleration: no
+        // acceleration impulse.
+        assert_eq!(c.panels[2].traces.len(), 1);
+    }
+
+    #[test]
+    fn a_smooth_law_sampled_coarsely_has_no_impulses() {
+        // A cycloid (h = 1, β = 1) sampled at 11 points: its acceleration
+        // changes between samples only as its jerk says.
+        let tau = core::f64::consts::TAU;
+        let x: Vec<f64> = (0..=10).map(|i| i as f64 / 10.0).collect();
+        let a: Vec<f64> = x.iter().map(|u| tau * (tau * u).sin()).collect();
+        let j: Vec<f64> = x.iter().map(|u| tau * tau * (tau * u).cos()).collect();
+        assert_eq!(unexplained_steps(&x, &a, &j), (vec![], vec![]));
+        // The same acceleration with a step of a quarter of its peak at 0.5.
+        let mut stepped = a.clone();
+        for v in &mut stepped[5..] {
+            *v += 0.25 * tau;
+        }
+        let (at, size) = unexplained_steps(&x, &stepped, &j);
+        assert_eq!(at, vec![0.5]);
+        assert!((size[0] - 0.25 * tau).abs() < 0.05 * tau, "{size:?}");
+    }
+
+    #[test]
+    fn a_designs_acceleration_steps_are_jerk_impulses() {
+        let g = rotary_cut::generate(&rotary_cut::Params::default()).unwrap();
+        let c = chart(&file(g.table.clone(), None), Some(&g.design), "rotary-cut");
+        let jerk = &c.panels[3];
+        // The design's jerk is 0 everywhere (constant accelerations)...
+        assert!(jerk.traces[0].y.iter().all(|j| *j == 0.0));
+        // ...and its acceleration steps: each step an impulse, sized by it.
+        let impulses = jerk
+            .traces
+            .iter()
+            .find(|t| t.style == Style::Impulses)
+            .unwrap();
+        assert!(!impulses.x.is_empty());
+        let (xs, ys) = (&c.panels[2].traces[0].x, &c.panels[2].traces[0].y);
+        for (at, size) in impulses.x.iter().zip(&impulses.y) {
+            let k = xs.iter().position(|x| x == at).unwrap();
+            assert!((ys[k + 1] - ys[k] - size).abs() < 1e-12, "at {at}");
+        }
     }
 }

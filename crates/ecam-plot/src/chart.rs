@@ -50,8 +50,15 @@ pub enum Style {
     /// A staircase: `y[i]` holds from `x[i]` to `x[i + 1]` (a point table's
     /// section velocities); the last value is drawn as a point.
     Steps,
-    /// A small dot at each point, no line (a table's points over its design).
+    /// A small dot at each point, no line (a table's points over its design,
+    /// or samples whose values between points are not known).
     Markers,
+    /// Dirac impulses: at each x an arrow from 0 to the panel's edge (up for
+    /// a positive y, down for a negative one), labelled with y, the
+    /// impulse's area (e.g. the acceleration step behind a jerk impulse).
+    /// y is in the unit of the quantity that steps, not of the panel, so
+    /// impulses do not take part in the panel's y range.
+    Impulses,
 }
 
 /// One drawn series with its own x values.

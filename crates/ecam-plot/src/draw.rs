@@ -35,9 +35,7 @@ impl Format {
 const PANEL_HEIGHT: u32 = 260;
 const WIDTH: u32 = 1100;
 
-/// A chart checked and ready to be drawn to a file: [`Plot::has_text`] says,
-/// before anything is written, whether the labels can be drawn (a TrueType
-/// font was found, see the crate documentation), so the caller can warn.
+/// A chart checked and ready to be drawn to a file.
 #[derive(Debug)]
 pub struct Plot {
     chart: Chart,
@@ -48,7 +46,7 @@ pub struct Plot {
 
 impl Plot {
     /// Checks `chart` and the picture format of `out` (SVG or PNG by
-    /// extension), and looks for a font.
+    /// extension).
     ///
     /// # Errors
     /// A bad extension, or a chart without panels or x values.
@@ -83,12 +81,6 @@ impl Plot {
         Self::new(Chart::from(figure), out)
     }
 
-    /// Whether the title, axis labels and legends will be drawn; without a
-    /// font the plot is drawn without text.
-    pub fn has_text(&self) -> bool {
-        self.text
-    }
-
     /// Draws the chart and writes the file.
     ///
     /// # Errors
@@ -116,8 +108,7 @@ impl Plot {
     }
 }
 
-/// Draws `figure` to `out` (SVG or PNG by extension), without text when no
-/// font is found.
+/// Draws `figure` to `out` (SVG or PNG by extension).
 ///
 /// # Errors
 /// A bad extension, a figure without panels or x values, or a write failure.
@@ -125,8 +116,7 @@ pub fn draw(figure: &Figure, out: &Path) -> Result<(), PlotError> {
     Plot::of_figure(figure, out)?.draw()
 }
 
-/// Draws `chart` to `out` (SVG or PNG by extension), without text when no
-/// font is found.
+/// Draws `chart` to `out` (SVG or PNG by extension).
 ///
 /// # Errors
 /// A bad extension, a chart without panels or x values, or a write failure.
@@ -178,7 +168,15 @@ where
     };
     for (i, (panel, area)) in figure.panels.iter().zip(areas.iter()).enumerate() {
         let last = i + 1 == figure.panels.len();
-        let all = panel.traces.iter().flat_map(|t| t.y.iter().copied());
+        // Impulses carry the size of a step, not a value of the panel's
+        // quantity: they only ask for 0 to be on the axis.
+        let has_impulses = panel.traces.iter().any(|t| t.style == Style::Impulses);
+        let all = panel
+            .traces
+            .iter()
+            .filter(|t| t.style != Style::Impulses)
+            .flat_map(|t| t.y.iter().copied())
+            .chain(has_impulses.then_some(0.0));
         let (y_lo, y_hi) = padded(range_of(all));
         let mut builder = ChartBuilder::on(area);
         builder.margin(8).margin_right(24);
@@ -250,6 +248,37 @@ where
                 Style::Markers => chart
                     .draw_series(points.map(|p| Circle::new(p, 2, color.filled())))
                     .map_err(err)?,
+                Style::Impulses => {
+                    let arrows: Vec<(f64, f64)> = points.collect();
+                    let head = (y_hi - y_lo) * 0.07;
+                    let half = (x_hi - x_lo) * 0.004;
+                    let style = color.stroke_width(2);
+                    // Arrow heads and labels first: the shaft's series is
+                    // the one the legend names.
+                    chart
+                        .draw_series(arrows.iter().map(|&(x, size)| {
+                            let (tip, back) = arrow_ends(size, y_lo, y_hi, head);
+                            PathElement::new([(x - half, back), (x, tip), (x + half, back)], style)
+                        }))
+                        .map_err(err)?;
+                    // Labels only while they stay readable.
+                    if labels && arrows.len() <= MAX_IMPULSE_LABELS {
+                        let font = (font::FAMILY, 12).into_font().color(&color);
+                        chart
+                            .draw_series(arrows.iter().map(|&(x, size)| {
+                                let (tip, back) = arrow_ends(size, y_lo, y_hi, head);
+                                let at = if size < 0.0 { back } else { tip };
+                                Text::new(format!(" {}", short(size, 0.0)), (x, at), font.clone())
+                            }))
+                            .map_err(err)?;
+                    }
+                    chart
+                        .draw_series(arrows.iter().map(|&(x, size)| {
+                            let (tip, _) = arrow_ends(size, y_lo, y_hi, head);
+                            PathElement::new([(x, 0.0), (x, tip)], style)
+                        }))
+                        .map_err(err)?
+                }
             };
             if legend {
                 let label = drawn.label(trace.name.as_str());
@@ -275,6 +304,20 @@ where
         }
     }
     Ok(())
+}
+
+/// Impulses labelled with their size up to this many per panel; more
+/// would overlap.
+const MAX_IMPULSE_LABELS: usize = 24;
+
+/// Where an impulse's arrow ends (`tip`, at the panel's edge on the side of
+/// its sign) and where its head's barbs start (`back`).
+fn arrow_ends(size: f64, y_lo: f64, y_hi: f64, head: f64) -> (f64, f64) {
+    if size < 0.0 {
+        (y_lo, y_lo + head)
+    } else {
+        (y_hi, y_hi - head)
+    }
 }
 
 /// Compact tick labels: 12000, 1.5, 0.00013 → "1.30e-4"; |v| ≤ `zero` is 0.

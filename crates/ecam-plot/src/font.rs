@@ -1,11 +1,10 @@
-//! The font plotters draws its labels with.
+//! The font plotters draws its labels with: DejaVu Sans, embedded.
 //!
 //! The workspace builds plotters without its system-font loader (`ttf` pulls
-//! in native font libraries), so labels are drawn with `ab_glyph` from a
-//! TrueType file that we register once. `ECAM_FONT` names one explicitly
-//! (`ECAM_FONT=none` for no text); otherwise a few common system locations
-//! are tried. Without any font the plots are still drawn, only without text,
-//! and the caller says so.
+//! in native font libraries), so labels are drawn with `ab_glyph` from
+//! TrueType bytes registered once. The bytes are compiled in (see
+//! `fonts/LICENSE-DejaVu.txt` for the font's licence), so every machine
+//! draws the same picture, with text, without a font installed.
 
 use std::sync::OnceLock;
 
@@ -14,46 +13,22 @@ use plotters::style::{FontStyle, register_font};
 /// Family name the plots ask plotters for.
 pub const FAMILY: &str = "sans-serif";
 
-/// Common places of a sans-serif TrueType font (Debian/Ubuntu, Fedora, Arch,
-/// macOS, Windows).
-const CANDIDATES: &[&str] = &[
-    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/TTF/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf",
-    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
-    "/usr/share/fonts/liberation-sans/LiberationSans-Regular.ttf",
-    "/usr/share/fonts/truetype/freefont/FreeSans.ttf",
-    "/Library/Fonts/Arial.ttf",
-    "/System/Library/Fonts/Supplemental/Arial.ttf",
-    "C:\\Windows\\Fonts\\arial.ttf",
-];
+/// DejaVu Sans 2.37 (Bitstream Vera licence, DejaVu changes public domain):
+/// it covers the symbols the labels use (², ³, ±, Δ, µ).
+static DEJAVU_SANS: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
 
-/// Registers a font for [`FAMILY`] on first use; true when labels can be drawn.
+/// Registers the embedded font for [`FAMILY`] on first use; true when
+/// labels can be drawn (false only if the embedded bytes failed to parse,
+/// which the unit test below rules out).
 pub fn available() -> bool {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
-    *REGISTERED.get_or_init(register_first)
+    *REGISTERED.get_or_init(|| register_font(FAMILY, FontStyle::Normal, DEJAVU_SANS).is_ok())
 }
 
-fn register_first() -> bool {
-    let explicit = std::env::var_os("ECAM_FONT").map(std::path::PathBuf::from);
-    // `ECAM_FONT=none` draws without text, as on a machine without fonts.
-    if explicit.as_deref() == Some(std::path::Path::new("none")) {
-        return false;
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_embedded_font_registers() {
+        assert!(super::available());
     }
-    let paths = explicit
-        .into_iter()
-        .chain(CANDIDATES.iter().map(std::path::PathBuf::from));
-    for path in paths {
-        let Ok(bytes) = std::fs::read(&path) else {
-            continue;
-        };
-        // plotters keeps `&'static` font data; one font per process is a
-        // bounded, deliberate leak.
-        let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-        if register_font(FAMILY, FontStyle::Normal, bytes).is_ok() {
-            return true;
-        }
-    }
-    false
 }

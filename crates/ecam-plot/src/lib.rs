@@ -11,10 +11,9 @@
 //! windows, and it is not a general plotting library (one layout, one
 //! colour scheme).
 //!
-//! Labels are drawn with a TrueType font: `ECAM_FONT=/path/to/font.ttf`
-//! names one (`ECAM_FONT=none` for none), otherwise a few common system
-//! locations are tried. Without a font the plot is still drawn, without
-//! text; [`Plot::has_text`] tells the caller beforehand.
+//! Labels are drawn with DejaVu Sans, compiled into the crate (its licence
+//! is `fonts/LICENSE-DejaVu.txt`), so a plot looks the same on every
+//! machine and needs no font installed.
 //!
 //! ```
 //! use ecam_plot::{Figure, Panel, Series, draw};

@@ -7,3 +7,4 @@ pub mod pmd;
 pub mod serve;
 pub mod simulate;
 pub mod table;
+pub mod table_peaks;

@@ -17,6 +17,7 @@ use ecam_core::table::Summary;
 use ecam_plot::cam_table;
 use serde::Serialize;
 
+use crate::cmd::table_peaks::{self, AtSpeed, MachineArgs, Peaks, Source};
 use crate::generate::{self, GenCommand};
 use crate::plot;
 
@@ -47,6 +48,9 @@ pub struct ShowArgs {
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// The machine, for peaks in physical units.
+    #[command(flatten)]
+    pub machine: MachineArgs,
 }
 
 /// Arguments of `ecam table plot`.
@@ -138,6 +142,32 @@ struct ShowJson<'a> {
     sync: Option<(i64, i64)>,
     #[serde(flatten)]
     summary: &'a Summary,
+    /// The design's peaks, from a file's derivative columns.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    design: Option<Peaks>,
+    /// The peaks at `--master-speed`: the design's when known, else the
+    /// table's (`of` says which).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    at_speed: Option<AtSpeed>,
+}
+
+fn peaks(summary: &Summary) -> Peaks {
+    Peaks {
+        peak_velocity: summary.peak_velocity,
+        peak_acceleration: summary.peak_acceleration,
+    }
+}
+
+/// The design's peaks from a file's derivative columns, when it has them.
+fn design_peaks(file: &TableFile) -> Option<Peaks> {
+    let known = file.kinematics.as_ref()?;
+    let peak = |f: fn(&ecam_core::Kinematics) -> f64| {
+        known.iter().map(f).fold(0.0_f64, |m, v| m.max(v.abs()))
+    };
+    Some(Peaks {
+        peak_velocity: peak(|k| k.v),
+        peak_acceleration: peak(|k| k.a),
+    })
 }
 
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
@@ -153,12 +183,12 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
                 "evenly spaced table, a value every {} counts",
                 short(spacing)
             );
-            show_curve(args, kind, &what, values, &table)
+            show_curve(args, kind, &what, values, &table, Source::UniformPieces)
         }
         AnyTable::Profile(profile) => {
             let key_points = profile.segments().len().saturating_add(1);
             let what = "segment profile, key points joined by motion laws, evaluated exactly";
-            show_curve(args, kind, what, key_points, &profile)
+            show_curve(args, kind, what, key_points, &profile, Source::ProfileLaws)
         }
     }
 }
@@ -172,9 +202,11 @@ fn show_curve(
     what: &str,
     points: usize,
     curve: &impl CamCurve,
+    source: Source,
 ) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
     let summary = Summary::of(curve);
+    let table = peaks(&summary);
     if args.json {
         let json = ShowJson {
             file: args.file.display().to_string(),
@@ -186,6 +218,8 @@ fn show_curve(
             slave_last: curve.slave_last(),
             sync: None,
             summary: &summary,
+            design: None,
+            at_speed: args.machine.at_speed(&table, source),
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
@@ -198,7 +232,10 @@ fn show_curve(
         &summary,
         (curve.master_first(), curve.master_last()),
         (curve.slave_first(), curve.slave_last()),
-    )
+    )?;
+    table_peaks::write(&mut out, None, (&table, source), None, &args.machine)?;
+    writeln!(out, "continuity:        {}", summary.continuity)?;
+    Ok(())
 }
 
 fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
@@ -206,6 +243,8 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
     // (`ecam table show t.csv | head -1`) is an error, not a panic.
     let mut out = std::io::stdout().lock();
     let summary = Summary::of(&file.table);
+    let table = peaks(&summary);
+    let design = design_peaks(file);
     let points = file.table.points();
     let (first, last) = match (points.first(), points.last()) {
         (Some(f), Some(l)) => (*f, *l),
@@ -222,6 +261,11 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
             slave_last: last.slave,
             sync: file.sync,
             summary: &summary,
+            design,
+            at_speed: match &design {
+                Some(design) => args.machine.at_speed(design, Source::DesignColumns),
+                None => args.machine.at_speed(&table, Source::SampledTable),
+            },
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
@@ -237,13 +281,28 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
         (first.master, last.master),
         (first.slave, last.slave),
     )?;
+    let shortest = points
+        .windows(2)
+        .filter_map(|w| match w {
+            [a, b] => b.master.checked_sub(a.master),
+            _ => None,
+        })
+        .min();
+    table_peaks::write(
+        &mut out,
+        design.as_ref().map(|d| (d, Source::DesignColumns)),
+        (&table, Source::SampledTable),
+        shortest,
+        &args.machine,
+    )?;
+    writeln!(out, "continuity:        {}", summary.continuity)?;
     if let Some((lo, hi)) = file.sync {
         writeln!(out, "sync zone:         master {lo} .. {hi}")?;
     }
     Ok(())
 }
 
-/// The lines every table kind shares, from `sections` to `continuity`.
+/// The lines every table kind shares, from `sections` to `slave`.
 fn write_summary(
     out: &mut impl Write,
     summary: &Summary,
@@ -261,26 +320,10 @@ fn write_summary(
         "slave:             {slave_first} .. {slave_last} (stroke {}, range {} .. {})",
         summary.stroke, summary.slave_min, summary.slave_max
     )?;
-    writeln!(
-        out,
-        "peak velocity:     {} pulses/count",
-        short(summary.peak_velocity)
-    )?;
-    writeln!(
-        out,
-        "peak acceleration: {} pulses/count²",
-        short(summary.peak_acceleration)
-    )?;
-    writeln!(out, "continuity:        {}", summary.continuity)?;
     Ok(())
 }
 
-fn short(v: f64) -> String {
-    format!("{v:.6}")
-        .trim_end_matches('0')
-        .trim_end_matches('.')
-        .to_string()
-}
+use table_peaks::short;
 
 fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
     plot::Format::of(&args.output)?;

@@ -19,3 +19,4 @@ mod serve_soak;
 mod simulate;
 mod table;
 mod table_design;
+mod table_truth;

@@ -551,8 +551,8 @@ fn shipped_example_tables_match_their_parameter_files() {
 }
 
 #[test]
-fn plots_are_drawn_without_text_when_no_font_is_found() {
-    let dir = scratch("nofont");
+fn plots_have_text_from_the_embedded_font_whatever_the_environment() {
+    let dir = scratch("font");
     for name in ["t.png", "t.svg"] {
         let out = Command::new(env!("CARGO_BIN_EXE_ecam"))
             .args([
@@ -564,7 +564,9 @@ fn plots_are_drawn_without_text_when_no_font_is_found() {
                 "--plot",
                 s(&dir.join(name)),
             ])
+            // Neither a font variable nor system font paths matter.
             .env("ECAM_FONT", "none")
+            .env("XDG_DATA_DIRS", s(&dir))
             .output()
             .unwrap();
         assert!(
@@ -572,11 +574,11 @@ fn plots_are_drawn_without_text_when_no_font_is_found() {
             "{}",
             String::from_utf8_lossy(&out.stderr)
         );
-        assert!(String::from_utf8_lossy(&out.stderr).contains("without text"));
+        assert!(!String::from_utf8_lossy(&out.stderr).contains("without text"));
         assert!(std::fs::metadata(dir.join(name)).unwrap().len() > 1000);
     }
     let svg = std::fs::read_to_string(dir.join("t.svg")).unwrap();
-    assert!(!svg.contains("<text"));
+    assert!(svg.contains("<text") && svg.contains("master (counts)"));
 }
 
 #[test]
