@@ -172,7 +172,7 @@ fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
     let g = rotary_cut::generate(params)?;
     Ok(Generated {
         outputs: vec![
-            ("regime", format!("{:?}", g.regime)),
+            ("regime", g.regime.to_string()),
             (
                 "sync zone",
                 format!(
@@ -200,7 +200,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
         let g = flying_saw::generate(params)?;
         return Ok(Generated {
             outputs: vec![
-                ("stroke", format!("{:?}", g.stroke)),
+                ("stroke", g.stroke.to_string()),
                 (
                     "constant-speed zone (master)",
                     format!("{} .. {}", g.constant_zone.0, g.constant_zone.1),

@@ -54,3 +54,41 @@ fn parameter_errors_name_no_rust_types() {
     );
     assert!(!err.contains("i64"), "{err}");
 }
+
+#[test]
+fn generator_reports_use_words_not_rust_names() {
+    let out = ecam(&[
+        "table",
+        "gen",
+        "rotary-cut",
+        "--params",
+        "../../examples/tables/rotary-cut-demo.toml",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("regime: stop and dwell between cuts"), "{err}");
+    let out = ecam(&[
+        "table",
+        "gen",
+        "fly-saw",
+        "--master",
+        "1750",
+        "--slave",
+        "2000",
+        "--sync",
+        "667",
+        "--ratio",
+        "3*pi",
+        "--max-ratio",
+        "10",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("stroke: forward (following the material)"),
+        "{err}"
+    );
+    for debug in ["StopAndDwell", "SpeedUp", "SlowDown", "Forward", "Return"] {
+        assert!(!err.contains(debug), "{err}");
+    }
+}

@@ -68,6 +68,16 @@ pub enum Stroke {
     Return,
 }
 
+/// The words a user reads (`ecam table gen fly-saw` prints them).
+impl core::fmt::Display for Stroke {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::Forward => "forward (following the material)",
+            Self::Return => "return (running back)",
+        })
+    }
+}
+
 /// Splits a `P6` high word into the placement and the stroke flag.
 ///
 /// # Errors

@@ -83,6 +83,18 @@ pub enum CutRegime {
     StopAndDwell,
 }
 
+/// The words a user reads (`ecam table gen rotary-cut` prints them).
+impl core::fmt::Display for CutRegime {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::SpeedUp => "speed up between cuts (cut shorter than the knife's circumference)",
+            Self::Constant => "constant speed (cut equal to the circumference)",
+            Self::SlowDown => "slow down between cuts (cut up to about two circumferences)",
+            Self::StopAndDwell => "stop and dwell between cuts (long cut)",
+        })
+    }
+}
+
 /// A rotary-cut table and what was made of the parameters.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Generated {
