@@ -6,17 +6,24 @@
 
 mod cmd;
 mod generate;
+mod logging;
 mod plot;
 mod progress;
 mod serve;
 mod trace;
 
-use clap::{Parser, Subcommand};
+use clap::{ArgAction, Parser, Subcommand};
 
 /// Electronic cam design, simulation and PLC / motion-processor emulation.
 #[derive(Parser)]
 #[command(name = "ecam", version, about)]
-struct Cli {
+pub struct Cli {
+    /// More log output on stderr: -v debug, -vv trace (RUST_LOG, if set, wins).
+    #[arg(short, long, action = ArgAction::Count, global = true)]
+    verbose: u8,
+    /// Less log output on stderr: -q warnings and errors, -qq errors only.
+    #[arg(short, long, action = ArgAction::Count, global = true, conflicts_with = "verbose")]
+    quiet: u8,
     #[command(subcommand)]
     command: Command,
 }
@@ -41,10 +48,19 @@ enum Command {
     Mc(cmd::mc::Command),
     /// Run the PLC in real time behind Modbus TCP and HTTP (API + designer page).
     Serve(cmd::serve::Args),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(cmd::install::CompletionsArgs),
+    /// Print the man page (roff), e.g. `ecam man > ecam.1`.
+    Man(cmd::install::ManArgs),
 }
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
+    let extra: &[&str] = match &cli.command {
+        Command::Serve(args) if args.trace_modbus => &["ecam::modbus::traffic=trace"],
+        _ => &[],
+    };
+    logging::init(cli.verbose, cli.quiet, extra);
     let result = match cli.command {
         Command::Law(args) => cmd::law::run(args),
         Command::Table(command) => cmd::table::run(command),
@@ -53,6 +69,8 @@ fn main() -> std::process::ExitCode {
         Command::Pmd(command) => cmd::pmd::run(command),
         Command::Mc(command) => cmd::mc::run(command),
         Command::Serve(args) => cmd::serve::run(args),
+        Command::Completions(args) => cmd::install::completions(&args),
+        Command::Man(args) => cmd::install::man(&args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

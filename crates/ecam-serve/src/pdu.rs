@@ -135,6 +135,83 @@ impl Request {
     }
 }
 
+/// Values one log line lists before it says how many more there are.
+const VALUES_SHOWN: usize = 16;
+
+/// `v1 v2 … (and N more)`.
+fn list<T: fmt::Display>(
+    f: &mut fmt::Formatter<'_>,
+    values: impl ExactSizeIterator<Item = T>,
+) -> fmt::Result {
+    let total = values.len();
+    for (i, v) in values.take(VALUES_SHOWN).enumerate() {
+        if i > 0 {
+            f.write_str(" ")?;
+        }
+        write!(f, "{v}")?;
+    }
+    if total > VALUES_SHOWN {
+        write!(f, " (and {} more)", total - VALUES_SHOWN)?;
+    }
+    Ok(())
+}
+
+/// A traffic log's words for a request, function code first, e.g.
+/// `06 write register 100 = 3183` (addresses are Modbus addresses, values
+/// as on the wire: coils 1/0, registers unsigned).
+impl fmt::Display for Request {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::ReadCoils { address, quantity } => {
+                write!(f, "01 read coils {address}, {quantity} of them")
+            }
+            Self::ReadDiscreteInputs { address, quantity } => {
+                write!(f, "02 read discrete inputs {address}, {quantity} of them")
+            }
+            Self::ReadHoldingRegisters { address, quantity } => {
+                write!(f, "03 read holding registers {address}, {quantity} of them")
+            }
+            Self::ReadInputRegisters { address, quantity } => {
+                write!(f, "04 read input registers {address}, {quantity} of them")
+            }
+            Self::WriteSingleCoil { address, on } => {
+                write!(f, "05 write coil {address} = {}", u8::from(*on))
+            }
+            Self::WriteSingleRegister { address, value } => {
+                write!(f, "06 write register {address} = {value}")
+            }
+            Self::WriteMultipleCoils { address, coils } => {
+                write!(f, "0F write coils from {address}: ")?;
+                list(f, coils.iter().map(|&c| u8::from(c)))
+            }
+            Self::WriteMultipleRegisters { address, values } => {
+                write!(f, "10 write registers from {address}: ")?;
+                list(f, values.iter())
+            }
+        }
+    }
+}
+
+/// A traffic log's words for a response, e.g. `registers 3183 0`.
+impl fmt::Display for Response {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Bits(bits) => {
+                f.write_str("bits ")?;
+                list(f, bits.iter().map(|&b| u8::from(b)))
+            }
+            Self::Registers(values) => {
+                f.write_str("registers ")?;
+                list(f, values.iter())
+            }
+            Self::Echo { address, value } => write!(f, "done: {address} = {value}"),
+            Self::Written { address, quantity } => {
+                write!(f, "done: {quantity} from {address}")
+            }
+        }
+    }
+}
+
 /// A successful response.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Response {
@@ -305,6 +382,31 @@ pub fn encode_response(function: u8, reply: &Result<Response, Exception>) -> Vec
         }
     }
     out
+}
+
+#[cfg(test)]
+mod display_tests {
+    use super::*;
+
+    #[test]
+    fn traffic_words_name_function_address_and_values() {
+        let write = Request::WriteSingleRegister {
+            address: 100,
+            value: 3183,
+        };
+        assert_eq!(write.to_string(), "06 write register 100 = 3183");
+        let many = Request::WriteMultipleRegisters {
+            address: 7,
+            values: (0..20).collect(),
+        };
+        assert!(many.to_string().ends_with("14 15 (and 4 more)"), "{many}");
+        let coils = Request::WriteMultipleCoils {
+            address: 10000,
+            coils: vec![true, false],
+        };
+        assert_eq!(coils.to_string(), "0F write coils from 10000: 1 0");
+        assert_eq!(Response::Registers(vec![1, 2]).to_string(), "registers 1 2");
+    }
 }
 
 #[cfg(test)]

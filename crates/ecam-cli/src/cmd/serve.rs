@@ -48,6 +48,12 @@ pub struct Args {
     /// *.damaged.
     #[arg(long, requires = "state")]
     pub recover_state: bool,
+    /// Log every Modbus request and answer on stderr, like a Modbus
+    /// monitor's communication window: client, transaction, unit, function,
+    /// addresses, values or the exception (same as
+    /// RUST_LOG=ecam::modbus::traffic=trace).
+    #[arg(long)]
+    pub trace_modbus: bool,
     /// Instruction-list program to run; without one the PLC runs an empty
     /// program (device memory, special relays and clocks only).
     #[arg(long, value_name = "FILE.il")]
@@ -130,7 +136,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             (Some(journal), Some((dir.clone(), recovery, restored)))
         }
         None => {
-            eprintln!("ecam serve: no --state DIR: writes are not kept across restarts");
+            tracing::warn!(target: LOG, "no --state DIR: writes are not kept across restarts");
             (None, None)
         }
     };
@@ -179,7 +185,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             writeln!(stdout, "http {}", info.http)?;
             stdout.flush()?;
         }
-        eprintln!("ecam serve: designer page at http://{}/", info.http);
+        tracing::info!(target: LOG, "designer page at http://{}/", info.http);
         let shared = Arc::new(Shared::new(plc, journal, info, report));
         // The first scan runs before any client is served, so whatever it
         // changes of the restored values is the program's (or hardware's) doing.
@@ -226,26 +232,33 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let _ = saver.join();
             // The scan loop has stopped: this image is the PLC's last state.
             match shared.save_latched(&mut LatchedImage::new()) {
-                Ok(saved) => eprintln!("ecam serve: stopped; {saved} latched values saved"),
-                Err(err) => eprintln!("ecam serve: stopped; cannot save latched values: {err}"),
+                Ok(saved) => tracing::info!(target: LOG, "stopped; {saved} latched values saved"),
+                Err(err) => tracing::error!(target: LOG, "stopped; cannot save latched values: {err}"),
             }
         }
         served
     })
 }
 
-/// Says on stderr what the server's operator should hear.
+/// The tracing target of the server's own messages (start, state, stop).
+const LOG: &str = "ecam::serve";
+
+/// Logs what the server's operator should hear.
 fn report(event: Event) {
     match event {
-        Event::OperationError(text) => eprintln!("ecam serve: warning: {text}"),
-        Event::WriteRefused(err) => eprintln!("ecam serve: write refused: {err}"),
+        Event::OperationError(text) => tracing::warn!(target: "ecam::plc", "{text}"),
+        Event::WriteRefused(err) => {
+            tracing::error!(target: "ecam::journal", "write refused: {err}")
+        }
         Event::CompactionFailed(err) => {
-            eprintln!("ecam serve: journal compaction failed (will retry): {err}");
+            tracing::error!(target: "ecam::journal", "journal compaction failed (will retry): {err}");
         }
         Event::LatchedSaveFailing(err) => {
-            eprintln!("ecam serve: cannot save latched values (will retry): {err}");
+            tracing::error!(target: "ecam::journal", "cannot save latched values (will retry): {err}");
         }
-        Event::LatchedSavesResumed => eprintln!("ecam serve: latched values saved again"),
+        Event::LatchedSavesResumed => {
+            tracing::info!(target: "ecam::journal", "latched values saved again")
+        }
     }
 }
 
@@ -254,24 +267,24 @@ fn report(event: Event) {
 fn report_open(dir: &std::path::Path, recovery: &Recovery, journal: &Journal) {
     let dir = dir.display();
     for dropped in &recovery.dropped {
-        eprintln!("ecam serve: state {dir}: --recover-state: {dropped}");
+        tracing::warn!(target: LOG, "state {dir}: --recover-state: {dropped}");
     }
     for aside in &recovery.set_aside {
-        eprintln!(
-            "ecam serve: state {dir}: --recover-state: damaged file kept as {}",
+        tracing::warn!(
+            target: LOG, "state {dir}: --recover-state: damaged file kept as {}",
             aside.display()
         );
     }
     match journal.read_only() {
         Some(err) => {
-            eprintln!(
-                "ecam serve: state {dir}: READ-ONLY: cannot compact the state files ({err}); \
+            tracing::error!(
+                target: LOG, "state {dir}: READ-ONLY: cannot compact the state files ({err}); \
                  they are left as they were and every write is refused until a restart \
                  with space to spare"
             );
         }
-        None if recovery.old_format => eprintln!(
-            "ecam serve: state {dir}: state files without checksums (an older version's) \
+        None if recovery.old_format => tracing::info!(
+            target: LOG, "state {dir}: state files without checksums (an older version's) \
              loaded and rewritten with checksums"
         ),
         None => {}
@@ -305,16 +318,16 @@ fn report_restore(
     let dir = dir.display();
     let skipped = &recovery.skipped_special;
     if !skipped.is_empty() {
-        eprintln!(
-            "ecam serve: state {dir}: not restoring {}: special devices are the PLC's own, \
+        tracing::warn!(
+            target: LOG, "state {dir}: not restoring {}: special devices are the PLC's own, \
              set up afresh at start (these records, kept by an older version, are now dropped)",
             names(skipped.iter().copied())
         );
     }
     let overridden = shared.read(|devices| ecam_serve::overridden(restored, devices));
     for o in overridden.iter().take(NAMES_SHOWN) {
-        eprintln!(
-            "ecam serve: state {dir}: {} restored as {}, but it is {} after the first scan \
+        tracing::warn!(
+            target: LOG, "state {dir}: {} restored as {}, but it is {} after the first scan \
              period (the program or the hardware sets it at start)",
             o.slot.device(),
             o.restored,
@@ -322,13 +335,13 @@ fn report_restore(
         );
     }
     if overridden.len() > NAMES_SHOWN {
-        eprintln!(
-            "ecam serve: state {dir}: and {} more restored values the first scan period changed",
+        tracing::warn!(
+            target: LOG, "state {dir}: and {} more restored values the first scan period changed",
             overridden.len() - NAMES_SHOWN
         );
     }
     let mut summary = format!(
-        "ecam serve: state {dir}: {} values restored ({} journal records replayed{})",
+        "state {dir}: {} values restored ({} journal records replayed{})",
         restored.len(),
         recovery.replayed,
         if recovery.torn_tail {
@@ -355,7 +368,7 @@ fn report_restore(
             overridden.len()
         ));
     }
-    eprintln!("{summary}");
+    tracing::info!(target: LOG, "{summary}");
 }
 
 /// Ctrl-C, or SIGTERM on Unix. Nothing needs flushing: every acknowledged

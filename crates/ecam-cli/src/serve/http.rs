@@ -51,7 +51,7 @@ pub async fn serve(listener: TcpListener, router: Router, limits: ConnectionLimi
             Ok((stream, _)) => stream,
             Err(err) => {
                 // Out of file descriptors and the like: wait, do not spin.
-                eprintln!("ecam serve: http accept: {err}");
+                tracing::error!(target: "ecam::http", "accept: {err}");
                 tokio::time::sleep(std::time::Duration::from_millis(100)).await;
                 continue;
             }

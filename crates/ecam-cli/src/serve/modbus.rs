@@ -1,6 +1,11 @@
 //! The Modbus TCP listener: one task per client, reading MBAP frames and
 //! answering them through [`ecam_serve`] (framing, codec, address map and
 //! writes are all there; `docs/modbus.md` describes them).
+//!
+//! Refused writes are logged as warnings (target `ecam::modbus`). Every
+//! request and its answer can be logged too, like a Modbus monitor's
+//! communication window: target [`TRAFFIC`] at trace level, switched on by
+//! `ecam serve --trace-modbus` or `RUST_LOG=ecam::modbus::traffic=trace`.
 
 use std::io;
 use std::sync::Arc;
@@ -13,11 +18,14 @@ use tokio::time::timeout;
 
 use super::limits::ConnectionLimits;
 
+/// The tracing target of the request/response log.
+pub const TRAFFIC: &str = "ecam::modbus::traffic";
+
 /// Accepts clients on `listener` for ever, within `limits`.
 pub async fn serve(listener: TcpListener, shared: Arc<Shared>, limits: ConnectionLimits) {
     loop {
         match listener.accept().await {
-            Ok((stream, _)) => {
+            Ok((stream, peer)) => {
                 let Some(slot) = limits.admit() else {
                     // At the cap: the newest goes, the served ones stay.
                     drop(stream);
@@ -28,14 +36,16 @@ pub async fn serve(listener: TcpListener, shared: Arc<Shared>, limits: Connectio
                     .modbus_connections
                     .fetch_add(1, Ordering::Relaxed);
                 let (shared, limits) = (Arc::clone(&shared), limits.clone());
+                tracing::debug!(target: "ecam::modbus", "client {peer} connected");
                 tokio::spawn(async move {
                     connection(stream, &shared, &limits).await;
+                    tracing::debug!(target: "ecam::modbus", "client {peer} gone");
                     drop(slot);
                 });
             }
             Err(err) => {
                 // Out of file descriptors and the like: wait, do not spin.
-                eprintln!("ecam serve: modbus accept: {err}");
+                tracing::error!(target: "ecam::modbus", "accept: {err}");
                 tokio::time::sleep(std::time::Duration::from_millis(100)).await;
             }
         }
@@ -75,7 +85,24 @@ async fn requests(
             .await
             .map_err(|_| io::ErrorKind::TimedOut)??;
         let function = request_pdu.first().copied().unwrap_or(0);
-        let reply = match parse_request(&request_pdu) {
+        let parsed = parse_request(&request_pdu);
+        let peer = stream.peer_addr().ok();
+        let who = Who {
+            peer,
+            transaction: header.transaction,
+            unit: header.unit,
+        };
+        match &parsed {
+            Ok(request) => tracing::trace!(target: TRAFFIC, "{who} > {request}"),
+            Err(_) => tracing::trace!(
+                target: TRAFFIC,
+                "{who} > {function:02X} (not understood: {} PDU bytes)",
+                request_pdu.len()
+            ),
+        }
+        let written =
+            matches!(&parsed, Ok(r) if r.is_write()) || WRITE_FUNCTIONS.contains(&function);
+        let reply = match parsed.clone() {
             Ok(request) if request.is_write() => {
                 // The journal syncs to disk: keep that off the async workers.
                 let shared = Arc::clone(shared);
@@ -86,8 +113,51 @@ async fn requests(
             Ok(request) => answer_request(shared, &request),
             Err(exception) => Err(exception),
         };
+        match (&reply, &parsed) {
+            (Ok(response), _) => tracing::trace!(target: TRAFFIC, "{who} < {response}"),
+            (Err(exception), request) => {
+                tracing::trace!(
+                    target: TRAFFIC,
+                    "{who} < {:02X} exception {exception}",
+                    function | 0x80
+                );
+                if written {
+                    match request {
+                        Ok(request) => tracing::warn!(
+                            target: "ecam::modbus",
+                            "{who}: write refused: {request}: {exception}"
+                        ),
+                        Err(_) => tracing::warn!(
+                            target: "ecam::modbus",
+                            "{who}: write refused: function {function:02X}: {exception}"
+                        ),
+                    }
+                }
+            }
+        }
         shared.stats.count_modbus_reply(&reply);
         let frame = header.frame(&encode_response(function, &reply));
         stream.write_all(&frame).await?;
+    }
+}
+
+/// Function codes that write (05, 06, 0F, 10): a malformed one is still a
+/// refused write.
+const WRITE_FUNCTIONS: [u8; 4] = [0x05, 0x06, 0x0F, 0x10];
+
+/// Who sent a frame, as log lines name it: `client 127.0.0.1:40312 tx 7 unit 1`.
+struct Who {
+    peer: Option<std::net::SocketAddr>,
+    transaction: u16,
+    unit: u8,
+}
+
+impl std::fmt::Display for Who {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.peer {
+            Some(peer) => write!(f, "client {peer}")?,
+            None => f.write_str("client ?")?,
+        }
+        write!(f, " tx {} unit {}", self.transaction, self.unit)
     }
 }

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod install;
 mod law;
 mod limits;
 mod mc_run;
