@@ -20,10 +20,10 @@ use serde_json::Value;
 #[derive(clap::Args, Debug, Clone, Default)]
 pub struct Output {
     /// Write the table here (CSV or JSON by extension); CSV on stdout when absent.
-    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json", value_parser = crate::paths::table)]
     pub output: Option<PathBuf>,
     /// Also plot the table (SVG or PNG by extension).
-    #[arg(long, value_name = "FILE.svg|png")]
+    #[arg(long, value_name = "FILE.svg|png", value_parser = crate::paths::picture)]
     pub plot: Option<PathBuf>,
     /// Write only the `master,slave` columns.
     #[arg(long)]
@@ -143,21 +143,33 @@ fn flag(field: &'static Field, default: Option<&Value>) -> Arg {
         .help(help)
         .allow_hyphen_values(field.kind.allows_negative());
     match field.kind {
-        FieldKind::Integer { storage, .. } => {
+        // The schema's range (the core's limits) is clap's too: a value
+        // outside it is a usage error naming the range.
+        FieldKind::Integer { storage, min, max } => {
             let arg = arg.value_name(field.key.to_uppercase());
             match storage {
-                Storage::I64 => arg.value_parser(clap::value_parser!(i64)),
-                Storage::U32 => arg.value_parser(clap::value_parser!(u32)),
-                Storage::U16 => arg.value_parser(clap::value_parser!(u16)),
+                Storage::I64 => arg.value_parser(clap::value_parser!(i64).range(min..=max)),
+                Storage::U32 => arg.value_parser(clap::value_parser!(u32).range(min..=max)),
+                Storage::U16 => arg.value_parser(clap::value_parser!(u16).range(min..=max)),
                 Storage::Usize => arg.value_parser(clap::value_parser!(usize)),
             }
         }
         FieldKind::Number => arg
             .value_name(field.key.to_uppercase())
             .value_parser(parse_number),
-        FieldKind::Choice(_) => arg
-            .value_name(field.key.to_uppercase())
-            .value_parser(|text: &str| Ok::<_, String>(text.trim().to_string())),
+        // Checked here, so a wrong choice is a usage error (exit 2) like
+        // any other bad flag value.
+        FieldKind::Choice(names) => {
+            arg.value_name(field.key.to_uppercase())
+                .value_parser(move |text: &str| {
+                    field
+                        .choice(text.trim())
+                        .map(str::to_string)
+                        .ok_or_else(|| {
+                            format!("unknown {} {text:?}; use {}", field.name, names.join(", "))
+                        })
+                })
+        }
         FieldKind::Text => arg.value_name(field.key.to_uppercase()),
         FieldKind::Switch => arg.action(ArgAction::SetTrue),
         FieldKind::KeyPoints => arg

@@ -7,6 +7,7 @@
 mod cmd;
 mod generate;
 mod logging;
+mod paths;
 mod plot;
 mod progress;
 mod serve;

@@ -355,12 +355,13 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
         let raw_resolution = word(devices, base, at + 5);
         let resolution = u16::try_from(raw_resolution)
             .ok()
-            .filter(|&r| r <= 512)
+            .filter(|&r| r <= ecam_core::table::MAX_SEGMENT_RESOLUTION)
             .ok_or_else(|| {
                 Failure::parameter(
                     number,
                     format!(
-                        "key point {number}: resolution {raw_resolution}; allowed 0 (shared) to 512"
+                        "key point {number}: resolution {raw_resolution}; allowed 0 (shared) to {}",
+                        ecam_core::table::MAX_SEGMENT_RESOLUTION
                     ),
                 )
             })?;
@@ -376,7 +377,11 @@ fn key_point_table(devices: &Devices, base: u16) -> Result<Vec<CamPoint>, Failur
         total_resolution: u16::try_from(total).map_err(|_| {
             Failure::parameter(
                 2,
-                format!("total resolution (S0+2) is {total}; allowed 10-512"),
+                format!(
+                    "total resolution (S0+2) is {total}; allowed {}-{}",
+                    ecam_core::table::MIN_TOTAL_RESOLUTION,
+                    ecam_core::table::MAX_TOTAL_RESOLUTION
+                ),
             )
         })?,
         key_points,

@@ -212,7 +212,7 @@ pub fn joint_steps(x: &[f64], y: &[f64]) -> (Vec<f64>, Vec<f64>) {
 /// `dy` does not account for: from one point to the next, `y` changes by
 /// what `dy` integrates to (held from the left point, or averaged over the
 /// section; a column of values that hold between points, or one sampled
-/// from a smooth law), give or take [`STEP_SHARE`] of `y`'s peak; the rest
+/// from a smooth law), give or take 5 % of `y`'s peak; the rest
 /// is a step at the later point. Returns their x and sizes.
 pub fn unexplained_steps(x: &[f64], y: &[f64], dy: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));

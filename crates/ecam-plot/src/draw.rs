@@ -268,7 +268,11 @@ where
                             .draw_series(arrows.iter().map(|&(x, size)| {
                                 let (tip, back) = arrow_ends(size, y_lo, y_hi, head);
                                 let at = if size < 0.0 { back } else { tip };
-                                Text::new(format!(" {}", short(size, 0.0)), (x, at), font.clone())
+                                Text::new(
+                                    format!("   Δ {}", short(size, 0.0)),
+                                    (x, at),
+                                    font.clone(),
+                                )
                             }))
                             .map_err(err)?;
                     }

@@ -6,7 +6,7 @@
 
 use std::io::Write;
 
-use anyhow::{Context, bail};
+use anyhow::bail;
 use ecam_core::law::MotionLaw;
 
 /// Arguments of `ecam law`.
@@ -17,7 +17,8 @@ pub struct Args {
     #[arg(long)]
     pub list: bool,
     /// The law to print as CSV (see `ecam law --list`).
-    pub name: Option<String>,
+    #[arg(value_parser = parse_law)]
+    pub name: Option<MotionLaw>,
     /// Number of rows, both ends of u ∈ [0, 1] included (at least 2).
     #[arg(long, default_value_t = 1001)]
     pub points: usize,
@@ -31,14 +32,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for law in MotionLaw::ALL {
             writeln!(out, "{}", law.name())?;
         }
-    } else if let Some(name) = &args.name {
-        let law = MotionLaw::from_name(name).with_context(|| {
-            format!("unknown motion law {name:?}; `ecam law --list` shows the names")
-        })?;
+    } else if let Some(law) = args.name {
         write_csv(law, args.points, &mut out)?;
     }
     out.flush()?;
     Ok(())
+}
+
+/// clap value parser: a law by name, so a wrong one is a usage error (exit 2).
+fn parse_law(name: &str) -> Result<MotionLaw, String> {
+    MotionLaw::from_name(name.trim()).ok_or_else(|| {
+        let names: Vec<&str> = MotionLaw::ALL.iter().map(|l| l.name()).collect();
+        format!("unknown motion law {name:?}; use {}", names.join(", "))
+    })
 }
 
 /// Writes `points` rows of `law` as CSV `u,s,v,a,j`.

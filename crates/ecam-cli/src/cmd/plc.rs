@@ -54,7 +54,7 @@ pub struct RunArgs {
     #[arg(long = "dump", value_name = "DEV[:COUNT]")]
     pub dumps: Vec<String>,
     /// Write one CSV row per scan (header `t_us,DEV...`) to this file.
-    #[arg(long, value_name = "FILE.csv", requires = "trace_dev")]
+    #[arg(long, value_name = "FILE.csv", requires = "trace_dev", value_parser = crate::paths::csv)]
     pub trace: Option<PathBuf>,
     /// Devices for the trace columns.
     #[arg(long = "trace-dev", value_name = "DEV", num_args = 1.., requires = "trace")]

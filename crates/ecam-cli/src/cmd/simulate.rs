@@ -32,10 +32,10 @@ pub struct Args {
     /// Scenario file (TOML; see docs/simulate.md).
     pub scenario: PathBuf,
     /// Write every tick (or every `trace_every`-th) to this CSV file.
-    #[arg(long, value_name = "FILE.csv")]
+    #[arg(long, value_name = "FILE.csv", value_parser = crate::paths::csv)]
     pub trace: Option<PathBuf>,
     /// Plot master, slave, velocity and backlog over time (SVG or PNG).
-    #[arg(long, value_name = "FILE.svg|png")]
+    #[arg(long, value_name = "FILE.svg|png", value_parser = crate::paths::picture)]
     pub plot: Option<PathBuf>,
 }
 

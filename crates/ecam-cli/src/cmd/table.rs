@@ -59,7 +59,7 @@ pub struct PlotArgs {
     /// Table file (CSV or JSON).
     pub file: PathBuf,
     /// The picture to write (SVG or PNG by extension).
-    #[arg(short = 'o', long = "output", value_name = "OUT.svg|png")]
+    #[arg(short = 'o', long = "output", value_name = "OUT.svg|png", value_parser = crate::paths::picture)]
     pub output: PathBuf,
     /// Shade this master range as the synchronised zone (`LOW:HIGH`);
     /// a JSON table's own `sync` is used when absent.

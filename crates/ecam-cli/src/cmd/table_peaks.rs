@@ -53,7 +53,7 @@ impl Source {
             }
             Self::ProfileLaws => "the motion laws, exact",
             Self::UniformPieces => {
-                "velocity change at a joint over the piece length (straight pieces)"
+                "straight pieces: velocity change at a joint over the piece length"
             }
         }
     }

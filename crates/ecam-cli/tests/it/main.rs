@@ -4,6 +4,7 @@
 
 mod common;
 
+mod docs;
 mod install;
 mod law;
 mod limits;

@@ -508,9 +508,12 @@ fn errors_name_the_problem_and_exit_non_zero() {
     assert!(err.contains("x = 50"), "{err}");
     let err = fails(ecam(&["table", "gen", "function", "--expr", "y*2"]));
     assert!(err.contains("\"y\""), "{err}");
-    // Too many key points' resolution.
-    let err = fails(ecam(&["table", "gen", "keypoints", "--resolution", "600"]));
-    assert!(err.contains("6783") || err.contains("6781"), "{err}");
+    // Too many key points' resolution: a flag outside the core's range is
+    // a usage error (exit 2) naming the range.
+    let out = ecam(&["table", "gen", "keypoints", "--resolution", "600"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("10..=512"), "{err}");
 }
 
 #[test]

@@ -6,12 +6,17 @@ use super::accel_curve::AccelCurve;
 use super::placement::CamPlacement;
 use crate::TableError;
 
-/// Fewest points (`P7`). The manual gives no range; two points are one
-/// section, and a resolution too low for the pieces of the motion is reported
-/// as a section-count error (6783) naming how many sections it needs.
-pub const MIN_RESOLUTION: u16 = 2;
+/// Fewest points (`P7`). The K100/K101 parameter table gives no range; the
+/// manual's cam datasheet (document 003, "Resolution") allows 10 to 512
+/// points in a table, the same as the key-point generator's total, so both
+/// generators take that one range. (A geometry that still needed more
+/// sections than the points give would be a section-count error, 6783.)
+pub const MIN_RESOLUTION: u16 = 10;
 /// Most points (`P7`).
 pub const MAX_RESOLUTION: u16 = 512;
+/// What the 6781 message says of a resolution outside
+/// [`MIN_RESOLUTION`]..=[`MAX_RESOLUTION`] (a unit test keeps them in step).
+pub const RESOLUTION_RANGE: &str = "must be between 10 and 512";
 
 /// ECAMTBX K100/K101 parameters. `Default` holds the manual's defaults (3000,
 /// 1000, 300, 5/3); it gives none for `P5`–`P7`, so the max ratio is 10× the
@@ -46,7 +51,7 @@ pub struct CutParams {
     pub accel_curve: AccelCurve,
     /// `P6` high word (for a flying saw without the `H1000` flag: the sign of `P2` decides).
     pub placement: CamPlacement,
-    /// `P7`: points in the table, 2 to 512.
+    /// `P7`: points in the table, [`MIN_RESOLUTION`] to [`MAX_RESOLUTION`].
     pub resolution: u16,
 }
 
@@ -145,7 +150,7 @@ impl CutParams {
             return bad("max ratio (P5)", "must be a finite number above 0");
         }
         if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&self.resolution) {
-            return bad("resolution (P7)", "must be between 2 and 512");
+            return bad("resolution (P7)", RESOLUTION_RANGE);
         }
         Ok(())
     }
@@ -158,5 +163,16 @@ impl CutParams {
             });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod range_tests {
+    use super::*;
+
+    #[test]
+    fn the_message_states_the_limits() {
+        let range = alloc::format!("between {MIN_RESOLUTION} and {MAX_RESOLUTION}");
+        assert!(RESOLUTION_RANGE.ends_with(&range));
     }
 }

@@ -16,7 +16,8 @@
 //! equal surface speeds need 5/3 slave pulses per master pulse: the value is
 //! slave/master, and that is how `P4` is used. `P5` caps the ratio anywhere in
 //! the table. `P6` low word: [`AccelCurve`](super::AccelCurve); high word: [`CamPlacement`].
-//! `P7` resolution: points in the table (2 to 512).
+//! `P7` resolution: points in the table (10 to 512, see
+//! [`MIN_RESOLUTION`]).
 //!
 //! # Geometry
 //! One table cycle is `P1` master counts during which the slave turns

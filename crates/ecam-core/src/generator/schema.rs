@@ -498,6 +498,26 @@ pub fn find(name: &str) -> Option<&'static Generator> {
     GENERATORS.iter().find(|g| g.is_called(name))
 }
 
+impl Field {
+    /// For a [`FieldKind::Choice`] field, the canonical name of `text`: one
+    /// of its names, or a code or alias the option accepts (`"1"` and
+    /// `"s-type"` for `uniform-acceleration`), as long as the field offers
+    /// it (a flying saw has no `mid-begin`). `None` for anything else, and
+    /// for fields that are not choices. Front ends check a choice with this
+    /// before anything runs.
+    pub fn choice(&self, text: &str) -> Option<&'static str> {
+        let FieldKind::Choice(names) = self.kind else {
+            return None;
+        };
+        let name = match self.key {
+            "accel" => AccelCurve::from_name(text).map(AccelCurve::name),
+            "placement" => CamPlacement::from_name(text).map(CamPlacement::name),
+            _ => names.iter().copied().find(|n| *n == text),
+        }?;
+        names.iter().copied().find(|n| *n == name)
+    }
+}
+
 /// Serde for an option chosen by name or code: written as its name, read
 /// from a name or a code (integer or text) through `from_name`; anything
 /// else is refused with "unknown WHAT "text"; use NAMES".
@@ -540,6 +560,25 @@ macro_rules! choice_serde {
     };
 }
 pub(crate) use choice_serde;
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod choice_tests {
+    use super::*;
+
+    #[test]
+    fn choices_accept_names_codes_and_aliases_the_field_offers() {
+        let accel = S_CURVE.iter().find(|f| f.key == "accel").unwrap();
+        assert_eq!(accel.choice("s-type"), Some("uniform-acceleration"));
+        assert_eq!(accel.choice("2"), Some("b-type"));
+        assert_eq!(accel.choice("foo"), None);
+        let saw = find("fly-saw").unwrap();
+        let placement = saw.fields.iter().find(|f| f.key == "placement").unwrap();
+        assert_eq!(placement.choice("4"), Some("right"));
+        assert_eq!(placement.choice("mid-begin"), None);
+        assert_eq!(PLACEMENT.choice("mid-begin"), Some("mid-begin"));
+    }
+}
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

@@ -258,8 +258,16 @@ fn every_parameter_is_checked() {
         let e = generate(&p).unwrap_err();
         assert_eq!(e.code(), 6781, "{p:?}: {e}");
     }
-    // Dwell, ramp, sync, ramp, dwell need 5 sections.
-    let e = generate(&Params { resolution: 5, ..d }).unwrap_err();
-    assert_eq!(e.code(), 6783);
-    assert!(generate(&Params { resolution: 6, ..d }).is_ok());
+    // One range, the manual's 10–512 points: 9 is refused (6781), 10 makes
+    // the five pieces (dwell, ramp, sync, ramp, dwell).
+    let e = generate(&Params { resolution: 9, ..d }).unwrap_err();
+    assert_eq!(e.code(), 6781, "{e}");
+    assert!(e.to_string().contains("between 10 and 512"), "{e}");
+    assert!(
+        generate(&Params {
+            resolution: 10,
+            ..d
+        })
+        .is_ok()
+    );
 }

@@ -366,16 +366,16 @@ fn every_parameter_is_checked() {
         let e = generate(&p).unwrap_err();
         assert_eq!(e.code(), 6781, "{p:?}: {e}");
     }
-    // Too few points for sync, ramp, dwell, ramp: a section-count error.
-    let e = generate(&Params { resolution: 4, ..d }).unwrap_err();
-    assert_eq!(
-        e,
-        TableError::SectionCount {
-            count: 3,
-            min: 4,
-            max: 512
-        }
+    // One range, the manual's 10–512 points: 5 points would make the four
+    // pieces, but 9 is below the range (6781) and 10 is the fewest.
+    let e = generate(&Params { resolution: 9, ..d }).unwrap_err();
+    assert_eq!(e.code(), 6781, "{e}");
+    assert!(e.to_string().contains("between 10 and 512"), "{e}");
+    assert!(
+        generate(&Params {
+            resolution: 10,
+            ..d
+        })
+        .is_ok()
     );
-    assert_eq!(e.code(), 6783);
-    assert!(generate(&Params { resolution: 5, ..d }).is_ok());
 }
