@@ -508,6 +508,78 @@ pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &
     chart_over(title, panels, sync)
 }
 
+/// The machine a cam table runs on, for a plot in physical units: the
+/// master's speed and, optionally, the slave's length unit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Machine<'a> {
+    /// Master speed, counts per second (the master encoder's frequency).
+    pub master_hz: f64,
+    /// The slave's unit (`mm`, `deg`) and its size per slave pulse.
+    pub unit: Option<(&'a str, f64)>,
+}
+
+/// `chart` (one of this module's: displacement, velocity, acceleration,
+/// jerk over the master) redrawn in physical units at a constant master
+/// speed `f`: velocity × f (pulses/s = Hz), acceleration × f² (Hz/s), jerk
+/// × f³ (Hz/s²), impulses alike; with a unit, pulses × unit per pulse
+/// (mm, mm/s, mm/s², mm/s³). The x axis stays the master in counts.
+pub fn at_speed(mut chart: Chart, machine: Machine<'_>) -> Chart {
+    let f = machine.master_hz;
+    let (per_pulse, names) = match machine.unit {
+        Some((unit, per)) => (
+            per,
+            [
+                format!("displacement ({unit})"),
+                format!("slave speed ({unit}/s)"),
+                format!("acceleration ({unit}/s²)"),
+                format!("jerk ({unit}/s³)"),
+            ],
+        ),
+        None => (
+            1.0,
+            [
+                DISPLACEMENT.to_string(),
+                "slave speed (Hz = pulses/s)".to_string(),
+                "acceleration (Hz/s)".to_string(),
+                "jerk (Hz/s²)".to_string(),
+            ],
+        ),
+    };
+    for (k, (panel, name)) in chart.panels.iter_mut().zip(names).enumerate() {
+        let order = i32::try_from(k).unwrap_or(0);
+        let scale = per_pulse * f.powi(order);
+        // An impulse in panel k is the step of the quantity of panel k − 1.
+        let impulse_scale = per_pulse * f.powi(order - 1);
+        let step_unit = match machine.unit {
+            Some((unit, _)) => [unit.to_string(), format!("{unit}/s"), format!("{unit}/s²")],
+            None => ["pulses".into(), "Hz".into(), "Hz/s".into()],
+        };
+        for trace in &mut panel.traces {
+            let by = if trace.style == Style::Impulses {
+                // Named after the quantity that steps, in its new unit.
+                let stepped = trace.name.split(" step").next().unwrap_or_default();
+                let unit = step_unit
+                    .get(k.saturating_sub(1))
+                    .cloned()
+                    .unwrap_or_default();
+                trace.name = format!("{stepped} step ({unit})");
+                impulse_scale
+            } else {
+                scale
+            };
+            trace.y.iter_mut().for_each(|y| *y *= by);
+        }
+        let note = panel.title.find(", ").map(|at| &panel.title[at..]);
+        panel.title = match note {
+            // Keep what the estimate notes say ("…, per section)").
+            Some(note) => format!("{}{note}", name.trim_end_matches(')')),
+            None => name,
+        };
+    }
+    chart.title = format!("{} at master {} counts/s", chart.title, f);
+    chart
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -658,6 +730,50 @@ mod tests {
         // The velocity column is explained by the held acceleration: no
         // acceleration impulse.
         assert_eq!(c.panels[2].traces.len(), 1);
+    }
+
+    #[test]
+    fn machine_units_scale_each_derivative_by_the_master_speed() {
+        let t = PointTable::from_pairs(&[(0, 0), (200, 333), (600, 666), (2800, 666)]).unwrap();
+        let a = -1.0 / 240.0;
+        let k = vec![
+            kin(2.0, 0.0, 0.0),
+            kin(2.0, a, 0.0),
+            kin(0.0, 0.0, 0.0),
+            kin(0.0, 0.0, 0.0),
+        ];
+        let c = chart(&file(t, Some(k)), None, "t.csv");
+        let hz = at_speed(
+            c.clone(),
+            Machine {
+                master_hz: 1000.0,
+                unit: None,
+            },
+        );
+        assert_eq!(hz.panels[1].title, "slave speed (Hz = pulses/s)");
+        assert_eq!(hz.panels[1].traces[1].y[0], 2000.0);
+        assert!((hz.panels[2].traces[0].y[1] - a * 1e6).abs() < 1e-9);
+        // The jerk impulse is an acceleration step: Hz/s, not Hz/s².
+        assert!((hz.panels[3].traces[1].y[0] - a * 1e6).abs() < 1e-9);
+        assert_eq!(
+            hz.panels[3].traces[1].name,
+            "impulse: acceleration step (Hz/s)"
+        );
+        let mm = at_speed(
+            c,
+            Machine {
+                master_hz: 1000.0,
+                unit: Some(("mm", 0.01)),
+            },
+        );
+        assert_eq!(mm.panels[1].title, "slave speed (mm/s)");
+        assert_eq!(mm.panels[1].traces[1].y[0], 20.0);
+        assert_eq!(mm.panels[0].title, "displacement (mm)");
+        assert!(
+            mm.title.ends_with("at master 1000 counts/s"),
+            "{}",
+            mm.title
+        );
     }
 
     #[test]

@@ -249,7 +249,16 @@ where
                     .draw_series(points.map(|p| Circle::new(p, 2, color.filled())))
                     .map_err(err)?,
                 Style::Impulses => {
-                    let arrows: Vec<(f64, f64)> = points.collect();
+                    // y is the step's size, shown as a label, not a place
+                    // on the axis: not pulled in like the other values.
+                    let arrows: Vec<(f64, f64)> = trace
+                        .x
+                        .iter()
+                        .copied()
+                        .zip(trace.y.iter().copied())
+                        .filter(|(x, y)| x.is_finite() && y.is_finite())
+                        .map(|(x, y)| (near_x(x), y))
+                        .collect();
                     let head = (y_hi - y_lo) * 0.07;
                     let half = (x_hi - x_lo) * 0.004;
                     let style = color.stroke_width(2);

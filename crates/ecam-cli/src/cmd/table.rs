@@ -65,6 +65,9 @@ pub struct PlotArgs {
     /// a JSON table's own `sync` is used when absent.
     #[arg(long, value_name = "LOW:HIGH", value_parser = parse_range)]
     pub sync: Option<(i64, i64)>,
+    /// The machine, for panels in physical units (Hz, Hz/s; mm/s, mm/s²).
+    #[command(flatten)]
+    pub machine: MachineArgs,
 }
 
 fn parse_range(text: &str) -> Result<(i64, i64), String> {
@@ -344,6 +347,16 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
         AnyTable::Profile(profile) => {
             cam_table::profile_chart(&profile, args.sync, &display_name(&args.file))
         }
+    };
+    let chart = match args.machine.master_speed {
+        Some(master_hz) => {
+            let unit = match (args.machine.units, args.machine.unit_per_pulse) {
+                (Some(unit), Some(per)) => Some((unit.symbol(), per)),
+                _ => None,
+            };
+            cam_table::at_speed(chart, cam_table::Machine { master_hz, unit })
+        }
+        None => chart,
     };
     plot::draw_chart(chart, &args.output)
 }

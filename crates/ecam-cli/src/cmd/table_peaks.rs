@@ -77,7 +77,8 @@ pub enum Unit {
 }
 
 impl Unit {
-    fn symbol(self) -> &'static str {
+    /// How the unit is written: `mm`, `deg`.
+    pub fn symbol(self) -> &'static str {
         match self {
             Self::Mm => "mm",
             Self::Deg => "deg",

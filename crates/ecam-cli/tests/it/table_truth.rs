@@ -141,3 +141,35 @@ fn machine_units_give_hz_and_mm_per_s() {
         assert_eq!(out.status.code(), Some(2), "{bad:?}");
     }
 }
+
+#[test]
+fn a_plot_in_machine_units_scales_every_panel_and_impulse() {
+    let dir = crate::common::scratch_dir("truth-plot-units");
+    let csv = rotary_cut_csv(&dir);
+    let svg = dir.join("mm.svg");
+    ok(ecam(&[
+        "table",
+        "plot",
+        s(&csv),
+        "-o",
+        s(&svg),
+        "--master-speed",
+        "1000",
+        "--units",
+        "mm",
+        "--unit-per-pulse",
+        "0.01",
+    ]));
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    for title in [
+        "displacement (mm)",
+        "slave speed (mm/s)",
+        "acceleration (mm/s²)",
+        "at master 1000 counts/s",
+        "impulse: acceleration step (mm/s²)",
+    ] {
+        assert!(svg.contains(title), "{title}");
+    }
+    // 0.004177 pulses/count² · 1000² · 0.01 mm: the acceleration steps by 41.77 mm/s².
+    assert!(svg.contains("Δ -41.77") && svg.contains("Δ 41.77"));
+}
