@@ -151,7 +151,8 @@ fn bad_choices_and_output_names_are_usage_errors() {
         vec!["law", "no-such-law"],
         vec!["table", "gen", "rotary-cut", "--accel", "linear"],
         vec!["table", "gen", "fly-saw", "--placement", "mid-begin"],
-        vec!["table", "gen", "s-curve", "--accel", "7"],
+        vec!["table", "gen", "s-curve", "--curve", "7"],
+        vec!["table", "gen", "s-curve", "--curve", "left"],
         vec!["completions", "tcsh"],
         vec![
             "simulate",

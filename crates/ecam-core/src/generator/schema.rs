@@ -509,12 +509,13 @@ impl Field {
         let FieldKind::Choice(names) = self.kind else {
             return None;
         };
-        let name = match self.key {
-            "accel" => AccelCurve::from_name(text).map(AccelCurve::name),
-            "placement" => CamPlacement::from_name(text).map(CamPlacement::name),
-            _ => names.iter().copied().find(|n| *n == text),
-        }?;
-        names.iter().copied().find(|n| *n == name)
+        // Each option type reads its codes and aliases; the field's own
+        // names decide which type it is (their names do not overlap).
+        let offered = |name: &'static str| names.iter().copied().find(|n| *n == name);
+        AccelCurve::from_name(text)
+            .and_then(|c| offered(c.name()))
+            .or_else(|| CamPlacement::from_name(text).and_then(|p| offered(p.name())))
+            .or_else(|| names.iter().copied().find(|n| *n == text))
     }
 }
 
@@ -568,7 +569,7 @@ mod choice_tests {
 
     #[test]
     fn choices_accept_names_codes_and_aliases_the_field_offers() {
-        let accel = S_CURVE.iter().find(|f| f.key == "accel").unwrap();
+        let accel = S_CURVE.iter().find(|f| f.key == "curve").unwrap();
         assert_eq!(accel.choice("s-type"), Some("uniform-acceleration"));
         assert_eq!(accel.choice("2"), Some("b-type"));
         assert_eq!(accel.choice("foo"), None);
@@ -577,6 +578,8 @@ mod choice_tests {
         assert_eq!(placement.choice("4"), Some("right"));
         assert_eq!(placement.choice("mid-begin"), None);
         assert_eq!(PLACEMENT.choice("mid-begin"), Some("mid-begin"));
+        assert_eq!(PLACEMENT.choice("1"), Some("mid-all"));
+        assert_eq!(accel.choice("left"), None);
     }
 }
 
