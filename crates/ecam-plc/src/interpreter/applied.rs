@@ -1,11 +1,13 @@
 //! Coils and applied instructions (everything after the contacts).
 
-use super::operands::{device_error, read_source, write_bit_ref, write_word};
+use super::operands::{
+    dest_value, device_error, read_source, resolve_dest, write_bit_ref, write_group, write_word,
+};
 use super::{Machine, Memory, runs};
 use crate::devices::Device;
 use crate::devices::DeviceError;
 use crate::hardware::{OutputOwner, PulseTrain};
-use crate::il::{ArithOp, BitRef, FloatSource, Instruction, LogicOp, Source, Width, ZoneDevice};
+use crate::il::{ArithOp, BitRef, Dest, FloatSource, Instruction, LogicOp, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
 use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
 
@@ -33,7 +35,9 @@ pub(super) fn execute(
             .timers_mut()
             .reset(n)
             .map_err(|e| device_error(format!("T{n}"), e)),
-        Instruction::Reset(bit @ BitRef::WordBit(_)) if power => write_bit_ref(devices, bit, false),
+        Instruction::Reset(bit @ (BitRef::WordBit(_) | BitRef::Indexed(..))) if power => {
+            write_bit_ref(devices, bit, false)
+        }
         Instruction::Set(_) | Instruction::Reset(_) => Ok(()),
         Instruction::Pulse { rising, dest } => {
             let edge = if rising {
@@ -168,11 +172,16 @@ pub(super) fn execute(
             let b = i64::from(read_source(devices, s2, width)?);
             // |a·b| ≤ 2^62 for 32-bit operands: exact in i64, never wraps.
             let product = a.saturating_mul(b);
-            match width {
-                Width::Word => devices
-                    .set_dword(dst, product as i32)
-                    .map_err(|e| device_error(Device::D(dst), e)),
-                Width::Double => write_quad(devices, dst, product),
+            let words = if width == Width::Double { 4 } else { 2 };
+            match (resolve_dest(devices, dst, width, words)?, width) {
+                (Dest::Register(n), Width::Word) => devices
+                    .set_dword(n, product as i32)
+                    .map_err(|e| device_error(Device::D(n), e)),
+                (Dest::Register(n), Width::Double) => write_quad(devices, n, product),
+                // A group takes the product's low n × 4 bits (K8 at most:
+                // the low 32 bits of a DMUL product, as on the FX).
+                (Dest::Group(g), _) => write_group(devices, g, product as i32),
+                (other, _) => Err(device_error(other, DeviceError::WrongKind)),
             }
         }
         Instruction::Divide {
@@ -210,18 +219,23 @@ pub(super) fn execute(
                     ),
                 ));
             }
-            match width {
-                Width::Word => {
+            let words = if width == Width::Double { 4 } else { 2 };
+            // `resolve_dest` checked that all `words` registers exist.
+            match (resolve_dest(devices, dst, width, words)?, width) {
+                (Dest::Register(n), Width::Word) => {
                     let (a, b) = (a as i16, b as i16);
                     devices
-                        .set_word(dst, a.wrapping_div(b))
-                        .and_then(|()| devices.set_word(dst.saturating_add(1), a.wrapping_rem(b)))
-                        .map_err(|e| device_error(Device::D(dst), e))
+                        .set_word(n, a.wrapping_div(b))
+                        .and_then(|()| devices.set_word(n.saturating_add(1), a.wrapping_rem(b)))
+                        .map_err(|e| device_error(Device::D(n), e))
                 }
-                Width::Double => devices
-                    .set_dword(dst, a.wrapping_div(b))
-                    .and_then(|()| devices.set_dword(dst.saturating_add(2), a.wrapping_rem(b)))
-                    .map_err(|e| device_error(Device::D(dst), e)),
+                (Dest::Register(n), Width::Double) => devices
+                    .set_dword(n, a.wrapping_div(b))
+                    .and_then(|()| devices.set_dword(n.saturating_add(2), a.wrapping_rem(b)))
+                    .map_err(|e| device_error(Device::D(n), e)),
+                // FX: a bit-device destination gets the quotient, no remainder.
+                (Dest::Group(g), _) => write_group(devices, g, a.wrapping_div(b)),
+                (other, _) => Err(device_error(other, DeviceError::WrongKind)),
             }
         }
         Instruction::Logic {
@@ -248,14 +262,9 @@ pub(super) fn execute(
             if !runs(exec, power, memory) {
                 return Ok(());
             }
-            let source = match dst {
-                Device::C(n) => Source::Counter(n),
-                Device::D(n) => Source::Register(n),
-                other => {
-                    return Err(device_error(other, DeviceError::WrongKind));
-                }
-            };
-            let value = read_source(devices, source, width)?;
+            let words = if width == Width::Double { 2 } else { 1 };
+            let dst = resolve_dest(devices, dst, width, words)?;
+            let value = dest_value(devices, dst, width)?;
             let negated = match width {
                 Width::Word => i32::from((value as i16).wrapping_neg()),
                 Width::Double => value.wrapping_neg(),
@@ -271,12 +280,9 @@ pub(super) fn execute(
             if !runs(exec, power, memory) {
                 return Ok(());
             }
-            let source = match dst {
-                Device::C(n) => Source::Counter(n),
-                Device::D(n) => Source::Register(n),
-                other => return Err(device_error(other, DeviceError::WrongKind)),
-            };
-            let value = read_source(devices, source, width)?;
+            let words = if width == Width::Double { 2 } else { 1 };
+            let dst = resolve_dest(devices, dst, width, words)?;
+            let value = dest_value(devices, dst, width)?;
             let next = if up {
                 value.wrapping_add(1)
             } else {

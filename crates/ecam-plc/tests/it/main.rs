@@ -13,6 +13,7 @@ mod decam_registers;
 mod ecamtbx_generators;
 mod fuzz;
 mod il_parser;
+mod index_registers;
 mod instructions;
 mod parser_never_panics;
 mod program_flow;
