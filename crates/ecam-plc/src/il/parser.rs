@@ -359,9 +359,12 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
         [Operand::Timer(timer), set] => {
             let preset = source("OUT", 1, set, Width::Word)?;
             match preset {
-                Source::Counter(_) | Source::Timer(_) => {
-                    Err(wrong("OUT", 1, set, "a K/H constant or a D register"))
-                }
+                preset if !is_set_value(preset) => Err(wrong(
+                    "OUT",
+                    1,
+                    set,
+                    "a K/H constant or a D register (optionally index-modified, D10Z0)",
+                )),
                 // FX timers take a set value of 0-32767.
                 Source::Constant(v) if v < 0 => Err(format!(
                     "OUT T{timer} operand 2: set value {v} is out of range for a timer (K0 to K32767)"
@@ -383,8 +386,13 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
                 Width::Word
             };
             let set_value = source("OUT", 1, set, width)?;
-            if matches!(set_value, Source::Counter(_)) {
-                return Err(wrong("OUT", 1, set, "a K/H constant or a D register"));
+            if !is_set_value(set_value) {
+                return Err(wrong(
+                    "OUT",
+                    1,
+                    set,
+                    "a K/H constant or a D register (optionally index-modified, D10Z0)",
+                ));
             }
             // FX 16-bit counters count up to a set value of 0-32767; a
             // negative one would make the contact on from the first scan.
@@ -411,6 +419,20 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             ops.len()
         )),
     }
+}
+
+/// The set value of a timer or counter coil: a K/H constant or a D
+/// register, which may be index-modified (FX3U).
+fn is_set_value(source: Source) -> bool {
+    matches!(
+        source,
+        Source::Constant(_)
+            | Source::Register(_)
+            | Source::Indexed(Indexed {
+                base: IndexBase::Register(_),
+                ..
+            })
+    )
 }
 
 fn applied_instruction(

@@ -394,7 +394,12 @@ fn reset(machine: &mut Machine<'_>, device: Device) -> Result<(), OperationError
     let devices = &mut *machine.devices;
     match device {
         Device::D(n) => devices.set_word(n, 0),
-        Device::C(n) => devices.set_counter(n, 0),
+        Device::C(n) => {
+            // The latched contact goes off with the value.
+            Device::C(n).check().map_err(|e| device_error(device, e))?;
+            machine.hardware.counters_mut().reset(devices, n);
+            Ok(())
+        }
         bit => devices.set_bit(bit, false),
     }
     .map_err(|e| device_error(device, e))

@@ -181,6 +181,9 @@ fn forbidden_combinations_fail_at_load_with_their_line() {
         ("LD M8000\nOUT X0Z0\n", "OUT operand 1"),
         ("LD M8000\nDECAM D0Z0 D2000 M0 Y0 Y4\n", "DECAM operand 1"),
         ("LD M8000\nMOV K1 D9000Z0\n", "out of range"),
+        ("LD M8000\nOUT T0 Z0\n", "OUT operand 2"),
+        ("LD M8000\nOUT C0 K4M0\n", "OUT operand 2"),
+        ("LD M8000\nOUT T0 K5Z0\n", "OUT operand 2"),
     ] {
         let message = error(src);
         assert!(
