@@ -211,3 +211,31 @@ fn tools_read_and_set_index_registers_by_name() {
     );
     assert!(View::parse("V8").unwrap_err().to_string().contains("V0-V7"));
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(crate::cases(200)))]
+
+    /// `MOV K<v> D<base>Z0` writes exactly D(base + Z0) when it exists, and
+    /// otherwise writes nothing and reports 6706; reading back through the
+    /// same modified name gives the value.
+    #[test]
+    fn a_modified_register_is_the_register_at_base_plus_offset(
+        base in 0u16..8512,
+        offset in proptest::prelude::any::<i16>(),
+        value in proptest::prelude::any::<i16>(),
+    ) {
+        let mut plc = plc(&format!("LD M8000\nMOV K{value} D{base}Z0\nMOV D{base}Z0 D8100\nEND\n"));
+        plc.devices_mut().set_index_register(IndexReg::Z(0), offset).unwrap();
+        let errors = plc.scan();
+        let target = i32::from(base) + i32::from(offset);
+        if (0..8512).contains(&target) {
+            proptest::prop_assert!(errors.is_empty(), "{:?}", errors);
+            proptest::prop_assert_eq!(word(&plc, target as u16), value);
+            proptest::prop_assert_eq!(word(&plc, 8100), value);
+        } else {
+            proptest::prop_assert_eq!(errors.len(), 2);
+            proptest::prop_assert!(errors.iter().all(|e| e.error.code == 6706));
+            proptest::prop_assert_eq!(word(&plc, 8100), 0);
+        }
+    }
+}
