@@ -181,8 +181,15 @@ fn arity(mnemonic: &str, operands: &[Operand], names: &[&str]) -> Result<(), Str
 }
 
 fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> String {
+    // Say why an index-modified operand that is otherwise of the right
+    // kind (`DECAM D0Z0 …`) does not fit.
+    let note = if matches!(operand, Operand::Indexed(..)) && !expected.contains("index-modified") {
+        " (this operand cannot be index-modified)"
+    } else {
+        ""
+    };
     format!(
-        "{mnemonic} operand {}: expected {expected}, found {}",
+        "{mnemonic} operand {}: expected {expected}, found {}{note}",
         index + 1,
         operand.describe()
     )
