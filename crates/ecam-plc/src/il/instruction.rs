@@ -511,6 +511,49 @@ pub enum Instruction {
         /// First of three bits (M or Y).
         dst: Device,
     },
+    /// `ZCP`/`DZCP`(`P`) S1 S2 S3 D: D = S3 < S1, D+1 = S1 ≤ S3 ≤ S2,
+    /// D+2 = S3 > S2 (a lower limit above the upper one is taken as the
+    /// upper one too, as on the FX3U).
+    ZoneCompare {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Lower limit.
+        low: Source,
+        /// Upper limit.
+        high: Source,
+        /// The value compared.
+        value: Source,
+        /// First of three bits (M or Y).
+        dst: Device,
+    },
+    /// `BMOV`(`P`) S D n: copy n consecutive registers from S to D, as if
+    /// through a buffer (overlapping blocks copy correctly).
+    BlockMove {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First source register (D, optionally index-modified).
+        src: Dest,
+        /// First destination register (D, optionally index-modified).
+        dst: Dest,
+        /// Number of words, 1–512 (K or D).
+        count: Source,
+    },
+    /// `FMOV`/`DFMOV`(`P`) S D n: write S into n consecutive registers
+    /// (32 bit: n register pairs) from D.
+    Fill {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The value.
+        src: Source,
+        /// First destination register (D, optionally index-modified).
+        dst: Dest,
+        /// Number of words (pairs), 1–512 (K or D).
+        count: Source,
+    },
     /// PLSY/DPLSY S1 S2 D: pulses at S1 Hz, S2 pulses (0 = endless), on Y0..Y3.
     PulseOutput {
         /// 16 or 32 bit operands.

@@ -15,6 +15,7 @@ mod parser;
 mod validate;
 
 pub(crate) use flow::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
+pub(crate) use parser::BLOCK_MAX;
 pub(crate) use validate::is_output;
 
 pub use error::ParseError;

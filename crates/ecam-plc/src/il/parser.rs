@@ -198,9 +198,9 @@ fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> Str
 /// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
 /// that have 32-bit and pulse forms.
 fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
-    const BASES: [&str; 17] = [
+    const BASES: [&str; 20] = [
         "MOV", "EMOV", "ADD", "SUB", "MUL", "DIV", "INC", "DEC", "NEG", "WAND", "WOR", "WXOR",
-        "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+        "CMP", "ZCP", "BMOV", "FMOV", "ZRST", "PLSY", "ECAM", "ECAMTBX",
     ];
     // The 32-bit word logic is DAND/DOR/DXOR, not DWAND.
     for (double, word) in [("DAND", "WAND"), ("DOR", "WOR"), ("DXOR", "WXOR")] {
@@ -608,23 +608,43 @@ fn applied_instruction(
         }
         "CMP" => {
             arity(mnemonic, ops, &["S1", "S2", "D"])?;
-            let dst = bit_dest(mnemonic, 2, &ops[2])?.0;
-            let last_ok = match dst {
-                Device::M(n) => n.checked_add(2).is_some_and(|l| l < M_COUNT),
-                Device::Y(n) => n.checked_add(2).is_some_and(|l| l < XY_COUNT),
-                _ => false,
-            };
-            if !last_ok {
-                return Err(format!(
-                    "{mnemonic} operand 3: {dst} and the two bits after it must exist"
-                ));
-            }
             Instruction::Compare {
                 width,
                 exec,
                 s1: source(mnemonic, 0, &ops[0], width)?,
                 s2: source(mnemonic, 1, &ops[1], width)?,
-                dst,
+                dst: three_bits(mnemonic, 2, &ops[2])?,
+            }
+        }
+        "ZCP" => {
+            arity(mnemonic, ops, &["S1 (low)", "S2 (high)", "S3", "D"])?;
+            Instruction::ZoneCompare {
+                width,
+                exec,
+                low: source(mnemonic, 0, &ops[0], width)?,
+                high: source(mnemonic, 1, &ops[1], width)?,
+                value: source(mnemonic, 2, &ops[2], width)?,
+                dst: three_bits(mnemonic, 3, &ops[3])?,
+            }
+        }
+        "BMOV" => {
+            no_double()?;
+            arity(mnemonic, ops, &["S", "D", "n"])?;
+            Instruction::BlockMove {
+                exec,
+                src: block(mnemonic, 0, &ops[0])?,
+                dst: block(mnemonic, 1, &ops[1])?,
+                count: block_count(mnemonic, 2, &ops[2])?,
+            }
+        }
+        "FMOV" => {
+            arity(mnemonic, ops, &["S", "D", "n"])?;
+            Instruction::Fill {
+                width,
+                exec,
+                src: source(mnemonic, 0, &ops[0], width)?,
+                dst: block(mnemonic, 1, &ops[1])?,
+                count: block_count(mnemonic, 2, &ops[2])?,
             }
         }
         "ZRST" => {
@@ -792,6 +812,67 @@ fn bit_dest(mnemonic: &str, index: usize, op: &Operand) -> Result<BitDest, Strin
     match op {
         Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitDest(*d)),
         other => Err(wrong(mnemonic, index, other, "an output Y or a relay M")),
+    }
+}
+
+/// The result bits of CMP/ZCP: M or Y, with the two bits after it.
+fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, String> {
+    let dst = bit_dest(mnemonic, index, op)?.0;
+    let last_ok = match dst {
+        Device::M(n) => n.checked_add(2).is_some_and(|l| l < M_COUNT),
+        Device::Y(n) => n.checked_add(2).is_some_and(|l| l < XY_COUNT),
+        _ => false,
+    };
+    if last_ok {
+        Ok(dst)
+    } else {
+        Err(format!(
+            "{mnemonic} operand {}: {dst} and the two bits after it must exist",
+            index + 1
+        ))
+    }
+}
+
+/// Most words BMOV/FMOV move at once (FX3U: n ≤ 512).
+pub(crate) const BLOCK_MAX: i32 = 512;
+
+/// A block of BMOV/FMOV: the first D register, optionally index-modified
+/// (the length is checked when the instruction runs).
+fn block(mnemonic: &str, index: usize, op: &Operand) -> Result<Dest, String> {
+    match *op {
+        Operand::Device(Device::D(n)) => Ok(Dest::Register(n)),
+        Operand::Indexed(Modified::Device(Device::D(n)), by) => Ok(Dest::Indexed(Indexed {
+            base: IndexBase::Register(n),
+            by: modifier(mnemonic, index, op, by, Width::Word)?,
+        })),
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a D register (optionally index-modified)",
+        )),
+    }
+}
+
+/// n of BMOV/FMOV: K1–K512, or a D register read at run time (the blocks
+/// are checked against D8511 when the instruction runs, as their start
+/// may be index-modified).
+fn block_count(mnemonic: &str, index: usize, op: &Operand) -> Result<Source, String> {
+    match *op {
+        Operand::Decimal(n) if (1..=i64::from(BLOCK_MAX)).contains(&n) => {
+            Ok(Source::Constant(n as i32))
+        }
+        Operand::Decimal(n) => Err(format!(
+            "{mnemonic} operand {}: n = {n} is out of range (K1 to K{BLOCK_MAX})",
+            index + 1
+        )),
+        Operand::Device(Device::D(n)) => Ok(Source::Register(n)),
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a K constant 1-512 or a D register",
+        )),
     }
 }
 

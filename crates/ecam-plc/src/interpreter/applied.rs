@@ -306,16 +306,74 @@ pub(super) fn execute(
             }
             let a = read_source(devices, s1, width)?;
             let b = read_source(devices, s2, width)?;
-            let bit = |offset: u16| match dst {
-                Device::M(n) => Device::M(n.saturating_add(offset)),
-                Device::Y(n) => Device::Y(n.saturating_add(offset)),
-                other => other,
-            };
-            for (offset, on) in [(0u16, a > b), (1, a == b), (2, a < b)] {
-                let device = bit(offset);
+            set_three(devices, dst, [a > b, a == b, a < b])
+        }
+        Instruction::ZoneCompare {
+            width,
+            exec,
+            low,
+            high,
+            value,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let low = read_source(devices, low, width)?;
+            // FX3U: a lower limit above the upper one counts as both.
+            let high = read_source(devices, high, width)?.max(low);
+            let value = read_source(devices, value, width)?;
+            set_three(
+                devices,
+                dst,
+                [value < low, (low..=high).contains(&value), value > high],
+            )
+        }
+        Instruction::BlockMove {
+            exec,
+            src,
+            dst,
+            count,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let n = block_len(devices, count)?;
+            let from = block_start(devices, src, n)?;
+            let to = block_start(devices, dst, n)?;
+            // Through a buffer: overlapping blocks copy as the FX3U does.
+            let words: Vec<i16> = (0..n)
+                .map(|i| devices.word(from + i))
+                .collect::<Result<_, _>>()
+                .map_err(|e| device_error(Device::D(from), e))?;
+            for (i, word) in (0..n).zip(words) {
                 devices
-                    .set_bit(device, on)
-                    .map_err(|e| device_error(device, e))?;
+                    .set_word(to + i, word)
+                    .map_err(|e| device_error(Device::D(to + i), e))?;
+            }
+            Ok(())
+        }
+        Instruction::Fill {
+            width,
+            exec,
+            src,
+            dst,
+            count,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let value = read_source(devices, src, width)?;
+            let n = block_len(devices, count)?;
+            let stride = if width == Width::Double { 2 } else { 1 };
+            let to = block_start(devices, dst, n * stride)?;
+            for i in 0..n {
+                let at = to + i * stride;
+                match width {
+                    Width::Word => devices.set_word(at, value as i16),
+                    Width::Double => devices.set_dword(at, value),
+                }
+                .map_err(|e| device_error(Device::D(at), e))?;
             }
             Ok(())
         }
@@ -381,6 +439,67 @@ fn write_quad(
         .set_dword(n, value as i32)
         .and_then(|()| devices.set_dword(high, (value >> 32) as i32))
         .map_err(|e| device_error(Device::D(n), e))
+}
+
+/// Writes the three result bits of CMP/ZCP from `dst` on (the parser
+/// checked that all three exist).
+fn set_three(
+    devices: &mut crate::devices::Devices,
+    dst: Device,
+    bits: [bool; 3],
+) -> Result<(), OperationError> {
+    for (offset, on) in (0u16..).zip(bits) {
+        let device = match dst {
+            Device::M(n) => Device::M(n.saturating_add(offset)),
+            Device::Y(n) => Device::Y(n.saturating_add(offset)),
+            other => other,
+        };
+        devices
+            .set_bit(device, on)
+            .map_err(|e| device_error(device, e))?;
+    }
+    Ok(())
+}
+
+/// n of BMOV/FMOV: 1–512, else operation error 6705.
+fn block_len(
+    devices: &crate::devices::Devices,
+    count: crate::il::Source,
+) -> Result<u16, OperationError> {
+    let n = read_source(devices, count, Width::Word)?;
+    u16::try_from(n)
+        .ok()
+        .filter(|n| (1..=crate::il::BLOCK_MAX).contains(&i32::from(*n)))
+        .ok_or_else(|| {
+            OperationError::new(
+                CODE_OPERAND,
+                format!(
+                    "block length n = {n} is out of range (1 to {}); nothing was moved",
+                    crate::il::BLOCK_MAX
+                ),
+            )
+        })
+}
+
+/// The first register of a BMOV/FMOV block of `words` registers, index
+/// modification applied; 6706 when the block runs past D8511.
+fn block_start(
+    devices: &crate::devices::Devices,
+    start: Dest,
+    words: u16,
+) -> Result<u16, OperationError> {
+    match resolve_dest(devices, start, Width::Word, words)? {
+        Dest::Register(n)
+            if n.checked_add(words)
+                .is_some_and(|end| end <= crate::devices::D_COUNT) =>
+        {
+            Ok(n)
+        }
+        other => Err(OperationError::new(
+            crate::operation_error::CODE_DEVICE_RANGE,
+            format!("a block of {words} registers from {other} runs past D8511; nothing was moved"),
+        )),
+    }
 }
 
 fn set_flag(devices: &mut crate::devices::Devices, m: u16, on: bool) -> Result<(), OperationError> {

@@ -32,6 +32,10 @@ const IL_PROGRAM_TOKENS: &[&str] = &[
     "K4M8500Z1",
     "X377V0",
     "K8Y0",
+    "BMOV ",
+    "DFMOV ",
+    "ZCP ",
+    "K512",
 ];
 
 #[test]

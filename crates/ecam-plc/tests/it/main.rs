@@ -5,6 +5,7 @@
 mod decam_support;
 
 mod arithmetic;
+mod block_and_zone;
 mod compare_contacts;
 mod counters;
 mod decam_errors;
