@@ -554,6 +554,23 @@ pub enum Instruction {
         /// Number of words (pairs), 1–512 (K or D).
         count: Source,
     },
+    /// `SFTL`/`SFTR`(`P`) S D n1 n2: shift the n1 bits from D by n2 places
+    /// toward higher (SFTL) or lower (SFTR) numbers; the n2 bits from S fill
+    /// the freed places, the n2 bits shifted out are lost.
+    BitShift {
+        /// True for SFTL, false for SFTR.
+        left: bool,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First bit shifted in (X, Y or M).
+        src: Device,
+        /// First bit of the shifted block (Y or M).
+        dst: Device,
+        /// Length of the block, n1.
+        length: u16,
+        /// Places per shift, n2 (1 ≤ n2 ≤ n1).
+        places: u16,
+    },
     /// PLSY/DPLSY S1 S2 D: pulses at S1 Hz, S2 pulses (0 = endless), on Y0..Y3.
     PulseOutput {
         /// 16 or 32 bit operands.

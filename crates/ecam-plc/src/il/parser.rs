@@ -198,9 +198,9 @@ fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> Str
 /// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
 /// that have 32-bit and pulse forms.
 fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
-    const BASES: [&str; 20] = [
+    const BASES: [&str; 22] = [
         "MOV", "EMOV", "ADD", "SUB", "MUL", "DIV", "INC", "DEC", "NEG", "WAND", "WOR", "WXOR",
-        "CMP", "ZCP", "BMOV", "FMOV", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+        "CMP", "ZCP", "BMOV", "FMOV", "SFTL", "SFTR", "ZRST", "PLSY", "ECAM", "ECAMTBX",
     ];
     // The 32-bit word logic is DAND/DOR/DXOR, not DWAND.
     for (double, word) in [("DAND", "WAND"), ("DOR", "WOR"), ("DXOR", "WXOR")] {
@@ -637,6 +637,46 @@ fn applied_instruction(
                 count: block_count(mnemonic, 2, &ops[2])?,
             }
         }
+        "SFTL" | "SFTR" => {
+            no_double()?;
+            arity(mnemonic, ops, &["S", "D", "n1", "n2"])?;
+            let count = |i: usize| match ops[i] {
+                Operand::Decimal(n) if (1..=i64::from(SHIFT_MAX)).contains(&n) => Ok(n as u16),
+                ref other => Err(wrong(
+                    mnemonic,
+                    i,
+                    other,
+                    &format!("a K constant 1 to {SHIFT_MAX}"),
+                )),
+            };
+            let (length, places) = (count(2)?, count(3)?);
+            if places > length {
+                return Err(format!(
+                    "{mnemonic}: n2 = {places} is more than n1 = {length} (the shift cannot be longer than the block)"
+                ));
+            }
+            let src = match ops[0] {
+                Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_))) => d,
+                ref other => return Err(wrong(mnemonic, 0, other, "an X, Y or M bit")),
+            };
+            let dst = bit_dest(mnemonic, 1, &ops[1])?.0;
+            for (index, first, bits) in [(0, src, places), (1, dst, length)] {
+                if !bits_exist(first, bits) {
+                    return Err(format!(
+                        "{mnemonic} operand {}: {bits} bits from {first} run past the last device",
+                        index + 1
+                    ));
+                }
+            }
+            Instruction::BitShift {
+                left: base == "SFTL",
+                exec,
+                src,
+                dst,
+                length,
+                places,
+            }
+        }
         "FMOV" => {
             arity(mnemonic, ops, &["S", "D", "n"])?;
             Instruction::Fill {
@@ -831,6 +871,19 @@ fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, Stri
             index + 1
         ))
     }
+}
+
+/// Longest SFTL/SFTR block (FX3U: n1 ≤ 1024).
+const SHIFT_MAX: u16 = 1024;
+
+/// Whether `bits` consecutive bit devices from `first` exist.
+fn bits_exist(first: Device, bits: u16) -> bool {
+    let (n, count) = match first {
+        Device::X(n) | Device::Y(n) => (n, XY_COUNT),
+        Device::M(n) => (n, M_COUNT),
+        _ => return false,
+    };
+    u32::from(n) + u32::from(bits) <= u32::from(count)
 }
 
 /// Most words BMOV/FMOV move at once (FX3U: n ≤ 512).

@@ -377,6 +377,38 @@ pub(super) fn execute(
             }
             Ok(())
         }
+        Instruction::BitShift {
+            left,
+            exec,
+            src,
+            dst,
+            length,
+            places,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            // Read everything first: S may overlap D.
+            let incoming = read_bits(devices, src, places)?;
+            let block = read_bits(devices, dst, length)?;
+            let kept = usize::from(length - places);
+            let shifted: Vec<bool> = if left {
+                incoming.iter().chain(&block[..kept]).copied().collect()
+            } else {
+                block[usize::from(places)..]
+                    .iter()
+                    .chain(&incoming)
+                    .copied()
+                    .collect()
+            };
+            for (i, on) in (0u16..).zip(shifted) {
+                let device = nth_bit(dst, i)?;
+                devices
+                    .set_bit(device, on)
+                    .map_err(|e| device_error(device, e))?;
+            }
+            Ok(())
+        }
         Instruction::PulseOutput {
             width,
             frequency,
@@ -459,6 +491,34 @@ fn set_three(
             .map_err(|e| device_error(device, e))?;
     }
     Ok(())
+}
+
+/// The bit `i` places after `first` (X, Y or M).
+fn nth_bit(first: Device, i: u16) -> Result<Device, OperationError> {
+    let next = |n: u16| {
+        n.checked_add(i)
+            .ok_or_else(|| device_error(first, DeviceError::OutOfRange))
+    };
+    match first {
+        Device::X(n) => next(n).map(Device::X),
+        Device::Y(n) => next(n).map(Device::Y),
+        Device::M(n) => next(n).map(Device::M),
+        other => Err(device_error(other, DeviceError::WrongKind)),
+    }
+}
+
+/// `count` consecutive bits from `first`, lowest first.
+fn read_bits(
+    devices: &crate::devices::Devices,
+    first: Device,
+    count: u16,
+) -> Result<Vec<bool>, OperationError> {
+    (0..count)
+        .map(|i| {
+            let device = nth_bit(first, i)?;
+            devices.bit(device).map_err(|e| device_error(device, e))
+        })
+        .collect()
 }
 
 /// n of BMOV/FMOV: 1–512, else operation error 6705.

@@ -1,4 +1,4 @@
-//! BMOV, FMOV/DFMOV and ZCP/DZCP against hand-computed FX3U results.
+//! BMOV, FMOV/DFMOV, ZCP/DZCP and SFTL/SFTR against hand-computed FX3U results.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use ecam_plc::Plc;
@@ -121,6 +121,77 @@ fn bad_block_and_zone_operands_fail_at_load() {
         ("LD M8000\nZCP K1 K2 D0\n", "ZCP expects 4 operands"),
         ("LD M8000\nZCP K1 K2 D0 M8510\n", "the two bits after it"),
         ("LD M8000\nZCP K1 K2 D0 D5\n", "ZCP operand 4"),
+    ] {
+        let message = error(src);
+        assert!(
+            message.starts_with("prog.il:2: ") && message.contains(needle),
+            "{src:?}: {message}"
+        );
+    }
+}
+
+fn m_bits(plc: &Plc, first: u16, n: u16) -> Vec<u8> {
+    (first..first + n)
+        .map(|m| u8::from(plc.devices().m(m).unwrap()))
+        .collect()
+}
+
+#[test]
+fn sftl_and_sftr_shift_the_block_and_fill_from_s() {
+    let mut plc = plc("LD M8000\nSFTLP X0 M0 K8 K2\nSFTRP X0 M10 K8 K2\nEND\n");
+    let d = plc.devices_mut();
+    d.set_bit(ecam_plc::Device::X(0), true).unwrap();
+    for m in [1, 2, 10, 17] {
+        d.set_m(m, true).unwrap();
+    }
+    assert!(plc.scan().is_empty());
+    // Left: X0, X1 enter at M0, M1; M0–M5 move to M2–M7; M6, M7 are lost.
+    assert_eq!(m_bits(&plc, 0, 8), [1, 0, 0, 1, 1, 0, 0, 0]);
+    // Right: M12–M17 move to M10–M15; X0, X1 enter at M16, M17.
+    assert_eq!(m_bits(&plc, 10, 8), [0, 0, 0, 0, 0, 1, 1, 0]);
+    assert!(plc.scan().is_empty());
+    assert_eq!(
+        m_bits(&plc, 0, 8),
+        [1, 0, 0, 1, 1, 0, 0, 0],
+        "the P forms shift once per rising edge"
+    );
+}
+
+#[test]
+fn a_continuous_shift_moves_every_scan() {
+    let mut plc = plc("LD M8000\nSFTL M100 M0 K4 K1\nEND\n");
+    plc.devices_mut().set_m(100, true).unwrap();
+    for expected in [[1, 0, 0, 0], [1, 1, 0, 0], [1, 1, 1, 0]] {
+        assert!(plc.scan().is_empty());
+        assert_eq!(m_bits(&plc, 0, 4), expected);
+    }
+}
+
+#[test]
+fn bad_shift_operands_fail_at_load() {
+    for (src, needle) in [
+        ("LD M8000\nSFTL X0 M0 K4 K5\n", "n2 = 5 is more than n1 = 4"),
+        (
+            "LD M8000\nSFTL X0 M0 K0 K0\n",
+            "expected a K constant 1 to 1024",
+        ),
+        (
+            "LD M8000\nSFTL X0 M0 K1025 K1\n",
+            "expected a K constant 1 to 1024",
+        ),
+        (
+            "LD M8000\nSFTL X0 X10 K4 K1\n",
+            "SFTL operand 2: expected an output Y or a relay M",
+        ),
+        (
+            "LD M8000\nSFTR D0 M0 K4 K1\n",
+            "SFTR operand 1: expected an X, Y or M bit",
+        ),
+        (
+            "LD M8000\nSFTR X0 M8500 K16 K1\n",
+            "16 bits from M8500 run past the last device",
+        ),
+        ("LD M8000\nDSFTL X0 M0 K4 K1\n", "SFTL has no 32-bit D form"),
     ] {
         let message = error(src);
         assert!(
