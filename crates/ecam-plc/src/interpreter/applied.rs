@@ -140,6 +140,10 @@ pub(super) fn execute(
             }
             let a = i64::from(read_source(devices, s1, width)?);
             let b = i64::from(read_source(devices, s2, width)?);
+            // An index-modified destination out of range fails before the
+            // flags move: the instruction is not executed at all.
+            let words = if width == Width::Double { 2 } else { 1 };
+            let dst = resolve_dest(devices, dst, width, words)?;
             let exact = match op {
                 ArithOp::Add => a + b,
                 ArithOp::Sub => a - b,

@@ -121,6 +121,7 @@ fn an_address_out_of_range_is_operation_error_6706_and_writes_nothing() {
         "MOV K2 D0V0\n",     // D-1
         "DMOV K3 D8500Z2\n", // D8511 and D8512
         "MOV K4 K4M8490Z2\n",
+        "ADD K0 K0 D8000Z0\n", // would set the zero flag M8020
         "LD X0Z0\n",
         "OUT Y0\n",
         "END\n",
@@ -132,7 +133,8 @@ fn an_address_out_of_range_is_operation_error_6706_and_writes_nothing() {
     let before = plc.devices().words().to_vec();
     let errors = plc.scan();
     let lines: Vec<usize> = errors.iter().map(|e| e.line).collect();
-    assert_eq!(lines, vec![2, 3, 4, 5, 6], "{errors:?}");
+    assert_eq!(lines, vec![2, 3, 4, 5, 6, 7], "{errors:?}");
+    assert!(!plc.devices().m(8020).unwrap(), "no flag from a failed ADD");
     assert!(errors.iter().all(|e| e.error.code == 6706), "{errors:?}");
     assert!(errors[0].error.message.contains("D8000Z0: Z0 = 600"));
     assert_eq!(word(&plc, 8067), 6706);
