@@ -29,6 +29,7 @@ use crate::{
     TickOutput,
 };
 
+mod cam_out;
 mod engage;
 mod online;
 mod phase;
@@ -237,10 +238,11 @@ impl<C: CamCurve> CamAxis<C> {
     /// armed axis changes nothing; a finished axis can be armed again.
     ///
     /// # Errors
-    /// [`EngineError::Busy`] while the cam is engaged.
+    /// [`EngineError::Busy`] while the cam is engaged or the slave moves at
+    /// velocity after a cam-out (stop it first).
     pub fn arm(&mut self) -> Result<(), EngineError> {
         match self.phase {
-            Phase::Running(_) | Phase::Stopping(..) => Err(EngineError::Busy),
+            Phase::Running(_) | Phase::Stopping(..) | Phase::Velocity(_) => Err(EngineError::Busy),
             Phase::Armed(_) => Ok(()),
             Phase::Idle | Phase::Finished => {
                 self.missed = false;
@@ -258,7 +260,10 @@ impl<C: CamCurve> CamAxis<C> {
     /// and goes idle; [`StopKind::EndOfCycle`] keeps following to the end of
     /// the current cycle (either direction), or, requested while the master
     /// is exactly on a cycle end, finishes there at once. Either cancels a
-    /// pending start. The next tick reports what a stop here did.
+    /// pending start, and either holds a slave moving at velocity after
+    /// [`CamAxis::cam_out_at_velocity`] where it is (for a stop under a
+    /// deceleration limit see [`CamAxis::stop_decelerating`]). The next
+    /// tick reports what a stop here did.
     pub fn stop(&mut self, kind: StopKind) {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         self.phase = match (phase, kind) {
@@ -279,7 +284,7 @@ impl<C: CamCurve> CamAxis<C> {
                 self.end_run(engaged);
                 Phase::Idle
             }
-            (Phase::Armed(_), _) => {
+            (Phase::Armed(_) | Phase::Velocity(_), _) => {
                 self.pending_events.stopped = true;
                 Phase::Idle
             }
@@ -298,7 +303,7 @@ impl<C: CamCurve> CamAxis<C> {
         match phase {
             Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged),
             Phase::Finished => self.phase = Phase::Finished,
-            Phase::Idle | Phase::Armed(_) => {}
+            Phase::Idle | Phase::Armed(_) | Phase::Velocity(_) => {}
         }
     }
 
@@ -367,6 +372,23 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Running(engaged) => self.follow(engaged, None, master, estimate.fraction),
             Phase::Stopping(engaged, end) => {
                 self.follow(engaged, Some(end), master, estimate.fraction)
+            }
+            Phase::Velocity(mut coast) => {
+                let (at, rest) = coast.advance(input.dt_us);
+                self.commanded = at;
+                let stopped = Events {
+                    stopped: rest,
+                    ..Events::default()
+                };
+                Ok((
+                    if rest {
+                        Phase::Idle
+                    } else {
+                        Phase::Velocity(coast)
+                    },
+                    None,
+                    stopped,
+                ))
             }
             other => Ok((other, None, Events::default())),
         };
@@ -536,7 +558,18 @@ impl<C: CamCurve> CamAxis<C> {
                 stop_at.as_ref(),
                 next_master,
             );
-            let (_, next_slave, _, _) = self.command_at(&mut engaged, ahead.place, next_master)?;
+            // A table queued for the seam takes over there, so the old cam
+            // past the seam is not where the slave goes: aim at the seam.
+            let aim = if engaged.queued.is_some() && ahead.place.k != place.k {
+                if ahead.place.k > place.k {
+                    self.geometry.cycle_end(place.k)
+                } else {
+                    Geometry::cycle_start(place.k)
+                }
+            } else {
+                ahead.place
+            };
+            let (_, next_slave, _, _) = self.command_at(&mut engaged, aim, next_master)?;
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
             slave =

@@ -45,6 +45,7 @@ extern crate std;
 
 mod axis;
 mod blend;
+mod coast;
 mod config;
 mod coupling;
 mod error;

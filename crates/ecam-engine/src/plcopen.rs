@@ -14,9 +14,12 @@
 //!   ([`Coupling::Normal`]; `EndOfProfile` set while the master is at or
 //!   past the end, still `Active` and `InSync`); with a relative master it
 //!   runs once from engage and ends the coupling ([`Coupling::OneShot`]);
-//! - `MC_CamOut` stops the slave where it is (the engine has no velocity
-//!   mode to continue at the last speed); [`McCamAxis::cam_out_at_end_of_cycle`]
-//!   follows to the end of the current cycle first;
+//! - `MC_CamOut` as the standard says: the slave leaves the cam and keeps
+//!   the velocity it had ([`CamOut::AtVelocity`], the default) until
+//!   [`McCamAxis::stop`] or [`McCamAxis::halt`] ends the motion; the
+//!   options [`CamOut::Hold`] (stop where it is) and
+//!   [`CamOut::EndOfCycle`] (follow to the end of the current cycle, then
+//!   hold) are what other controllers offer;
 //! - `EndOfProfile` pulses for one cycle each time a cycle of the table
 //!   completes, and when a non-periodic table ends;
 //! - `InSync` is set once the slave follows the cam (ramp-in, blend and
@@ -39,7 +42,7 @@
 //! let status = axis.tick(250, 1000);
 //! assert!(status.in_sync && status.busy);
 //! assert_eq!(status.output.slave, 100);
-//! axis.cam_out(CamOut);
+//! axis.cam_out(CamOut::Hold);
 //! assert!(!axis.tick(300, 1000).busy);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -180,9 +183,22 @@ pub const DEFAULT_BLEND: NonZeroU64 = match NonZeroU64::new(1000) {
     None => NonZeroU64::MIN,
 };
 
-/// `MC_CamOut`: disengage the slave (it holds its position).
+/// `MC_CamOut`: how the slave leaves the cam.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct CamOut;
+pub enum CamOut {
+    /// As PLCopen says: the slave continues at the velocity it has (see
+    /// [`CamAxis::cam_out_at_velocity`]) until [`McCamAxis::stop`] or
+    /// [`McCamAxis::halt`].
+    #[default]
+    AtVelocity,
+    /// The slave holds where it is (a velocity step; the behaviour of a
+    /// plain disengage).
+    Hold,
+    /// The slave follows the cam to the end of the current table cycle,
+    /// then holds there (an implementation option, e.g. for a knife that
+    /// must finish its cut).
+    EndOfCycle,
+}
 
 /// The outputs of the cam blocks after one cycle.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -397,17 +413,46 @@ impl<C: CamCurve> McCamAxis<C> {
         Ok(())
     }
 
-    /// `MC_CamOut`: disengage now; the slave holds its position.
-    pub fn cam_out(&mut self, _: CamOut) {
+    /// `MC_CamOut`: leaves the cam as `how` says. A pending (not yet
+    /// engaged) cam-in is cancelled whatever `how` says.
+    pub fn cam_out(&mut self, how: CamOut) {
+        match how {
+            CamOut::AtVelocity if self.axis.state().is_engaged() => {
+                // Engaged, so this cannot fail; a refusal would only mean
+                // nothing was engaged, which a plain stop covers.
+                if self.axis.cam_out_at_velocity().is_err() {
+                    self.axis.stop(StopKind::Immediate);
+                }
+            }
+            CamOut::AtVelocity | CamOut::Hold => self.axis.stop(StopKind::Immediate),
+            CamOut::EndOfCycle => self.axis.stop(StopKind::EndOfCycle),
+        }
+        self.command = self.command.wrapping_add(1);
+    }
+
+    /// `MC_CamOut` with [`CamOut::EndOfCycle`].
+    pub fn cam_out_at_end_of_cycle(&mut self) {
+        self.cam_out(CamOut::EndOfCycle);
+    }
+
+    /// Stops at once (the slave holds where it is): ends a cam, a pending
+    /// cam-in or the velocity motion after a cam-out.
+    pub fn stop(&mut self) {
         self.axis.stop(StopKind::Immediate);
         self.command = self.command.wrapping_add(1);
     }
 
-    /// `MC_CamOut`, end-of-cycle variant (an implementation option): keeps
-    /// following to the end of the current table cycle, then holds there.
-    pub fn cam_out_at_end_of_cycle(&mut self) {
-        self.axis.stop(StopKind::EndOfCycle);
+    /// Brings the slave to rest at `deceleration` pulses/s² (PLCopen
+    /// `MC_Halt`/`MC_Stop` with a deceleration), from a running cam or the
+    /// velocity motion after a cam-out; see [`CamAxis::stop_decelerating`].
+    ///
+    /// # Errors
+    /// [`EngineError::NotRunning`] unless the cam is engaged or the slave
+    /// moves at velocity.
+    pub fn halt(&mut self, deceleration: NonZeroU64) -> Result<(), EngineError> {
+        self.axis.stop_decelerating(deceleration)?;
         self.command = self.command.wrapping_add(1);
+        Ok(())
     }
 
     /// Declares the slave's current position (while not engaged).

@@ -63,7 +63,7 @@ impl<C: CamCurve> CamAxis<C> {
                 engaged.seam_blend = None;
                 engaged.queued = Some((curve, then));
             }
-            Phase::Idle | Phase::Armed(_) | Phase::Finished => {
+            Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.geometry = geometry;
                 self.cursor = Cursor::new();
                 self.retired = Some(core::mem::replace(&mut self.curve, curve));
@@ -114,7 +114,9 @@ impl<C: CamCurve> CamAxis<C> {
                 Ok(())
             }
             Phase::Stopping(..) => Err(EngineError::Busy),
-            Phase::Idle | Phase::Armed(_) | Phase::Finished => self.queue_curve(curve),
+            Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
+                self.queue_curve(curve)
+            }
         }
     }
 

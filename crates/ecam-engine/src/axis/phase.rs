@@ -3,6 +3,7 @@
 use core::num::NonZeroU64;
 
 use crate::blend::Blend;
+use crate::coast::Coast;
 use crate::coupling::{Engagement, Place};
 use crate::offset_ramp::OffsetRamp;
 use crate::ramp::Ramp;
@@ -29,6 +30,8 @@ pub(super) enum Phase<C> {
     Stopping(Engaged<C>, CycleEnd),
     /// A one-shot ended or an end-of-cycle stop completed; the slave holds.
     Finished,
+    /// Out of the cam, moving at velocity (or decelerating to rest).
+    Velocity(Coast),
 }
 
 /// An armed axis' start watch.
@@ -96,6 +99,7 @@ impl<C> Phase<C> {
             Self::Running(_) => AxisState::Running,
             Self::Stopping(..) => AxisState::Stopping,
             Self::Finished => AxisState::Finished,
+            Self::Velocity(_) => AxisState::Velocity,
         }
     }
 

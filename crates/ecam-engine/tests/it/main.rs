@@ -2,6 +2,7 @@
 //! each module is one area, named after what it checks.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
+mod cam_out;
 mod doc001_repeat;
 mod doc002_profile;
 mod doc003_decam;

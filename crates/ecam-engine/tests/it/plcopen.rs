@@ -84,7 +84,7 @@ fn ramp_in_reports_in_sync_when_done_and_cam_out_holds() {
     assert!(s.in_sync);
     // The same inputs again while engaged change nothing.
     axis.cam_in(&CamIn::default()).unwrap();
-    axis.cam_out(CamOut);
+    axis.cam_out(CamOut::Hold);
     let held = axis.tick(700, 1_000_000);
     assert!(!held.active && !held.in_sync);
     assert_eq!(held.output.slave, s.output.slave);
@@ -304,7 +304,7 @@ mod blocks {
         assert!(out.command_aborted);
 
         // MC_CamOut aborts the second.
-        axis.cam_out(CamOut);
+        axis.cam_out(CamOut::Hold);
         let s = axis.tick(400, 1_000_000);
         assert!(second.call(&mut axis, true, &good, &s).command_aborted);
     }
