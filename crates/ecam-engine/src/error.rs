@@ -37,6 +37,9 @@ pub enum EngineError {
     /// A ramp-in restricted to one direction cannot close its gap that
     /// way (a cam without a stroke to add).
     RampDirection,
+    /// A PLCopen `BufferMode` the cam facade does not offer (the blending
+    /// modes); aborting and buffered are supported.
+    UnsupportedBufferMode,
 }
 
 use ecam_core::{CODE_PARAMETER, CODE_TABLE};
@@ -55,7 +58,8 @@ impl EngineError {
             | Self::NoSeam
             | Self::NotRunning
             | Self::RampInLimits
-            | Self::RampDirection => CODE_PARAMETER,
+            | Self::RampDirection
+            | Self::UnsupportedBufferMode => CODE_PARAMETER,
         }
     }
 }
@@ -90,6 +94,9 @@ impl fmt::Display for EngineError {
             }
             Self::RampDirection => {
                 "the ramp-in cannot close its gap in the allowed direction (no stroke to add); the cam was stopped"
+            }
+            Self::UnsupportedBufferMode => {
+                "this BufferMode is not supported for cams: use aborting (at once or at the activation position, blended over CamIn::blend) or buffered (at the next seam, blended)"
             }
         };
         write!(f, "{text} (error {})", self.code())

@@ -57,6 +57,12 @@ use crate::{
 };
 
 /// `MC_CamIn` `BufferMode` for a cam-in while a cam is engaged.
+///
+/// PLCopen's blending modes shape the velocity where two moves meet; a cam
+/// switch has no end velocity to choose, it blends from the old cam's
+/// velocity to the new one's over [`CamIn::blend`]. The blending modes are
+/// therefore refused ([`EngineError::UnsupportedBufferMode`]) rather than
+/// read loosely.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum BufferMode {
     /// Take over as `ActivationMode` says (at once by default).
@@ -64,6 +70,30 @@ pub enum BufferMode {
     Aborting,
     /// Take over when the running cam's cycle ends (the next seam).
     Buffered,
+    /// `mcBlendingLow`: refused.
+    BlendingLow,
+    /// `mcBlendingPrevious`: refused.
+    BlendingPrevious,
+    /// `mcBlendingNext`: refused.
+    BlendingNext,
+    /// `mcBlendingHigh`: refused.
+    BlendingHigh,
+}
+
+/// `MC_CamTableSelect` `ExecutionMode`: when a table selected while a cam
+/// is engaged becomes valid. Idle there is nothing to wait for: both
+/// replace the table at once.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ExecutionMode {
+    /// `mcImmediate`: valid at once for the next `MC_CamIn`, which switches
+    /// to it as its `BufferMode` and `ActivationMode` say.
+    #[default]
+    Immediate,
+    /// `mcQueued`: valid when the running cam's cycle ends: the table takes
+    /// over by itself at the next seam (as a buffered `MC_CamIn` would),
+    /// `Busy` until then. Refused for a non-periodic cam, which has no seam
+    /// ([`EngineError::NoSeam`]).
+    Queued,
 }
 
 /// `MC_CamIn` `ActivationMode`.
@@ -89,6 +119,16 @@ pub struct CamTableSelect {
     /// The table value is the absolute slave position (otherwise the table
     /// is followed relative to where the slave stands at engage).
     pub slave_absolute: bool,
+    /// When a table selected while engaged becomes valid.
+    pub execution_mode: ExecutionMode,
+}
+
+impl CamTableSelect {
+    /// The same interpretation of the table (all but the execution mode).
+    fn reads_like(&self, other: &Self) -> bool {
+        (self.periodic, self.master_absolute, self.slave_absolute)
+            == (other.periodic, other.master_absolute, other.slave_absolute)
+    }
 }
 
 impl Default for CamTableSelect {
@@ -97,6 +137,7 @@ impl Default for CamTableSelect {
             periodic: true,
             master_absolute: true,
             slave_absolute: true,
+            execution_mode: ExecutionMode::Immediate,
         }
     }
 }
@@ -261,25 +302,43 @@ impl<C: CamCurve> McCamAxis<C> {
     }
 
     /// `MC_CamTableSelect` with a table (`CamTableID`): idle, the table
-    /// replaces the current one at once; engaged, it waits for the next
-    /// [`McCamAxis::cam_in`], which switches to it on the fly. The
-    /// interpretation (`select`) can only change while idle.
+    /// replaces the current one at once; engaged, as
+    /// [`CamTableSelect::execution_mode`] says: it waits for the next
+    /// [`McCamAxis::cam_in`], which switches to it on the fly
+    /// ([`ExecutionMode::Immediate`]), or takes over by itself at the next
+    /// seam ([`ExecutionMode::Queued`]; see
+    /// [`McCamAxis::has_queued_table`]). The interpretation (periodic,
+    /// master and slave absolute) can only change while idle.
     ///
     /// # Errors
     /// As [`CamAxis::new`] for a table that does not fit;
-    /// [`EngineError::Busy`] for a different `select` while engaged.
+    /// [`EngineError::Busy`] for a different interpretation while engaged;
+    /// [`EngineError::NoSeam`] for a queued table on a non-periodic cam.
     pub fn select_table(&mut self, curve: C, select: CamTableSelect) -> Result<(), EngineError> {
         if self.axis.state().is_active() {
-            if select != self.select {
+            if !select.reads_like(&self.select) {
                 return Err(EngineError::Busy);
             }
-            crate::coupling::Geometry::new(&curve, self.axis.config())?;
-            self.next_table = Some(curve);
-            return Ok(());
+            return match select.execution_mode {
+                ExecutionMode::Immediate => {
+                    crate::coupling::Geometry::new(&curve, self.axis.config())?;
+                    self.next_table = Some(curve);
+                    Ok(())
+                }
+                ExecutionMode::Queued => self
+                    .axis
+                    .switch_curve(curve, SwitchAt::NextSeam { blend: None }),
+            };
         }
         self.axis.queue_curve(curve)?;
         self.select = select;
         Ok(())
+    }
+
+    /// True while a table selected with [`ExecutionMode::Queued`] (or a
+    /// switch from a cam-in) waits to take over.
+    pub fn has_queued_table(&self) -> bool {
+        self.axis.has_queued_curve()
     }
 
     /// The table a switch replaced, for the caller to take back.
@@ -298,6 +357,12 @@ impl<C: CamCurve> McCamAxis<C> {
     /// or when offsets and a scaling change together; as
     /// [`CamAxis::switch_curve`].
     pub fn cam_in(&mut self, params: &CamIn) -> Result<(), EngineError> {
+        if !matches!(
+            params.buffer_mode,
+            BufferMode::Aborting | BufferMode::Buffered
+        ) {
+            return Err(EngineError::UnsupportedBufferMode);
+        }
         if self.axis.state().is_engaged() {
             self.cam_in_engaged(params)?;
             self.command = self.command.wrapping_add(1);
@@ -337,6 +402,17 @@ impl<C: CamCurve> McCamAxis<C> {
                     position,
                     after_edge: false,
                 },
+                ActivationMode::NextCycle if self.select.master_absolute => {
+                    match self.next_cycle_start(params) {
+                        Some(position) => StartMode::AtMasterPosition {
+                            position,
+                            after_edge: false,
+                        },
+                        None => StartMode::Immediate,
+                    }
+                }
+                // A relative master starts the table at its beginning on
+                // engage: every start is a cycle start.
                 ActivationMode::Immediate | ActivationMode::NextCycle => StartMode::Immediate,
             },
             master_align,
@@ -366,6 +442,28 @@ impl<C: CamCurve> McCamAxis<C> {
         Ok(())
     }
 
+    /// The first master position after the last one read at which the
+    /// table input (master × scaling + offset) reaches a cycle start
+    /// (assuming a forward master); `None` when it does not fit.
+    fn next_cycle_start(&self, params: &CamIn) -> Option<i64> {
+        let curve = self.axis.curve();
+        let first = i128::from(curve.master_first());
+        let period = i128::from(curve.master_last()) - first;
+        let num = i128::from(params.master_scaling.num());
+        let den = i128::from(params.master_scaling.den());
+        if period <= 0 {
+            return None;
+        }
+        let now = i128::from(self.axis.status().master);
+        // Table input × den at the master now, relative to a cycle start.
+        let t = now * num + i128::from(params.master_offset) * den - first * den;
+        let cycle = period * den;
+        let to_next = cycle - t.rem_euclid(cycle);
+        // Master travel for that table travel, rounded up to a whole count.
+        let travel = (to_next + num - 1).div_euclid(num);
+        i64::try_from(now + travel).ok()
+    }
+
     /// The number of commands accepted so far (see [`crate::plcopen_blocks`]).
     pub fn command(&self) -> u64 {
         self.command
@@ -383,7 +481,12 @@ impl<C: CamCurve> McCamAxis<C> {
                         blend: Some(params.blend),
                     }
                 }
-                (BufferMode::Aborting, ActivationMode::Immediate) => SwitchAt::Now {
+                (_, ActivationMode::Immediate) => SwitchAt::Now {
+                    blend: Some(params.blend),
+                },
+                // Refused in `cam_in`; read as aborting should one get here.
+                (_, ActivationMode::AtMasterPosition(position)) => SwitchAt::MasterPosition {
+                    position,
                     blend: Some(params.blend),
                 },
             };
