@@ -40,6 +40,9 @@ pub enum EngineError {
     /// A PLCopen `BufferMode` the cam facade does not offer (the blending
     /// modes); aborting and buffered are supported.
     UnsupportedBufferMode,
+    /// A negative master zoom on a one-shot cam: its travel is counted
+    /// forwards from the engage point, so it cannot run backwards.
+    ReversedOneShot,
 }
 
 use ecam_core::{CODE_PARAMETER, CODE_TABLE};
@@ -59,7 +62,8 @@ impl EngineError {
             | Self::NotRunning
             | Self::RampInLimits
             | Self::RampDirection
-            | Self::UnsupportedBufferMode => CODE_PARAMETER,
+            | Self::UnsupportedBufferMode
+            | Self::ReversedOneShot => CODE_PARAMETER,
         }
     }
 }
@@ -94,6 +98,9 @@ impl fmt::Display for EngineError {
             }
             Self::RampDirection => {
                 "the ramp-in cannot close its gap in the allowed direction (no stroke to add); the cam was stopped"
+            }
+            Self::ReversedOneShot => {
+                "a one-shot cam cannot run backwards: use a positive master scaling, or a periodic or absolute-master table"
             }
             Self::UnsupportedBufferMode => {
                 "this BufferMode is not supported for cams: use aborting (at once or at the activation position, blended over CamIn::blend) or buffered (at the next seam, blended)"

@@ -148,9 +148,16 @@ pub enum CamInStartMode {
     /// As [`CamTableSelect::slave_absolute`] says (an absolute slave may jump).
     #[default]
     Absolute,
-    /// The slave follows the table relative to its position at engage:
-    /// no position step.
+    /// The table values are added to the slave's position at engage (plus
+    /// `SlaveOffset`), as PLCopen's relative mode and
+    /// `SlaveAbsolute = false` read in the standard's implementations
+    /// (RTmotion, CODESYS): a table that does not start at 0 where it
+    /// engages steps the slave by that value.
     Relative,
+    /// The slave follows the table relative to its position at engage,
+    /// without a position step: the table value at engage lands where the
+    /// slave stands (plus `SlaveOffset`). An option of ours, not PLCopen's.
+    Bumpless,
     /// Blend onto the cam over `distance` master counts without a velocity
     /// jump (see [`RampIn`]).
     RampIn {
@@ -167,9 +174,16 @@ pub struct CamIn {
     pub master_offset: i64,
     /// Added to the slave position the table gives.
     pub slave_offset: i64,
-    /// Master scaling (table input = master × scaling).
+    /// Master scaling, signed ([`Zoom::signed`]): table input = master ×
+    /// scaling + `master_offset`, the convention of RTmotion (Intel's
+    /// PLCopen implementation) and of the engine's master zoom. A scaling
+    /// of 2 runs the profile twice as fast; a negative one runs it
+    /// backwards. The standard's own sentence ("the master profile is
+    /// multiplied by the factor", which stretches it) is the reciprocal:
+    /// [`CamIn::master_profile_scaled`] sets it that way.
     pub master_scaling: Zoom,
-    /// Slave scaling (slave = table value × scaling).
+    /// Slave scaling, signed: slave = table value × scaling (+ offset); a
+    /// negative scaling mirrors the cam.
     pub slave_scaling: Zoom,
     /// How the slave engages.
     pub start_mode: CamInStartMode,
@@ -188,6 +202,21 @@ pub struct CamIn {
     /// Limits and direction of the ramp-in (PLCopen ramp-in with limits,
     /// `ramp_in_pos`, `ramp_in_neg`); see [`crate::CamAxis::set_ramp_in_limits`].
     pub ramp_limits: Option<RampInLimits>,
+}
+
+impl CamIn {
+    /// The same inputs with the master scaling read as the PLCopen
+    /// standard words it: the master profile (the table's master
+    /// positions) multiplied by `factor`, so a factor of 2 stretches one
+    /// table cycle over twice the master travel (table input = master /
+    /// `factor`).
+    #[must_use]
+    pub fn master_profile_scaled(self, factor: Zoom) -> Self {
+        Self {
+            master_scaling: factor.reciprocal(),
+            ..self
+        }
+    }
 }
 
 /// PLCopen `MasterSyncPosition` / `MasterStartDistance` (see [`RampIn::sync_at`]).
@@ -378,17 +407,18 @@ impl<C: CamCurve> McCamAxis<C> {
                     .saturating_add(params.master_offset),
             )
         };
-        let relative =
-            !self.select.slave_absolute || matches!(params.start_mode, CamInStartMode::Relative);
-        let slave_align = if relative {
-            // The table value at engage lands where the slave stands, plus the offset.
-            SlaveAlign::At(self.axis.commanded().saturating_add(params.slave_offset))
-        } else {
-            SlaveAlign::Offset(params.slave_offset)
+        let start = self.axis.commanded().saturating_add(params.slave_offset);
+        let (relative, slave_align) = match params.start_mode {
+            // The table value at engage lands where the slave stands.
+            CamInStartMode::Bumpless => (true, SlaveAlign::At(start)),
+            // The table values are added to where the slave stands.
+            CamInStartMode::Relative => (true, SlaveAlign::Offset(start)),
+            _ if !self.select.slave_absolute => (true, SlaveAlign::Offset(start)),
+            _ => (false, SlaveAlign::Offset(params.slave_offset)),
         };
         let ramp_in = match params.start_mode {
             CamInStartMode::RampIn { distance } => Some(RampIn { distance }),
-            CamInStartMode::Absolute | CamInStartMode::Relative => None,
+            CamInStartMode::Absolute | CamInStartMode::Relative | CamInStartMode::Bumpless => None,
         };
         let config = AxisConfig {
             coupling: match (self.select.periodic, self.select.master_absolute) {
@@ -449,16 +479,26 @@ impl<C: CamCurve> McCamAxis<C> {
         let curve = self.axis.curve();
         let first = i128::from(curve.master_first());
         let period = i128::from(curve.master_last()) - first;
-        let num = i128::from(params.master_scaling.num());
+        let signed = i128::from(params.master_scaling.signed_num());
+        let num = signed.abs();
         let den = i128::from(params.master_scaling.den());
-        if period <= 0 {
+        if period <= 0 || num == 0 {
             return None;
         }
         let now = i128::from(self.axis.status().master);
         // Table input × den at the master now, relative to a cycle start.
-        let t = now * num + i128::from(params.master_offset) * den - first * den;
+        let t = now * signed + i128::from(params.master_offset) * den - first * den;
         let cycle = period * den;
-        let to_next = cycle - t.rem_euclid(cycle);
+        // A negative scaling walks the table backwards: the next cycle
+        // starts where the table input comes down to a cycle boundary.
+        let to_next = if signed < 0 {
+            match t.rem_euclid(cycle) {
+                0 => cycle,
+                r => r,
+            }
+        } else {
+            cycle - t.rem_euclid(cycle)
+        };
         // Master travel for that table travel, rounded up to a whole count.
         let travel = (to_next + num - 1).div_euclid(num);
         i64::try_from(now + travel).ok()
@@ -570,9 +610,15 @@ impl<C: CamCurve> McCamAxis<C> {
     pub fn tick(&mut self, master: i64, dt_us: u32) -> CamStatus {
         let output = self.axis.tick(&TickInput::at(master, dt_us));
         // A non-periodic table on an absolute master holds its end value.
-        let past_end = self.axis.config().coupling == Coupling::Normal
+        let config = self.axis.config();
+        let past_end = config.coupling == Coupling::Normal
             && output.state.is_engaged()
-            && output.master_in_cycle >= self.axis.curve().master_last();
+            && if config.master_zoom.is_negative() {
+                // A negative master scaling runs the profile backwards.
+                output.master_in_cycle <= self.axis.curve().master_first()
+            } else {
+                output.master_in_cycle >= self.axis.curve().master_last()
+            };
         CamStatus {
             in_sync: output.following && output.backlog == 0,
             end_of_profile: output.events.cycle_completed || output.events.finished || past_end,

@@ -14,6 +14,7 @@ mod properties;
 mod ramp_in_limits;
 mod safe_motion;
 mod scaling_on_the_fly;
+mod signed_scaling;
 mod starts_stops;
 mod table_switch;
 
