@@ -247,7 +247,11 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Idle | Phase::Finished => {
                 self.missed = false;
                 self.phase = Phase::Armed(Armed {
-                    watch: StartWatch::arm_with(self.config.start, self.missed_policy),
+                    watch: StartWatch::arm_with(
+                        self.config.start,
+                        self.missed_policy,
+                        self.config.single_turn,
+                    ),
                     previous: None,
                     delaying: false,
                 });
@@ -531,10 +535,11 @@ impl<C: CamCurve> CamAxis<C> {
             let previous = engaged.followed;
             let now = (i128::from(master) << 32) | i128::from(fraction);
             let policy = self.missed_policy;
+            let turn = self.config.single_turn;
             let fired = engaged
                 .pending
                 .as_mut()
-                .map(|p| p.fires(previous, now, blending, policy));
+                .map(|p| p.fires(previous, now, blending, policy, turn));
             events.activation_missed |= fired.is_some_and(|f| f.missed);
             if let Some(at) = fired.and_then(|f| f.at) {
                 self.switch_at(&mut engaged, at)?;

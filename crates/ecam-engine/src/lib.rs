@@ -65,6 +65,7 @@ mod stop;
 mod switch;
 mod sync;
 mod tracker;
+mod turn_position;
 mod zoom;
 
 pub use axis::{AfterPass, CamAxis};
