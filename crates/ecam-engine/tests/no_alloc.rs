@@ -136,6 +136,7 @@ fn tick_allocates_nothing() {
         // Every other axis ramps in under limits, in one direction.
         if n % 2 == 1 {
             axis.set_ramp_in_limits(Some(RampInLimits {
+                max_jerk: None,
                 max_velocity: NonZeroU32::new(100_000).unwrap(),
                 max_acceleration: NonZeroU64::new(10_000_000).unwrap(),
                 direction: RampDirection::Positive,

@@ -499,6 +499,7 @@ mod inputs {
         axis.cam_in(&CamIn {
             start_mode: CamInStartMode::Relative,
             ramp_limits: Some(RampInLimits {
+                max_jerk: None,
                 max_velocity: NonZeroU32::new(100_000).unwrap(),
                 max_acceleration: NonZeroU64::new(10_000_000).unwrap(),
                 direction: RampDirection::Positive,
