@@ -9,6 +9,16 @@
 //!   and last values differ, the jump going out under the frequency
 //!   limit); with a relative slave the stroke accumulates
 //!   ([`Coupling::Repeat`]), so the slave is continuous;
+//! - a relative slave (`SlaveAbsolute = FALSE`, or
+//!   [`CamInStartMode::Relative`]) adds the slave's start position to the
+//!   table values, as RTmotion and CODESYS do; [`CamInStartMode::Bumpless`]
+//!   is the explicit no-step option;
+//! - scalings are signed ([`Zoom::signed`]); `MasterScaling` follows
+//!   RTmotion's convention, table input = master × scaling + offset
+//!   ([`CamIn::master_profile_scaled`] gives the standard's wording);
+//! - `ExecutionMode` queued makes a table selected while engaged take over
+//!   by itself at the next seam; the blending `BufferMode`s are refused
+//!   ([`EngineError::UnsupportedBufferMode`]);
 //! - a non-periodic table with an absolute master runs over the table's
 //!   own master range and then keeps the slave coupled at the end value
 //!   ([`Coupling::Normal`]; `EndOfProfile` set while the master is at or
