@@ -148,3 +148,33 @@ fn word_groups_take_results_and_keep_only_their_own_bits() {
     assert_eq!(m_group(&plc, 600, 4), 0x000F);
     assert_eq!(m_group(&plc, 700, 8), 0x540B_E400);
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(crate::cases(200)))]
+
+    /// `MOV K<v> KnM<first>` writes v's low n × 4 bits there and leaves
+    /// every other relay as it was; reading the group back gives them.
+    #[test]
+    fn a_group_destination_writes_only_its_bits(
+        value in proptest::prelude::any::<i16>(),
+        digits in 1u16..=4,
+        first in 1u16..200,
+        around in proptest::prelude::any::<bool>(),
+    ) {
+        let src = format!("LD M8000\nMOV K{value} K{digits}M{first}\nMOV K{digits}M{first} D0\nEND\n");
+        let mut plc = plc(&src);
+        for m in 0..300 {
+            plc.devices_mut().set_m(m, around).unwrap();
+        }
+        proptest::prop_assert!(plc.scan().is_empty());
+        let bits = digits * 4;
+        let mask = if bits == 16 { u32::MAX } else { (1u32 << bits) - 1 };
+        let expected = u32::from(value as u16) & mask;
+        proptest::prop_assert_eq!(m_group(&plc, first, digits), expected);
+        for m in (0..first).chain(first + bits..300) {
+            proptest::prop_assert_eq!(plc.devices().m(m).unwrap(), around, "M{}", m);
+        }
+        let read_back = if bits == 16 { i32::from(value) } else { expected as i32 };
+        proptest::prop_assert_eq!(i32::from(word(&plc, 0)), read_back);
+    }
+}
