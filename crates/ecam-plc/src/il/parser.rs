@@ -264,7 +264,7 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
             Instruction::Set(coil(mnemonic, 0, &ops[0])?)
         }
         "RST" => {
-            arity(mnemonic, ops, &["Y/M/D/C/T/Dn.b"])?;
+            arity(mnemonic, ops, &["Y/M/D/C/T/V/Z/Dn.b"])?;
             match ops[0] {
                 Operand::Device(
                     d @ (Device::Y(_) | Device::M(_) | Device::D(_) | Device::C(_)),
@@ -274,12 +274,20 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
                 Operand::Indexed(Modified::Device(d @ (Device::Y(_) | Device::M(_))), by) => {
                     Instruction::Reset(BitRef::Indexed(d, by))
                 }
+                // RST Vn/Zn clears the register while the power flow is on:
+                // exactly what a continuous `MOV K0 Zn` does.
+                Operand::Index(register) => Instruction::Move {
+                    width: Width::Word,
+                    exec: Exec::Continuous,
+                    src: Source::Constant(0),
+                    dst: Dest::Index(register),
+                },
                 ref other => {
                     return Err(wrong(
                         mnemonic,
                         0,
                         other,
-                        "a Y, M, D, C or T device or a bit Dn.b",
+                        "a Y, M, D, C, T, V or Z device or a bit Dn.b",
                     ));
                 }
             }

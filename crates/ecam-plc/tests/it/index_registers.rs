@@ -202,6 +202,23 @@ fn forbidden_combinations_fail_at_load_with_their_line() {
 }
 
 #[test]
+fn rst_clears_an_index_register_while_its_power_flow_is_on() {
+    let mut plc = plc("LD X0\nRST Z3\nLD X1\nRST V3\nEND\n");
+    let d = plc.devices_mut();
+    d.set_index_pair(3, 70000).unwrap();
+    assert!(plc.scan().is_empty());
+    assert_eq!(plc.devices().index_pair(3), Ok(70000));
+    plc.devices_mut().set_bit(Device::X(0), true).unwrap();
+    assert!(plc.scan().is_empty());
+    assert_eq!(index(&plc, IndexReg::Z(3)), 0);
+    assert_eq!(
+        index(&plc, IndexReg::V(3)),
+        1,
+        "V3 is a register of its own"
+    );
+}
+
+#[test]
 fn tools_read_and_set_index_registers_by_name() {
     let mut plc = plc("LD M8000\nMOV Z3 D0\nEND\n");
     View::parse("z3")
