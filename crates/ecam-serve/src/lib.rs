@@ -60,6 +60,7 @@ mod device_json;
 #[doc(hidden)]
 pub mod fuzz;
 mod journal;
+mod live;
 mod map;
 mod mbap;
 mod pdu;
@@ -76,6 +77,7 @@ pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
     OnDamage, Recovery, SNAPSHOT_FILE,
 };
+pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
     CoilArea, CoilRange, RegisterRange, X_COIL_BASE, Y_COIL_BASE, coil_range, register_range,
     writable_coil_range,
