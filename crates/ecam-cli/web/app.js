@@ -736,7 +736,8 @@ function onLiveSample(s) {
   $("live-state").textContent = s.running ? "cam running" : "cam stopped";
   $("live-state").dataset.state = s.running ? "running" : "stopped";
   $("ro-mode").textContent = s.mode + (s.error ? ` (error ${s.error})` : "");
-  $("ro-master").textContent = `${s.master} (cycle ${s.master_in_cycle})`;
+  // Offsets 27/28 and 25/26: the same place in the cycle, before and after the master zoom.
+  $("ro-master").textContent = s.master === s.master_in_cycle ? String(s.master) : `${s.master} (zoomed ${s.master_in_cycle})`;
   $("ro-slave").textContent = String(s.slave);
   $("ro-speed").textContent = s.slave_velocity === null ? "–" : `${fmt(Math.round(s.slave_velocity))} pulses/s`;
   $("ro-sync").textContent = `${s.sync_output.device} ${s.sync_output.enabled ? (s.sync_output.on ? "on" : "off") : "not driven"}${s.in_sync ? " · in sync area" : ""}`;

@@ -10,8 +10,9 @@
 //! file and line, [`Damage`], or is stepped over, [`OnDamage`]), which devices a restart keeps ([`is_kept`],
 //! [`LatchedImage`]), device names as JSON for the HTTP API
 //! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
-//! and the PLC shared by the scan loop and the servers ([`Shared`]), paced
-//! by the wall clock ([`scan_loop`]).
+//! the PLC shared by the scan loop and the servers ([`Shared`]), paced
+//! by the wall clock ([`scan_loop`]), and what the designer's live view
+//! samples of a DECAM block ([`LiveRequest`], [`LiveSample`]).
 //!
 //! It has no async runtime and prints nothing: the binary owns the
 //! sockets, the threads and stderr, and hears what the operator should
