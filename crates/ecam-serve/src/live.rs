@@ -4,6 +4,7 @@
 //! over a WebSocket (`GET /api/live`); this module decides what a sample
 //! holds and how often one may be asked for.
 
+use ecam_plc::decam::{flags, offsets};
 use ecam_plc::{D_COUNT, Device, Plc};
 use serde_json::{Value, json};
 
@@ -15,13 +16,7 @@ pub const MAX_LIVE_RATE: u32 = 50;
 
 /// Words of a DECAM block the live view reads (offsets 0–39 and the
 /// first point; the last point is read when it lies within D8511).
-const BLOCK_WORDS: u16 = 44;
-/// Flag register bits (docs/plc.md, "Flag register").
-const FLAG_CYCLIC: u16 = 1 << 6;
-const FLAG_NONCYCLIC: u16 = 1 << 7;
-const FLAG_IN_SYNC: u16 = 1 << 10;
-/// Function register (offset 4) bit 0: drive the sync output.
-const FUNCTION_SYNC: u16 = 1;
+const BLOCK_WORDS: u16 = offsets::TABLE + offsets::WORDS_PER_SECTION;
 
 /// What `GET /api/live` was asked to stream.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -107,11 +102,12 @@ impl LiveSample {
                 .map_or(0, |w| u16::from_ne_bytes(w.to_ne_bytes()))
         };
         let dword = |offset: u16| d.dword(block.saturating_add(offset)).unwrap_or(0);
-        let sync_output = word(8);
-        let points = word(38);
-        let table_span = if (2..=512).contains(&points) {
-            let last = d.dword(block.saturating_add(40 + 4 * (points - 1)));
-            last.map_or(0, |last| i64::from(last) - i64::from(dword(40)))
+        let sync_output = word(offsets::SYNC_OUTPUT);
+        let points = word(offsets::SECTIONS);
+        let table_span = if (2..=offsets::MAX_SECTIONS).contains(&points) {
+            let last = offsets::TABLE + offsets::WORDS_PER_SECTION * (points - 1);
+            d.dword(block.saturating_add(last))
+                .map_or(0, |last| i64::from(last) - i64::from(dword(offsets::TABLE)))
         } else {
             0
         };
@@ -119,14 +115,14 @@ impl LiveSample {
             time_us: plc.now_us(),
             scans: plc.scans(),
             running: plc.cam_running(block),
-            flags: word(1),
-            error: word(2),
-            master: dword(27),
-            master_in_cycle: dword(25),
+            flags: word(offsets::FLAGS),
+            error: word(offsets::ERROR),
+            master: dword(offsets::MASTER_RAW),
+            master_in_cycle: dword(offsets::MASTER_ZOOMED),
             table_span,
-            slave: dword(19),
+            slave: dword(offsets::SLAVE_ZOOMED),
             sync_output,
-            sync_enabled: word(4) & FUNCTION_SYNC != 0,
+            sync_enabled: word(offsets::CONTROL) & flags::CTL_SYNC_ENABLE != 0,
             sync_on: d.bit(Device::Y(sync_output)).ok(),
         }
     }
@@ -160,9 +156,9 @@ impl LiveSample {
             }
             step as f64 * 1e6 / dt as f64
         });
-        let mode = if self.flags & FLAG_CYCLIC != 0 {
+        let mode = if self.flags & flags::CYCLIC != 0 {
             "cyclic"
-        } else if self.flags & FLAG_NONCYCLIC != 0 {
+        } else if self.flags & flags::NONCYCLIC != 0 {
             "noncyclic"
         } else {
             "stopped"
@@ -181,7 +177,7 @@ impl LiveSample {
             "table_span": self.table_span,
             "master_velocity": master_speed,
             "slave_velocity": speed(self.slave, previous.map(|p| p.slave)),
-            "in_sync": self.flags & FLAG_IN_SYNC != 0,
+            "in_sync": self.flags & flags::IN_SYNC_AREA != 0,
             "sync_output": {
                 "device": format!("Y{:o}", self.sync_output),
                 "enabled": self.sync_enabled,
@@ -234,8 +230,8 @@ mod tests {
 
     #[test]
     fn speeds_come_from_the_previous_sample_and_wrap_like_the_counters() {
-        let a = sample(1_000_000, i32::MAX - 9, FLAG_CYCLIC | FLAG_IN_SYNC);
-        let b = sample(1_100_000, i32::MIN + 10, FLAG_CYCLIC);
+        let a = sample(1_000_000, i32::MAX - 9, flags::CYCLIC | flags::IN_SYNC_AREA);
+        let b = sample(1_100_000, i32::MIN + 10, flags::CYCLIC);
         let first = a.to_json(2000, None);
         assert!(first["slave_velocity"].is_null());
         assert_eq!(first["mode"], "cyclic");
@@ -249,7 +245,7 @@ mod tests {
 
     #[test]
     fn the_master_speed_runs_on_across_the_seam() {
-        let mut a = sample(1_000_000, 0, FLAG_CYCLIC);
+        let mut a = sample(1_000_000, 0, flags::CYCLIC);
         a.master_in_cycle = 3900;
         a.table_span = 4000;
         let mut b = a.clone();
