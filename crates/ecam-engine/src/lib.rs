@@ -45,6 +45,7 @@ extern crate std;
 
 mod axis;
 mod blend;
+mod coast;
 mod config;
 mod coupling;
 mod error;
@@ -64,6 +65,7 @@ mod stop;
 mod switch;
 mod sync;
 mod tracker;
+mod turn_position;
 mod zoom;
 
 pub use axis::{AfterPass, CamAxis};
