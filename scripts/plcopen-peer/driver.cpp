@@ -6,6 +6,7 @@
 //
 // Usage: driver CASE          one trace as CSV on stdout
 //        driver --list        the case names
+//        driver --tables      the cam tables as CSV
 //        driver --bench [N]   ns per FB cycle (513-point and 4-point cams)
 #include <chrono>
 #include <cmath>
@@ -80,9 +81,9 @@ const Case CASES[] = {
     {"master_scaling_2_offset_1000", "doc001", true, true, true, axis::CamStartMode::absolute, 2,
      1000, 0, 0, 625, 80000, 80000},
     {"slave_relative_adds_start_5000", "doc001", true, false, false,
-     axis::CamStartMode::absolute, 1, 0, 5000, 0, 750, 30000, 30000},
+     axis::CamStartMode::absolute, 1, 0, 5000, 0, 750, 70000, 70000},
     {"start_mode_relative_5000", "doc001", true, true, true, axis::CamStartMode::relative, 1, 0,
-     5000, 0, 750, 30000, 30000},
+     5000, 0, 750, 70000, 70000},
 };
 
 Points table_named(const std::string &name)
@@ -228,6 +229,15 @@ int main(int argc, char **argv)
 {
     if(argc >= 2 && std::strcmp(argv[1], "--list") == 0) {
         for(const Case &c : CASES) std::printf("%s\n", c.name);
+        return 0;
+    }
+    if(argc >= 2 && std::strcmp(argv[1], "--tables") == 0) {
+        std::printf("# The cam tables the traces use (master,slave points).\ntable,master,slave\n");
+        for(const char *name : {"doc001", "cam513"}) {
+            for(const exec::CamPoint &p : table_named(name)) {
+                std::printf("%s,%.0f,%.0f\n", name, p.master, p.slave);
+            }
+        }
         return 0;
     }
     if(argc >= 2 && std::strcmp(argv[1], "--bench") == 0) {
