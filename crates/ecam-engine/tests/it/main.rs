@@ -10,6 +10,7 @@ mod master_sources;
 mod missed_activation;
 mod offsets_on_the_fly;
 mod plcopen;
+mod plcopen_peer;
 mod plcopen_reference;
 mod properties;
 mod ramp_in_limits;
