@@ -426,12 +426,25 @@ function computePoints() {
 const SUMMARY_LABELS = {
   sections: "sections", master_span: "master span", stroke: "stroke", slave_min: "slave min",
   slave_max: "slave max", peak_velocity: "peak velocity (table)", peak_acceleration: "peak acceleration (table)",
+  design_peak_velocity: "peak velocity (design)", design_peak_acceleration: "peak acceleration (design)",
   continuity: "continuity", seam: "seam",
 };
 
+// Above this ratio the table's acceleration is mostly whole-pulse rounding
+// ripple, and the summary says so rather than letting it pass for the law's.
+const RIPPLE_NOTE_RATIO = 1.5;
+
 function summaryOf(t) {
   const rows = [["points", t.points]];
-  for (const [k, v] of Object.entries(t.summary || {})) rows.push([SUMMARY_LABELS[k] || k.replace(/_/g, " "), typeof v === "number" ? fmt(v) : v]);
+  for (const [k, v] of Object.entries(t.summary || {})) {
+    if (v === null || v === undefined) continue;
+    rows.push([SUMMARY_LABELS[k] || k.replace(/_/g, " "), typeof v === "number" ? fmt(v) : v]);
+  }
+  const s = t.summary || {};
+  if (s.design_peak_acceleration > 0 && s.peak_acceleration / s.design_peak_acceleration > RIPPLE_NOTE_RATIO) {
+    rows.push(["note", `the table's acceleration is ${(s.peak_acceleration / s.design_peak_acceleration).toFixed(1)}× the design's: ` +
+      "its points are rounded to whole pulses, a ripple that grows as sections get shorter; the drive follows the table, the motion law asks for the design's value"]);
+  }
   const outputs = Object.entries(t.outputs || {});
   if (t.sync && !outputs.some(([k]) => k === "sync zone")) rows.push(["sync zone", `${t.sync[0]} … ${t.sync[1]}`]);
   for (const [k, v] of outputs) rows.push([k, v]);

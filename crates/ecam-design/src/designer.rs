@@ -175,6 +175,7 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
         .clone()
         .unwrap_or_else(|| derivatives::of_points(points));
     let summary = Summary::of(&g.table);
+    let design_peaks = g.design.as_ref().map(design_peaks);
     let outputs: serde_json::Map<String, Value> = g
         .outputs
         .iter()
@@ -206,16 +207,48 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
             "slave_max": summary.slave_max,
             "peak_velocity": summary.peak_velocity,
             "peak_acceleration": summary.peak_acceleration,
+            // What the design asks for, beside what the whole-pulse table
+            // shows: on short sections the rounding ripple of the table's
+            // acceleration is many times the design's.
+            "design_peak_velocity": design_peaks.map(|(v, _)| v),
+            "design_peak_acceleration": design_peaks.map(|(_, a)| a),
             "continuity": summary.continuity.to_string(),
             "seam": summary.seam.to_string(),
         },
     }))
 }
 
+/// The largest |velocity| and |acceleration| of the design curve, from the
+/// same dense samples the page draws.
+fn design_peaks(design: &DesignCurve) -> (f64, f64) {
+    design
+        .sample_pieces(DESIGN_SAMPLES_PER_PIECE)
+        .iter()
+        .fold((0.0_f64, 0.0_f64), |(v, a), (_, k)| {
+            (v.max(k.v.abs()), a.max(k.a.abs()))
+        })
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_summary_gives_the_designs_peaks_beside_the_tables() {
+        let out = generate_json(&json!({"generator": "rotary-cut", "params": {}})).unwrap();
+        let summary = &out["summary"];
+        let design_a = summary["design_peak_acceleration"].as_f64().unwrap();
+        let table_a = summary["peak_acceleration"].as_f64().unwrap();
+        let design_v = summary["design_peak_velocity"].as_f64().unwrap();
+        // The sync ratio is the design's top speed; the table's sections
+        // reach it too. Its acceleration is the rounding ripple, far above.
+        assert!((design_v - summary["peak_velocity"].as_f64().unwrap()).abs() < 0.05);
+        assert!(
+            design_a > 0.0 && table_a > 2.0 * design_a,
+            "{design_a} {table_a}"
+        );
+    }
 
     #[test]
     fn a_law_rises_from_zero_to_one() {
