@@ -32,6 +32,8 @@ use crate::{
 mod engage;
 mod online;
 mod phase;
+#[cfg(test)]
+mod steady_tests;
 mod takeover;
 
 pub use online::AfterPass;
@@ -306,6 +308,13 @@ impl<C: CamCurve> CamAxis<C> {
     /// master moves continuously (a jump costs one binary search).
     #[must_use = "the tick's output holds the pulses to emit"]
     pub fn tick(&mut self, input: &TickInput) -> TickOutput {
+        self.step(input, true)
+    }
+
+    /// [`CamAxis::tick`]; `steady_allowed = false` takes the general path
+    /// even for a settled cam (tests compare the two).
+    #[inline]
+    fn step(&mut self, input: &TickInput, steady_allowed: bool) -> TickOutput {
         let reading = match &mut self.turn {
             Some(turn) => turn.update(input.master),
             None => input.master,
@@ -362,25 +371,53 @@ impl<C: CamCurve> CamAxis<C> {
             }
         }
 
-        let phase = core::mem::replace(&mut self.phase, Phase::Idle);
-        let followed = match phase {
-            Phase::Running(engaged) => self.follow(engaged, None, master, estimate.fraction),
-            Phase::Stopping(engaged, end) => {
-                self.follow(engaged, Some(end), master, estimate.fraction)
+        // A settled cam at a whole master count: the steady tick, from the
+        // engagement's constants (same results, see `steady.rs`).
+        let settled = match &mut self.phase {
+            Phase::Running(engaged)
+                if steady_allowed
+                    && estimate.fraction == 0
+                    && engaged.ramp.is_none()
+                    && !engaged.changing() =>
+            {
+                engaged.steady.and_then(|constants| {
+                    let cam = constants.sample(master, &self.curve, &mut self.cursor)?;
+                    engaged.followed = i128::from(master) << 32;
+                    let k = i128::from(cam.k);
+                    if engaged.place.k != k {
+                        events.cycle_completed = true;
+                        events.seam_jump |= self.geometry.jumps_at_seam;
+                    }
+                    engaged.place = Place {
+                        k,
+                        r_num: i128::from(cam.r_num),
+                    };
+                    Some(FollowSample {
+                        master_in_cycle: cam.master_in_cycle,
+                        master_in_cycle_raw: cam.master_in_cycle_raw,
+                        cycle: clamp_i64(k - i128::from(constants.k_engage)),
+                        unzoomed: cam.unzoomed,
+                        in_cycle_zoomed: cam.in_cycle_zoomed,
+                        velocity_ratio: cam.velocity_ratio,
+                        following: true,
+                        input_offset: constants.input_offset,
+                        slave: cam.slave,
+                    })
+                })
             }
-            other => Ok((other, None, Events::default())),
+            _ => None,
         };
-        match followed {
-            Ok((phase, followed, happened)) => {
-                self.phase = phase;
-                sample = followed;
-                events.merge(happened);
-            }
-            Err(e) => {
-                // The engaged phase was taken out: the axis is idle now.
-                fault = Some(e);
-                events.stopped = true;
-            }
+        if let Some(followed) = settled {
+            self.commanded = followed.slave;
+            sample = Some(followed);
+        } else {
+            self.follow_general(
+                &mut events,
+                &mut fault,
+                &mut sample,
+                master,
+                estimate.fraction,
+            );
         }
 
         let hz = effective_frequency(self.config.max_frequency_hz);
@@ -388,6 +425,36 @@ impl<C: CamCurve> CamAxis<C> {
             .pulse
             .step(self.commanded, input.output_enabled, hz, input.dt_us);
         self.report(master, sample, pulses, events, fault)
+    }
+
+    /// The general tick for any phase: moves the phase out, follows the
+    /// cam when engaged and puts the next phase back.
+    fn follow_general(
+        &mut self,
+        events: &mut Events,
+        fault: &mut Option<EngineError>,
+        sample: &mut Option<FollowSample>,
+        master: i64,
+        fraction: u32,
+    ) {
+        let phase = core::mem::replace(&mut self.phase, Phase::Idle);
+        let followed = match phase {
+            Phase::Running(engaged) => self.follow(engaged, None, master, fraction),
+            Phase::Stopping(engaged, end) => self.follow(engaged, Some(end), master, fraction),
+            other => Ok((other, None, Events::default())),
+        };
+        match followed {
+            Ok((phase, followed, happened)) => {
+                self.phase = phase;
+                *sample = followed;
+                events.merge(happened);
+            }
+            Err(e) => {
+                // The engaged phase was taken out: the axis is idle now.
+                *fault = Some(e);
+                events.stopped = true;
+            }
+        }
     }
 
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
@@ -480,6 +547,7 @@ impl<C: CamCurve> CamAxis<C> {
         fraction: u32,
     ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
+        engaged.steady = None;
         if let Some(ramp) = engaged.offsets
             && ramp.finished(master)
         {
@@ -553,15 +621,23 @@ impl<C: CamCurve> CamAxis<C> {
         }
         engaged.place = place;
         let followed = FollowSample {
-            cam,
+            master_in_cycle: self.geometry.input_in_cycle(place),
+            master_in_cycle_raw: self.geometry.raw_in_cycle(place),
+            cycle: clamp_i64(place.k.saturating_sub(engaged.engagement.k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
             velocity_ratio,
             following: !ramping
                 && !blending
                 && engaged.offsets.is_none()
                 && engaged.scaling.is_none(),
             input_offset: engaged.engagement.input_offset(&self.geometry),
-            cycle: place.k.saturating_sub(engaged.engagement.k_engage),
+            slave,
         };
+        if !ramping && stop_at.is_none() && !engaged.changing() {
+            // Settled: the next ticks can take the steady path.
+            engaged.steady = engaged.engagement.steady(&self.geometry);
+        }
         let phase = if let Some(forward) = here.stopped {
             events.cycle_completed |= forward;
             events.stopped = true;
@@ -581,6 +657,8 @@ impl<C: CamCurve> CamAxis<C> {
         Ok((phase, Some(followed), events))
     }
 
+    /// Fills the output record in place and hands back a copy.
+    #[inline]
     fn report(
         &mut self,
         master: i64,
@@ -589,21 +667,24 @@ impl<C: CamCurve> CamAxis<C> {
         events: Events,
         fault: Option<EngineError>,
     ) -> TickOutput {
-        let mut out = self.last;
         let state = self.state();
+        if events.engaged || events.table_switched {
+            self.missed = false;
+        }
+        self.missed |= events.activation_missed;
+        let backlog = self.pulse.backlog(self.commanded);
+        let out = &mut self.last;
         out.state = state;
         out.master = master;
         out.velocity_ratio = 0.0;
         out.following = false;
         if let Some(s) = sample {
-            let place = s.cam.place;
-            out.master_in_cycle = self.geometry.input_in_cycle(place);
-            out.master_in_cycle_raw = self.geometry.raw_in_cycle(place);
-            out.cycle =
-                i64::try_from(s.cycle).unwrap_or(if s.cycle < 0 { i64::MIN } else { i64::MAX });
-            out.slave_unzoomed = s.cam.unzoomed;
+            out.master_in_cycle = s.master_in_cycle;
+            out.master_in_cycle_raw = s.master_in_cycle_raw;
+            out.cycle = s.cycle;
+            out.slave_unzoomed = s.unzoomed;
             out.input_offset = s.input_offset;
-            out.output_offset = self.commanded.saturating_sub(s.cam.in_cycle_zoomed);
+            out.output_offset = self.commanded.saturating_sub(s.in_cycle_zoomed);
             if state.is_engaged() {
                 out.velocity_ratio = s.velocity_ratio;
                 out.following = s.following;
@@ -613,8 +694,8 @@ impl<C: CamCurve> CamAxis<C> {
         out.pulses = pulses;
         out.direction_forward = self.pulse.forward;
         out.emitted = self.pulse.emitted;
-        out.backlog = self.pulse.backlog(self.commanded);
-        out.pulse_delayed = out.backlog != 0;
+        out.backlog = backlog;
+        out.pulse_delayed = backlog != 0;
         out.sync = if state.is_engaged() {
             active_windows(&self.config.sync_windows, out.master_in_cycle)
         } else {
@@ -622,16 +703,11 @@ impl<C: CamCurve> CamAxis<C> {
         };
         out.in_sync = out.sync != 0;
         out.initialised = state.is_active();
-        out.busy = out.initialised || out.backlog != 0;
-        if events.engaged || events.table_switched {
-            self.missed = false;
-        }
-        self.missed |= events.activation_missed;
+        out.busy = out.initialised || backlog != 0;
         out.activation_missed = self.missed;
         out.events = events;
         out.fault = fault;
-        self.last = out;
-        out
+        *out
     }
 }
 
@@ -647,9 +723,24 @@ struct Resolved {
 /// What following the cam produced this tick (kept out of the public output).
 #[derive(Clone, Copy, Debug)]
 struct FollowSample {
-    cam: Sample,
+    /// Table input in the cycle after master zoom (floor).
+    master_in_cycle: i64,
+    /// The same before master zoom (floor).
+    master_in_cycle_raw: i64,
+    /// Cycles since engaging.
+    cycle: i64,
+    /// Table value plus accumulated strokes, before slave zoom.
+    unzoomed: i64,
+    /// The table value in the cycle after slave zoom.
+    in_cycle_zoomed: i64,
     velocity_ratio: f64,
     following: bool,
     input_offset: i64,
-    cycle: i128,
+    /// The commanded slave.
+    slave: i64,
+}
+
+/// `v` clamped into `i64`.
+fn clamp_i64(v: i128) -> i64 {
+    i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
 }

@@ -12,6 +12,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::steady::Steady;
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
 
 /// How far the table extends along the master.
@@ -199,7 +200,8 @@ impl Geometry {
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
         let (whole, rem) = div_floor(accumulated, self.sden);
-        let fraction = libm::round((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
+        let fraction =
+            round_half_away((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
         if !fraction.is_finite() || fraction.abs() > 1e36 {
             return Err(EngineError::SlaveOverflow);
         }
@@ -240,6 +242,30 @@ fn to_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
         Err(_) => ((v >> 64) as i64 as f64) * 18_446_744_073_709_551_616.0 + (v as u64) as f64,
+    }
+}
+
+/// `v` rounded to the nearest whole number, halves away from zero, as
+/// `libm::round` does (up to the sign of a zero result, which no caller
+/// can see: every result becomes an integer). Below 2^52 in magnitude,
+/// where floats can have a fraction, it truncates with one conversion and
+/// looks at the exact remainder; beyond (and for NaN or infinities)
+/// `libm::round`, whose software routine costs several times more.
+#[inline]
+pub(crate) fn round_half_away(v: f64) -> f64 {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64 as f64;
+        // Exact: both are within 2^52 and `whole` is `v` without its fraction.
+        let fraction = v - whole;
+        if fraction >= 0.5 {
+            whole + 1.0
+        } else if fraction <= -0.5 {
+            whole - 1.0
+        } else {
+            whole
+        }
+    } else {
+        libm::round(v)
     }
 }
 
@@ -498,6 +524,37 @@ impl Engagement {
         clamp_i64(div_floor(self.input_offset_num, geo.mden).0)
     }
 
+    /// The 64-bit constants of this engagement on `geo` for the steady
+    /// tick ([`crate::steady`]); `None` for a one-shot or a normal cam
+    /// (their place is clamped) or when a constant leaves 64 bits.
+    pub(crate) fn steady(&self, geo: &Geometry) -> Option<Steady> {
+        if geo.extent != Extent::Cyclic || self.span.is_some() || geo.mnum <= 0 {
+            return None;
+        }
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let stroke = narrow(geo.stroke)?;
+        let snum = narrow(geo.snum)?;
+        Some(Steady {
+            mnum: narrow(geo.mnum)?,
+            offset_num: narrow(self.input_offset_num.checked_sub(geo.origin_num)?)?,
+            period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
+            origin: geo.origin,
+            origin_f: geo.origin as f64,
+            mden: narrow(geo.mden).filter(|&d| d > 0)?,
+            mden_f: to_f64(geo.mden),
+            shift: narrow(self.shift)?,
+            stroke,
+            stroke_snum: stroke.checked_mul(snum)?,
+            snum_f: to_f64(geo.snum),
+            sden: narrow(geo.sden).filter(|&d| d > 0)?,
+            sden_f: to_f64(geo.sden),
+            zoom_factor: geo.zoom_factor(),
+            output_offset: narrow(self.output_offset)?,
+            k_engage: narrow(self.k_engage)?,
+            input_offset: self.input_offset(geo),
+        })
+    }
+
     /// The commanded slave at `place`.
     pub(crate) fn sample<C: CamCurve + ?Sized>(
         &self,
@@ -515,8 +572,8 @@ impl Engagement {
             .ok_or(EngineError::SlaveOverflow)?;
         let unzoomed = mul_exact(strokes, geo.stroke)
             .unwrap_or(i128::MAX)
-            .saturating_add(whole_to_i128(libm::round(table)));
-        let in_cycle_zoomed = libm::round(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
+            .saturating_add(whole_to_i128(round_half_away(table)));
+        let in_cycle_zoomed = round_half_away(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
         Ok(Sample {
             place,
             slave,

@@ -36,6 +36,7 @@ impl PulseOutput {
     /// pulse count. Never more than `(hz × dt_us + credit) / 10^6` pulses,
     /// with the carried credit below one pulse, so the average rate never
     /// exceeds `hz`.
+    #[inline]
     pub(crate) fn step(&mut self, commanded: i64, enabled: bool, hz: u32, dt_us: u32) -> i64 {
         let owed = i128::from(commanded) - i128::from(self.emitted);
         if !enabled || owed == 0 {

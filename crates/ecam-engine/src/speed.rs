@@ -32,6 +32,7 @@ impl MasterSpeed {
     }
 
     /// Takes this tick's followed position after `dt_us`.
+    #[inline]
     pub(crate) fn update(&mut self, at: MasterPosition, dt_us: u32) {
         let fixed = (i128::from(at.counts) << 32) | i128::from(at.fraction);
         if let (Some(p), Some(d)) = (

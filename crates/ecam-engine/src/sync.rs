@@ -41,6 +41,7 @@ impl SyncWindow {
 }
 
 /// Bit `i` set when window `i` holds `master_in_cycle`.
+#[inline]
 pub(crate) fn active_windows(windows: &[SyncWindow; 4], master_in_cycle: i64) -> u8 {
     let mut bits = 0u8;
     for (i, w) in windows.iter().enumerate() {
