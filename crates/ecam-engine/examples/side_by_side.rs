@@ -80,11 +80,9 @@ fn main() -> Result<(), String> {
         &batch,
         |q, out| table.positions_into(q, out),
     );
-    let cycles = if options.quick { 200 } else { 1000 };
+    let blocks = if options.quick { 300 } else { 2000 };
     for n in [1usize, 64] {
-        let ticks = 100_000 / n.max(1);
-        let engine = time_engine(&common::axes(&table, n), ticks, cycles / 10);
-        let minimal = time_minimal(&mut common::minimal_axes(&table, n), ticks, cycles / 10);
+        let (engine, minimal) = ticks_side_by_side(&table, n, blocks);
         line(
             &format!("tick-{n}"),
             engine,
@@ -97,7 +95,7 @@ fn main() -> Result<(), String> {
         worst,
         Some(("mean of the same 1e6 ticks", mean)),
     );
-    let peer = time_engine(&common::axes(&periodic, 1), 100_000, cycles / 10);
+    let peer = time_engine(&mut common::axes(&periodic, 1), 2048, blocks);
     line("tick-peer", peer, None);
     Ok(())
 }
@@ -122,34 +120,52 @@ fn lookup_case(case: &str, reps: usize, queries: &[f64], run: impl Fn(&[f64], &m
     line(case, median(&mut times), None);
 }
 
-/// Median ns per axis-tick of `ticks`-long runs of all `axes`.
-fn time_engine(axes: &[CamAxis<PointTable>], ticks: usize, reps: usize) -> f64 {
-    let mut axes = axes.to_vec();
+/// Axis-ticks per timed block: short, so that a block the OS interrupts
+/// is one outlier among many rather than a shift of the whole figure.
+const TICKS_PER_BLOCK: usize = 2048;
+
+/// Median ns per axis-tick of the engine and of the minimal loop, `n` axes
+/// each, timed in alternating blocks so that both see the same machine.
+fn ticks_side_by_side(table: &PointTable, n: usize, blocks: usize) -> (f64, f64) {
+    let mut engine = common::axes(table, n);
+    let mut minimal = common::minimal_axes(table, n);
+    let cycles = (TICKS_PER_BLOCK / n).max(1);
+    let (mut master_e, mut master_m) = (0i64, 0i64);
+    let mut times_e = Vec::with_capacity(blocks);
+    let mut times_m = Vec::with_capacity(blocks);
+    for _ in 0..blocks {
+        let start = Instant::now();
+        for _ in 0..cycles {
+            master_e += common::MASTER_PER_TICK;
+            let input = TickInput::at(master_e, common::DT_US);
+            for axis in engine.iter_mut() {
+                black_box(axis.tick_in_place(black_box(&input)));
+            }
+        }
+        times_e.push(start.elapsed().as_nanos() as f64 / (cycles * n) as f64);
+        let start = Instant::now();
+        for _ in 0..cycles {
+            master_m += common::MASTER_PER_TICK;
+            for axis in minimal.iter_mut() {
+                black_box(axis.tick(black_box(master_m)));
+            }
+        }
+        times_m.push(start.elapsed().as_nanos() as f64 / (cycles * n) as f64);
+    }
+    (median(&mut times_e), median(&mut times_m))
+}
+
+/// Median ns per axis-tick of `blocks` runs of `ticks` cycles of all `axes`.
+fn time_engine(axes: &mut [CamAxis<PointTable>], ticks: usize, blocks: usize) -> f64 {
     let mut master = 0i64;
-    let mut times = Vec::with_capacity(reps);
-    for _ in 0..reps.max(3) {
+    let mut times = Vec::with_capacity(blocks);
+    for _ in 0..blocks.max(3) {
         let start = Instant::now();
         for _ in 0..ticks {
             master += common::MASTER_PER_TICK;
             let input = TickInput::at(master, common::DT_US);
             for axis in axes.iter_mut() {
-                black_box(axis.tick(black_box(&input)));
-            }
-        }
-        times.push(start.elapsed().as_nanos() as f64 / (ticks * axes.len()) as f64);
-    }
-    median(&mut times)
-}
-
-fn time_minimal(axes: &mut [common::minimal::MinimalAxis], ticks: usize, reps: usize) -> f64 {
-    let mut master = 0i64;
-    let mut times = Vec::with_capacity(reps);
-    for _ in 0..reps.max(3) {
-        let start = Instant::now();
-        for _ in 0..ticks {
-            master += common::MASTER_PER_TICK;
-            for axis in axes.iter_mut() {
-                black_box(axis.tick(black_box(master)));
+                black_box(axis.tick_in_place(black_box(&input)));
             }
         }
         times.push(start.elapsed().as_nanos() as f64 / (ticks * axes.len()) as f64);
@@ -171,7 +187,7 @@ fn worst_case(table: &PointTable) -> (f64, f64) {
         master += common::MASTER_PER_TICK;
         let input = TickInput::at(master, common::DT_US);
         let start = Instant::now();
-        black_box(axis.tick(black_box(&input)));
+        black_box(axis.tick_in_place(black_box(&input)));
         let took = start.elapsed().as_nanos();
         total += took;
         worst = worst.max(took);

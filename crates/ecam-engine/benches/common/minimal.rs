@@ -8,7 +8,8 @@
 //! limiter with its credit, four sync windows, and the full output record
 //! (`TickOutput`) written. What it leaves out is what a real engine cannot:
 //! states, starts, stops, switches, ramps and every overflow check: it
-//! assumes all products fit 64 bits.
+//! assumes all products fit 64 bits. It rounds with one float-to-integer
+//! conversion, as the engine does, so neither side gains from a library call.
 
 use ecam_core::{CamCurve, Cursor, PointTable};
 use ecam_engine::{AxisConfig, AxisState, SyncWindow, TickOutput};
@@ -95,7 +96,7 @@ impl MinimalAxis {
         let accumulated = k * self.stroke * self.snum;
         let whole = accumulated.div_euclid(self.sden);
         let rem = accumulated.rem_euclid(self.sden);
-        let fraction = ((rem as f64 + kin.s * self.snum_f) / self.sden_f).round();
+        let fraction = round((rem as f64 + kin.s * self.snum_f) / self.sden_f);
         (k, r, whole + fraction as i64, kin)
     }
 
@@ -134,8 +135,8 @@ impl MinimalAxis {
         out.master_in_cycle_raw = r / self.mnum;
         out.cycle = k - self.k_engage;
         out.slave = slave;
-        out.slave_unzoomed = k * self.stroke + kin.s.round() as i64;
-        out.output_offset = slave - (kin.s * self.snum_f / self.sden_f).round() as i64;
+        out.slave_unzoomed = k * self.stroke + round(kin.s) as i64;
+        out.output_offset = slave - round(kin.s * self.snum_f / self.sden_f) as i64;
         out.input_offset = self.input_offset_num / self.mden;
         out.velocity_ratio = kin.v * self.zoom_factor;
         out.pulses = pulses;
@@ -151,5 +152,24 @@ impl MinimalAxis {
         out.following = true;
         out.busy = true;
         out
+    }
+}
+
+/// Rounds half away from zero with one conversion (`f64::round` is a
+/// library call on baseline x86-64); values beyond 2^52 are whole already.
+#[inline(always)]
+fn round(v: f64) -> f64 {
+    if v.abs() < 4.5e15 {
+        let whole = v as i64 as f64;
+        let fraction = v - whole;
+        if fraction >= 0.5 {
+            whole + 1.0
+        } else if fraction <= -0.5 {
+            whole - 1.0
+        } else {
+            whole
+        }
+    } else {
+        v
     }
 }

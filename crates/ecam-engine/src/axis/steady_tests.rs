@@ -123,7 +123,7 @@ proptest! {
                 ..TickInput::at(master, 100)
             };
             let a = fast.tick(&input);
-            let b = general.step(&input, false);
+            let b = *general.step(&input, false);
             prop_assert_eq!(a, b, "tick {} at master {}", i, master);
             prop_assert_eq!(fast.commanded(), general.commanded());
         }
