@@ -25,8 +25,8 @@ use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
-    TickOutput,
+    AxisConfig, AxisState, EngineError, Events, MasterFilter, MasterPosition, MasterTracker,
+    StopKind, SyncWindow, TickInput, TickOutput,
 };
 
 mod engage;
@@ -330,9 +330,17 @@ impl<C: CamCurve> CamAxis<C> {
         };
         let step = self.last_reading.map_or(0, |last| reading.abs_diff(last));
         self.last_reading = Some(reading);
-        let estimate = self
-            .tracker
-            .update(reading, input.master_fraction, input.dt_us);
+        let estimate = match self.tracker.filter() {
+            // Direct readings need no tracker state (nothing reads it back).
+            MasterFilter::Direct => MasterPosition {
+                counts: reading,
+                fraction: input.master_fraction,
+            },
+            MasterFilter::Interpolate { .. } => {
+                self.tracker
+                    .update(reading, input.master_fraction, input.dt_us)
+            }
+        };
         let master = estimate.counts;
         self.speed.update(estimate, input.dt_us);
         let edge = input.start_input && !self.last_start_input;
@@ -342,6 +350,85 @@ impl<C: CamCurve> CamAxis<C> {
         let mut fault = None;
         let mut sample = None;
 
+        // A running cam with its output on and the master within its step
+        // limit has nothing to supervise; everything else (inhibit, the
+        // step guard, a start) is handled out of line, keeping this path
+        // short.
+        let quiet = input.output_enabled
+            && matches!(self.phase, Phase::Running(_))
+            && self
+                .config
+                .max_master_step
+                .is_none_or(|limit| step <= limit.get());
+        if !quiet {
+            self.supervise(input, step, edge, master, &mut events, &mut fault);
+        }
+
+        // A settled cam at a whole master count: the steady tick, from the
+        // engagement's constants (same results, see `steady.rs`).
+        let mut settled = None;
+        if steady_allowed
+            && estimate.fraction == 0
+            && let Phase::Running(engaged) = &mut self.phase
+            && engaged.ramp.is_none()
+            && !engaged.changing()
+            && let Some(constants) = engaged.steady.as_ref()
+            && let Some(cam) = constants.sample(master, &self.curve, &mut self.cursor)
+        {
+            engaged.followed = i128::from(master) << 32;
+            let k = i128::from(cam.k);
+            if engaged.place.k != k {
+                events.cycle_completed = true;
+                events.seam_jump |= self.geometry.jumps_at_seam;
+            }
+            engaged.place = Place {
+                k,
+                r_num: i128::from(cam.r_num),
+            };
+            settled = Some(FollowSample {
+                master_in_cycle: cam.master_in_cycle,
+                master_in_cycle_raw: cam.master_in_cycle_raw,
+                cycle: clamp_i64(k - i128::from(constants.k_engage)),
+                unzoomed: cam.unzoomed,
+                in_cycle_zoomed: cam.in_cycle_zoomed,
+                velocity_ratio: cam.velocity_ratio,
+                following: true,
+                input_offset: constants.input_offset,
+                slave: cam.slave,
+            });
+        }
+        if let Some(followed) = settled {
+            self.commanded = followed.slave;
+            sample = Some(followed);
+        } else {
+            self.follow_general(
+                &mut events,
+                &mut fault,
+                &mut sample,
+                master,
+                estimate.fraction,
+            );
+        }
+
+        let hz = effective_frequency(self.config.max_frequency_hz);
+        let pulses = self
+            .pulse
+            .step(self.commanded, input.output_enabled, hz, input.dt_us);
+        self.report(master, sample, pulses, events, fault)
+    }
+
+    /// The checks before following: output inhibit, the master-step
+    /// guard, and an armed axis' start (which may engage the cam).
+    #[inline(never)]
+    fn supervise(
+        &mut self,
+        input: &TickInput,
+        step: u64,
+        edge: bool,
+        master: i64,
+        events: &mut Events,
+        fault: &mut Option<EngineError>,
+    ) {
         if !input.output_enabled && self.state().is_active() {
             self.halt();
             events.stopped = true;
@@ -353,7 +440,7 @@ impl<C: CamCurve> CamAxis<C> {
                 .max_master_step
                 .is_some_and(|limit| step > limit.get())
         {
-            fault = Some(EngineError::MasterStep);
+            *fault = Some(EngineError::MasterStep);
             self.halt();
             events.stopped = true;
         }
@@ -373,67 +460,12 @@ impl<C: CamCurve> CamAxis<C> {
             match self.engage(at) {
                 Ok(()) => events.engaged = true,
                 Err(e) => {
-                    fault = Some(e);
+                    *fault = Some(e);
                     self.halt();
                     events.stopped = true;
                 }
             }
         }
-
-        // A settled cam at a whole master count: the steady tick, from the
-        // engagement's constants (same results, see `steady.rs`).
-        let settled = match &mut self.phase {
-            Phase::Running(engaged)
-                if steady_allowed
-                    && estimate.fraction == 0
-                    && engaged.ramp.is_none()
-                    && !engaged.changing() =>
-            {
-                engaged.steady.as_ref().and_then(|constants| {
-                    let cam = constants.sample(master, &self.curve, &mut self.cursor)?;
-                    engaged.followed = i128::from(master) << 32;
-                    let k = i128::from(cam.k);
-                    if engaged.place.k != k {
-                        events.cycle_completed = true;
-                        events.seam_jump |= self.geometry.jumps_at_seam;
-                    }
-                    engaged.place = Place {
-                        k,
-                        r_num: i128::from(cam.r_num),
-                    };
-                    Some(FollowSample {
-                        master_in_cycle: cam.master_in_cycle,
-                        master_in_cycle_raw: cam.master_in_cycle_raw,
-                        cycle: clamp_i64(k - i128::from(constants.k_engage)),
-                        unzoomed: cam.unzoomed,
-                        in_cycle_zoomed: cam.in_cycle_zoomed,
-                        velocity_ratio: cam.velocity_ratio,
-                        following: true,
-                        input_offset: constants.input_offset,
-                        slave: cam.slave,
-                    })
-                })
-            }
-            _ => None,
-        };
-        if let Some(followed) = settled {
-            self.commanded = followed.slave;
-            sample = Some(followed);
-        } else {
-            self.follow_general(
-                &mut events,
-                &mut fault,
-                &mut sample,
-                master,
-                estimate.fraction,
-            );
-        }
-
-        let hz = effective_frequency(self.config.max_frequency_hz);
-        let pulses = self
-            .pulse
-            .step(self.commanded, input.output_enabled, hz, input.dt_us);
-        self.report(master, sample, pulses, events, fault)
     }
 
     /// The general tick for any phase: moves the phase out, follows the

@@ -73,7 +73,7 @@ pub(crate) struct SteadySample {
 impl Steady {
     /// The cam at `master`, or `None` when a value leaves 64 bits or the
     /// curve gives no finite value (the general path then decides).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sample<C: CamCurve + ?Sized>(
         &self,
         master: i64,

@@ -197,11 +197,15 @@ impl Lines {
         self.locate(master, cursor).position(self.clamp(master))
     }
 
-    /// [`Lines::position`] for each master, one cursor throughout. The
-    /// masters are taken in runs that fall in one section (the whole
-    /// batch is a few hundred runs when sorted); each run is one loop
-    /// with the section's figures fixed, which the compiler turns into
-    /// vector instructions. The arithmetic is the same, so is every result.
+    /// [`Lines::position`] for each master, one cursor throughout.
+    ///
+    /// Ascending masters are taken in runs that fall in one section, the
+    /// end of each found by a binary search among the masters; each run is
+    /// one loop with the section's figures fixed, which the compiler turns
+    /// into vector instructions, and which also checks that every master
+    /// of the run was in the section. Should one not be (the masters are
+    /// not in order), that run and the rest are placed one by one. The
+    /// arithmetic is the same either way, so is every result.
     pub(super) fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
         let count = masters.len().min(out.len());
         let (masters, out) = (&masters[..count], &mut out[..count]);
@@ -210,11 +214,19 @@ impl Lines {
         while let Some(&query) = masters.get(start) {
             let section = self.locate(self.sane(query), &mut cursor);
             let run = masters[start..]
-                .iter()
-                .position(|&m| !section.holds(self.sane(m)))
-                .unwrap_or(count - start)
+                .partition_point(|&m| m < section.until)
                 .max(1);
             let end = start + run;
+            // Checked in a pass of its own, which vectorises; so does the next.
+            let inside = masters[start..end]
+                .iter()
+                .fold(true, |all, &m| all & section.holds(self.sane(m)));
+            if !inside {
+                for (slot, &m) in out[start..].iter_mut().zip(&masters[start..]) {
+                    *slot = self.position(m, &mut cursor);
+                }
+                return;
+            }
             for (slot, &m) in out[start..end].iter_mut().zip(&masters[start..end]) {
                 *slot = section.position(self.clamp(self.sane(m)));
             }

@@ -162,13 +162,9 @@ fn round(v: f64) -> f64 {
     if v.abs() < 4.5e15 {
         let whole = v as i64 as f64;
         let fraction = v - whole;
-        if fraction >= 0.5 {
-            whole + 1.0
-        } else if fraction <= -0.5 {
-            whole - 1.0
-        } else {
-            whole
-        }
+        let up = if fraction >= 0.5 { 1.0 } else { 0.0 };
+        let down = if fraction <= -0.5 { 1.0 } else { 0.0 };
+        whole + up - down
     } else {
         v
     }
