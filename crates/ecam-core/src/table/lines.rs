@@ -212,23 +212,31 @@ impl Lines {
         let mut cursor = Cursor::new();
         let mut start = 0;
         while let Some(&query) = masters.get(start) {
-            let section = self.locate(self.sane(query), &mut cursor);
+            let section = *self.locate(self.sane(query), &mut cursor);
             let run = masters[start..]
                 .partition_point(|&m| m < section.until)
                 .max(1);
             let end = start + run;
-            // Checked in a pass of its own, which vectorises; so does the next.
-            let inside = masters[start..end]
-                .iter()
-                .fold(true, |all, &m| all & section.holds(self.sane(m)));
+            let (queries, results) = (&masters[start..end], &mut out[start..end]);
+            // Checked in a pass of its own, which vectorises; so do the
+            // next. A NaN fails the check and goes the one-by-one way.
+            let inside = queries.iter().fold(true, |all, &m| all & section.holds(m));
             if !inside {
                 for (slot, &m) in out[start..].iter_mut().zip(&masters[start..]) {
                     *slot = self.position(m, &mut cursor);
                 }
                 return;
             }
-            for (slot, &m) in out[start..end].iter_mut().zip(&masters[start..end]) {
-                *slot = section.position(self.clamp(self.sane(m)));
+            if section.from >= self.first && section.until <= self.last {
+                // An inner section: every master of the run is inside the
+                // table already, so clamping would change nothing.
+                for (slot, &m) in results.iter_mut().zip(queries) {
+                    *slot = section.position(m);
+                }
+            } else {
+                for (slot, &m) in results.iter_mut().zip(queries) {
+                    *slot = section.position(self.clamp(m));
+                }
             }
             start = end;
         }
