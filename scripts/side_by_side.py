@@ -69,29 +69,42 @@ def main():
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     data = Path(args.data)
-    command = [args.ecam, "--data", str(data)] + (["--quick"] if args.quick else [])
-    ecam = subprocess.run(command, check=True, capture_output=True, text=True)
-    lines = {}
-    for raw in ecam.stdout.splitlines():
-        line = json.loads(raw)
-        lines[line["case"]] = line
+    quick = ["--quick"] if args.quick else []
 
+    def ecam(*extra):
+        run = subprocess.run([args.ecam, *extra, *quick], check=True, capture_output=True, text=True)
+        return {line["case"]: line for line in map(json.loads, run.stdout.splitlines())}
+
+    # The data first (and ecam's results on it for the agreement check).
+    ecam("--lookups", "--data", str(data))
     table = np.loadtxt(data / "table.csv", delimiter=",", dtype=np.int64)
     xp = table[:, 0].astype(np.float64)
     fp = table[:, 1].astype(np.float64)
-    reps = 40 if args.quick else 300
+    sets = {
+        "lookup-sequential": ("sequential", 40 if args.quick else 150),
+        "lookup-random": ("random", 40 if args.quick else 150),
+        "lookup-batch-1M": ("batch", 5 if args.quick else 11),
+    }
+    queries = {case: np.fromfile(data / f"{name}.f64", dtype="<f8") for case, (name, _) in sets.items()}
+    # Rounds alternate between ecam and numpy so that both see the same
+    # machine (a shared machine's load drifts); medians over the rounds.
+    rounds = 3 if args.quick else 7
+    ours = {case: [] for case in sets}
+    theirs = {case: [] for case in sets}
+    for _ in range(rounds):
+        for case, line in ecam("--lookups").items():
+            ours[case].append(line["ecam_ns"])
+        for case, (_, reps) in sets.items():
+            q = queries[case]
+            theirs[case].append(median_ns_per_query(lambda: np.interp(q, xp, fp), len(q), reps))
+    for case, (name, _) in sets.items():
+        mine = np.fromfile(data / f"{name}.ecam.f64", dtype="<f8")
+        diff = float(np.max(np.abs(np.interp(queries[case], xp, fp) - mine)))
+        line = {"case": case, "ecam_ns": round(float(np.median(ours[case])), 2)}
+        ns = float(np.median(theirs[case]))
+        emit(with_reference(line, "numpy.interp " + np.__version__, ns, max_abs_diff=diff))
 
-    def lookup(case, name, reps):
-        queries = np.fromfile(data / f"{name}.f64", dtype="<f8")
-        ours = np.fromfile(data / f"{name}.ecam.f64", dtype="<f8")
-        theirs = np.interp(queries, xp, fp)
-        diff = float(np.max(np.abs(theirs - ours)))
-        ns = median_ns_per_query(lambda: np.interp(queries, xp, fp), len(queries), reps)
-        emit(with_reference(lines[case], "numpy.interp " + np.__version__, ns, max_abs_diff=diff))
-
-    lookup("lookup-sequential", "sequential", reps)
-    lookup("lookup-random", "random", reps)
-    lookup("lookup-batch-1M", "batch", 5 if args.quick else 21)
+    lines = ecam("--ticks")
     for case in ("tick-1", "tick-64", "tick-worst"):
         emit(lines[case])
     reason = peer_skip_reason()

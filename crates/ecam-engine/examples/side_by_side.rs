@@ -1,7 +1,8 @@
 //! The ecam half of `scripts/bench-side-by-side`: times table lookups and
 //! axis-ticks on the benchmark scenario and prints one JSON object per
 //! line (`case`, `ecam_ns`, and for the tick cases the reference measured
-//! here: the minimal loop, or the mean for the worst case). With
+//! here: the minimal loop, or the mean for the worst case); `--lookups` or
+//! `--ticks` runs only those cases. With
 //! `--data DIR` it first writes the table, the queries and its own lookup
 //! results there (little-endian f64), so the script can time numpy on the
 //! very same data and check that both agree. `--quick` takes fewer
@@ -27,21 +28,28 @@ const WORST_TICKS: usize = 1_000_000;
 struct Options {
     quick: bool,
     data: Option<PathBuf>,
+    /// Only the lookup cases, or only the tick cases (both when neither).
+    lookups: bool,
+    ticks: bool,
 }
 
 fn main() -> Result<(), String> {
     let mut options = Options {
         quick: false,
         data: None,
+        lookups: false,
+        ticks: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         match arg.as_str() {
             "--quick" => options.quick = true,
+            "--lookups" => options.lookups = true,
+            "--ticks" => options.ticks = true,
             "--data" => options.data = Some(args.next().ok_or("--data needs a directory")?.into()),
             other => {
                 return Err(format!(
-                    "unknown argument {other:?} (use --quick, --data DIR)"
+                    "unknown argument {other:?} (use --quick, --data DIR, --lookups, --ticks)"
                 ));
             }
         }
@@ -67,19 +75,25 @@ fn main() -> Result<(), String> {
             ],
         )?;
     }
-    let reps = if options.quick { 40 } else { 300 };
-    lookup_case("lookup-sequential", reps, &sequential, |q, out| {
-        single(&table, q, out)
-    });
-    lookup_case("lookup-random", reps, &random, |q, out| {
-        single(&table, q, out)
-    });
-    lookup_case(
-        "lookup-batch-1M",
-        if options.quick { 5 } else { 21 },
-        &batch,
-        |q, out| table.positions_into(q, out),
-    );
+    let both = !options.lookups && !options.ticks;
+    if options.lookups || both {
+        let reps = if options.quick { 40 } else { 300 };
+        lookup_case("lookup-sequential", reps, &sequential, |q, out| {
+            single(&table, q, out)
+        });
+        lookup_case("lookup-random", reps, &random, |q, out| {
+            single(&table, q, out)
+        });
+        lookup_case(
+            "lookup-batch-1M",
+            if options.quick { 5 } else { 21 },
+            &batch,
+            |q, out| table.positions_into(q, out),
+        );
+    }
+    if !(options.ticks || both) {
+        return Ok(());
+    }
     let blocks = if options.quick { 300 } else { 2000 };
     for n in [1usize, 64] {
         let (engine, minimal) = ticks_side_by_side(&table, n, blocks);
