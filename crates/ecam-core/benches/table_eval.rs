@@ -1,6 +1,7 @@
 //! Evaluation speed of a 512-section table: sequential (a master that moves
 //! a little each tick, the engine's normal case) and random access (jumps,
-//! which fall back to a binary search).
+//! which fall back to a binary search), and the batch API over a million
+//! sorted masters.
 
 // `criterion_group!` generates an undocumented public function.
 #![allow(missing_docs)]
@@ -102,5 +103,20 @@ fn random_access(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, sequential, random_access);
+fn batch(c: &mut Criterion) {
+    const BATCH: usize = 1_000_000;
+    let mut group = c.benchmark_group("batch_sorted");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    for (name, table) in tables() {
+        let step = table.master_span() as f64 / BATCH as f64;
+        let masters: Vec<f64> = (0..BATCH).map(|i| (i as f64 + 0.25) * step).collect();
+        let mut out = vec![0.0; BATCH];
+        group.bench_with_input(BenchmarkId::from_parameter(name), &table, |b, t| {
+            b.iter(|| t.positions_into(black_box(&masters), &mut out))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, sequential, random_access, batch);
 criterion_main!(benches);

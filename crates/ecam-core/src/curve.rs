@@ -47,6 +47,18 @@ pub trait CamCurve {
         self.eval(master, cursor).s
     }
 
+    /// Slave positions for many masters at once: `out[i]` is the position
+    /// at `masters[i]`, for every `i` both slices have (a plot, a
+    /// generator's samples, a user's batch). Exactly the values
+    /// [`CamCurve::position`] gives; curves override this when a whole
+    /// slice is cheaper, and any order is allowed (ascending is fastest).
+    fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
+        let mut cursor = Cursor::new();
+        for (master, slot) in masters.iter().zip(out.iter_mut()) {
+            *slot = self.position(*master, &mut cursor);
+        }
+    }
+
     /// Length of one cycle in master counts.
     fn master_span(&self) -> i64 {
         self.master_last().saturating_sub(self.master_first())
@@ -80,6 +92,9 @@ impl<C: CamCurve + ?Sized> CamCurve for &C {
     fn position(&self, master: f64, cursor: &mut Cursor) -> f64 {
         (**self).position(master, cursor)
     }
+    fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
+        (**self).positions_into(masters, out)
+    }
 }
 
 impl<C: CamCurve + ?Sized> CamCurve for alloc::boxed::Box<C> {
@@ -103,5 +118,8 @@ impl<C: CamCurve + ?Sized> CamCurve for alloc::boxed::Box<C> {
     }
     fn position(&self, master: f64, cursor: &mut Cursor) -> f64 {
         (**self).position(master, cursor)
+    }
+    fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
+        (**self).positions_into(masters, out)
     }
 }

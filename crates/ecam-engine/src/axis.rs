@@ -25,14 +25,16 @@ use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
-    TickOutput,
+    AxisConfig, AxisState, EngineError, Events, MasterFilter, MasterPosition, MasterTracker,
+    StopKind, SyncWindow, TickInput, TickOutput,
 };
 
 mod cam_out;
 mod engage;
 mod online;
 mod phase;
+#[cfg(test)]
+mod steady_tests;
 mod takeover;
 
 pub use online::AfterPass;
@@ -315,15 +317,39 @@ impl<C: CamCurve> CamAxis<C> {
     /// master moves continuously (a jump costs one binary search).
     #[must_use = "the tick's output holds the pulses to emit"]
     pub fn tick(&mut self, input: &TickInput) -> TickOutput {
+        *self.step(input, true)
+    }
+
+    /// [`CamAxis::tick`] without the copy: the axis updates its output
+    /// record in place and lends it (the same record
+    /// [`CamAxis::status`] reads). For loops over many axes where the
+    /// 120-byte copy per tick shows; the results are the same.
+    #[inline]
+    pub fn tick_in_place(&mut self, input: &TickInput) -> &TickOutput {
+        self.step(input, true)
+    }
+
+    /// [`CamAxis::tick`]; `steady_allowed = false` takes the general path
+    /// even for a settled cam (tests compare the two).
+    #[inline(always)]
+    fn step(&mut self, input: &TickInput, steady_allowed: bool) -> &TickOutput {
         let reading = match &mut self.turn {
             Some(turn) => turn.update(input.master),
             None => input.master,
         };
         let step = self.last_reading.map_or(0, |last| reading.abs_diff(last));
         self.last_reading = Some(reading);
-        let estimate = self
-            .tracker
-            .update(reading, input.master_fraction, input.dt_us);
+        let estimate = match self.tracker.filter() {
+            // Direct readings need no tracker state (nothing reads it back).
+            MasterFilter::Direct => MasterPosition {
+                counts: reading,
+                fraction: input.master_fraction,
+            },
+            MasterFilter::Interpolate { .. } => {
+                self.tracker
+                    .update(reading, input.master_fraction, input.dt_us)
+            }
+        };
         let master = estimate.counts;
         self.speed.update(estimate, input.dt_us);
         let edge = input.start_input && !self.last_start_input;
@@ -333,6 +359,86 @@ impl<C: CamCurve> CamAxis<C> {
         let mut fault = None;
         let mut sample = None;
 
+        // A running cam with its output on and the master within its step
+        // limit has nothing to supervise; everything else (inhibit, the
+        // step guard, a start) is handled out of line, keeping this path
+        // short.
+        let quiet = input.output_enabled
+            && matches!(self.phase, Phase::Running(_))
+            && self
+                .config
+                .max_master_step
+                .is_none_or(|limit| step <= limit.get());
+        if !quiet {
+            self.supervise(input, step, edge, master, &mut events, &mut fault);
+        }
+
+        // A settled cam at a whole master count: the steady tick, from the
+        // engagement's constants (same results, see `steady.rs`).
+        let mut settled = None;
+        if steady_allowed
+            && estimate.fraction == 0
+            && let Phase::Running(engaged) = &mut self.phase
+            && engaged.ramp.is_none()
+            && !engaged.changing()
+            && let Some(constants) = engaged.steady.as_ref()
+            && let Some(cam) = constants.sample(master, &self.curve, &mut self.cursor)
+        {
+            engaged.followed = i128::from(master) << 32;
+            let k = i128::from(cam.k);
+            if engaged.place.k != k {
+                events.cycle_completed = true;
+                events.seam_jump |= self.geometry.jumps_at_seam;
+            }
+            engaged.place = Place {
+                k,
+                r_num: i128::from(cam.r_num),
+            };
+            settled = Some(FollowSample {
+                master_in_cycle: cam.master_in_cycle,
+                master_in_cycle_raw: cam.master_in_cycle_raw,
+                cycle: clamp_i64(k - i128::from(constants.k_engage)),
+                unzoomed: cam.unzoomed,
+                in_cycle_zoomed: cam.in_cycle_zoomed,
+                velocity_ratio: cam.velocity_ratio,
+                following: true,
+                input_offset: constants.input_offset,
+                slave: cam.slave,
+            });
+        }
+        if let Some(followed) = settled {
+            self.commanded = followed.slave;
+            sample = Some(followed);
+        } else {
+            self.follow_general(
+                &mut events,
+                &mut fault,
+                &mut sample,
+                master,
+                estimate.fraction,
+                input.dt_us,
+            );
+        }
+
+        let hz = effective_frequency(self.config.max_frequency_hz);
+        let pulses = self
+            .pulse
+            .step(self.commanded, input.output_enabled, hz, input.dt_us);
+        self.report(master, sample, pulses, events, fault)
+    }
+
+    /// The checks before following: output inhibit, the master-step
+    /// guard, and an armed axis' start (which may engage the cam).
+    #[inline(never)]
+    fn supervise(
+        &mut self,
+        input: &TickInput,
+        step: u64,
+        edge: bool,
+        master: i64,
+        events: &mut Events,
+        fault: &mut Option<EngineError>,
+    ) {
         if !input.output_enabled && self.state().is_active() {
             self.halt();
             events.stopped = true;
@@ -344,7 +450,7 @@ impl<C: CamCurve> CamAxis<C> {
                 .max_master_step
                 .is_some_and(|limit| step > limit.get())
         {
-            fault = Some(EngineError::MasterStep);
+            *fault = Some(EngineError::MasterStep);
             self.halt();
             events.stopped = true;
         }
@@ -364,21 +470,33 @@ impl<C: CamCurve> CamAxis<C> {
             match self.engage(at) {
                 Ok(()) => events.engaged = true,
                 Err(e) => {
-                    fault = Some(e);
+                    *fault = Some(e);
                     self.halt();
                     events.stopped = true;
                 }
             }
         }
+    }
 
+    /// The general tick for any phase: moves the phase out, follows the
+    /// cam when engaged and puts the next phase back.
+    fn follow_general(
+        &mut self,
+        events: &mut Events,
+        fault: &mut Option<EngineError>,
+        sample: &mut Option<FollowSample>,
+        master: i64,
+        fraction: u32,
+        dt_us: u32,
+    ) {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         let followed = match phase {
-            Phase::Running(engaged) => self.follow(engaged, None, master, estimate.fraction),
+            Phase::Running(engaged) => self.follow(engaged, None, master, fraction),
             Phase::Stopping(engaged, end) => {
-                self.follow(engaged, Some(end), master, estimate.fraction)
+                self.follow(engaged, Some(end), master, fraction)
             }
             Phase::Velocity(mut coast) => {
-                let (at, rest) = coast.advance(input.dt_us);
+                let (at, rest) = coast.advance(dt_us);
                 self.commanded = at;
                 let stopped = Events {
                     stopped: rest,
@@ -399,21 +517,15 @@ impl<C: CamCurve> CamAxis<C> {
         match followed {
             Ok((phase, followed, happened)) => {
                 self.phase = phase;
-                sample = followed;
+                *sample = followed;
                 events.merge(happened);
             }
             Err(e) => {
                 // The engaged phase was taken out: the axis is idle now.
-                fault = Some(e);
+                *fault = Some(e);
                 events.stopped = true;
             }
         }
-
-        let hz = effective_frequency(self.config.max_frequency_hz);
-        let pulses = self
-            .pulse
-            .step(self.commanded, input.output_enabled, hz, input.dt_us);
-        self.report(master, sample, pulses, events, fault)
     }
 
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
@@ -506,6 +618,7 @@ impl<C: CamCurve> CamAxis<C> {
         fraction: u32,
     ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
+        engaged.steady = None;
         if let Some(ramp) = engaged.offsets
             && ramp.finished(master)
         {
@@ -591,15 +704,23 @@ impl<C: CamCurve> CamAxis<C> {
         }
         engaged.place = place;
         let followed = FollowSample {
-            cam,
+            master_in_cycle: self.geometry.input_in_cycle(place),
+            master_in_cycle_raw: self.geometry.raw_in_cycle(place),
+            cycle: clamp_i64(place.k.saturating_sub(engaged.engagement.k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
             velocity_ratio,
             following: !ramping
                 && !blending
                 && engaged.offsets.is_none()
                 && engaged.scaling.is_none(),
             input_offset: engaged.engagement.input_offset(&self.geometry),
-            cycle: place.k.saturating_sub(engaged.engagement.k_engage),
+            slave,
         };
+        if !ramping && stop_at.is_none() && !engaged.changing() {
+            // Settled: the next ticks can take the steady path.
+            engaged.steady = engaged.engagement.steady(&self.geometry);
+        }
         let phase = if let Some(forward) = here.stopped {
             events.cycle_completed |= forward;
             events.stopped = true;
@@ -619,6 +740,8 @@ impl<C: CamCurve> CamAxis<C> {
         Ok((phase, Some(followed), events))
     }
 
+    /// Fills the output record in place.
+    #[inline]
     fn report(
         &mut self,
         master: i64,
@@ -626,22 +749,25 @@ impl<C: CamCurve> CamAxis<C> {
         pulses: i64,
         events: Events,
         fault: Option<EngineError>,
-    ) -> TickOutput {
-        let mut out = self.last;
+    ) -> &TickOutput {
         let state = self.state();
+        if events.engaged || events.table_switched {
+            self.missed = false;
+        }
+        self.missed |= events.activation_missed;
+        let backlog = self.pulse.backlog(self.commanded);
+        let out = &mut self.last;
         out.state = state;
         out.master = master;
         out.velocity_ratio = 0.0;
         out.following = false;
         if let Some(s) = sample {
-            let place = s.cam.place;
-            out.master_in_cycle = self.geometry.input_in_cycle(place);
-            out.master_in_cycle_raw = self.geometry.raw_in_cycle(place);
-            out.cycle =
-                i64::try_from(s.cycle).unwrap_or(if s.cycle < 0 { i64::MIN } else { i64::MAX });
-            out.slave_unzoomed = s.cam.unzoomed;
+            out.master_in_cycle = s.master_in_cycle;
+            out.master_in_cycle_raw = s.master_in_cycle_raw;
+            out.cycle = s.cycle;
+            out.slave_unzoomed = s.unzoomed;
             out.input_offset = s.input_offset;
-            out.output_offset = self.commanded.saturating_sub(s.cam.in_cycle_zoomed);
+            out.output_offset = self.commanded.saturating_sub(s.in_cycle_zoomed);
             if state.is_engaged() {
                 out.velocity_ratio = s.velocity_ratio;
                 out.following = s.following;
@@ -651,8 +777,8 @@ impl<C: CamCurve> CamAxis<C> {
         out.pulses = pulses;
         out.direction_forward = self.pulse.forward;
         out.emitted = self.pulse.emitted;
-        out.backlog = self.pulse.backlog(self.commanded);
-        out.pulse_delayed = out.backlog != 0;
+        out.backlog = backlog;
+        out.pulse_delayed = backlog != 0;
         out.sync = if state.is_engaged() {
             active_windows(&self.config.sync_windows, out.master_in_cycle)
         } else {
@@ -660,15 +786,10 @@ impl<C: CamCurve> CamAxis<C> {
         };
         out.in_sync = out.sync != 0;
         out.initialised = state.is_active();
-        out.busy = out.initialised || out.backlog != 0;
-        if events.engaged || events.table_switched {
-            self.missed = false;
-        }
-        self.missed |= events.activation_missed;
+        out.busy = out.initialised || backlog != 0;
         out.activation_missed = self.missed;
         out.events = events;
         out.fault = fault;
-        self.last = out;
         out
     }
 }
@@ -685,9 +806,24 @@ struct Resolved {
 /// What following the cam produced this tick (kept out of the public output).
 #[derive(Clone, Copy, Debug)]
 struct FollowSample {
-    cam: Sample,
+    /// Table input in the cycle after master zoom (floor).
+    master_in_cycle: i64,
+    /// The same before master zoom (floor).
+    master_in_cycle_raw: i64,
+    /// Cycles since engaging.
+    cycle: i64,
+    /// Table value plus accumulated strokes, before slave zoom.
+    unzoomed: i64,
+    /// The table value in the cycle after slave zoom.
+    in_cycle_zoomed: i64,
     velocity_ratio: f64,
     following: bool,
     input_offset: i64,
-    cycle: i128,
+    /// The commanded slave.
+    slave: i64,
+}
+
+/// `v` clamped into `i64`.
+fn clamp_i64(v: i128) -> i64 {
+    i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
 }

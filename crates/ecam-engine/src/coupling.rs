@@ -12,6 +12,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::steady::Steady;
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
 
 /// How far the table extends along the master.
@@ -203,7 +204,8 @@ impl Geometry {
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
         let (whole, rem) = div_floor(accumulated, self.sden);
-        let fraction = libm::round((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
+        let fraction =
+            round_half_away((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
         if !fraction.is_finite() || fraction.abs() > 1e36 {
             return Err(EngineError::SlaveOverflow);
         }
@@ -244,6 +246,28 @@ fn to_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
         Err(_) => ((v >> 64) as i64 as f64) * 18_446_744_073_709_551_616.0 + (v as u64) as f64,
+    }
+}
+
+/// `v` rounded to the nearest whole number, halves away from zero, as
+/// `libm::round` does (up to the sign of a zero result, which no caller
+/// can see: every result becomes an integer). Below 2^52 in magnitude,
+/// where floats can have a fraction, it truncates with one conversion and
+/// looks at the exact remainder; beyond (and for NaN or infinities)
+/// `libm::round`, whose software routine costs several times more.
+#[inline]
+pub(crate) fn round_half_away(v: f64) -> f64 {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64 as f64;
+        // Exact: both are within 2^52 and `whole` is `v` without its fraction.
+        let fraction = v - whole;
+        // Selects, not branches: the fraction is as good as random from
+        // tick to tick, and a mispredicted branch costs more than the sum.
+        let up = if fraction >= 0.5 { 1.0 } else { 0.0 };
+        let down = if fraction <= -0.5 { 1.0 } else { 0.0 };
+        whole + up - down
+    } else {
+        libm::round(v)
     }
 }
 
@@ -506,6 +530,37 @@ impl Engagement {
         clamp_i64(div_floor(self.input_offset_num, geo.mden).0)
     }
 
+    /// The 64-bit constants of this engagement on `geo` for the steady
+    /// tick ([`crate::steady`]); `None` for a one-shot or a normal cam
+    /// (their place is clamped) or when a constant leaves 64 bits.
+    pub(crate) fn steady(&self, geo: &Geometry) -> Option<Steady> {
+        if geo.extent != Extent::Cyclic || self.span.is_some() || geo.mnum <= 0 {
+            return None;
+        }
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let stroke = narrow(geo.stroke)?;
+        let snum = narrow(geo.snum)?;
+        Some(Steady {
+            mnum: narrow(geo.mnum)?,
+            offset_num: narrow(self.input_offset_num.checked_sub(geo.origin_num)?)?,
+            period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
+            origin: geo.origin,
+            origin_f: geo.origin as f64,
+            mden: narrow(geo.mden).filter(|&d| d > 0)?,
+            mden_f: to_f64(geo.mden),
+            shift: narrow(self.shift)?,
+            stroke,
+            stroke_snum: stroke.checked_mul(snum)?,
+            snum_f: to_f64(geo.snum),
+            sden: narrow(geo.sden).filter(|&d| d > 0)?,
+            sden_f: to_f64(geo.sden),
+            zoom_factor: geo.zoom_factor(),
+            output_offset: narrow(self.output_offset)?,
+            k_engage: narrow(self.k_engage)?,
+            input_offset: self.input_offset(geo),
+        })
+    }
+
     /// The commanded slave at `place`.
     pub(crate) fn sample<C: CamCurve + ?Sized>(
         &self,
@@ -523,8 +578,8 @@ impl Engagement {
             .ok_or(EngineError::SlaveOverflow)?;
         let unzoomed = mul_exact(strokes, geo.stroke)
             .unwrap_or(i128::MAX)
-            .saturating_add(whole_to_i128(libm::round(table)));
-        let in_cycle_zoomed = libm::round(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
+            .saturating_add(whole_to_i128(round_half_away(table)));
+        let in_cycle_zoomed = round_half_away(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
         Ok(Sample {
             place,
             slave,
@@ -567,6 +622,41 @@ mod tests {
 
     fn doc001() -> PointTable {
         PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)]).unwrap()
+    }
+
+    #[test]
+    fn round_half_away_is_libm_round() {
+        let same = |v: f64| {
+            let (a, b) = (round_half_away(v), libm::round(v));
+            a == b || (a.is_nan() && b.is_nan())
+        };
+        for v in [
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4.5e15 - 0.5,
+            -4.5e15 + 0.5,
+            4.5e15,
+            1e300,
+            -0.0,
+            f64::INFINITY,
+            f64::NAN,
+        ] {
+            assert!(same(v), "{v}");
+        }
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e6 - 5e5;
+            assert!(same(v) && same(scaled), "{v} {scaled}");
+        }
     }
 
     #[test]

@@ -61,6 +61,7 @@ mod ramp_in;
 mod scaling;
 mod speed;
 mod start;
+mod steady;
 mod stop;
 mod switch;
 mod sync;

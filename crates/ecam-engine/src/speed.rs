@@ -9,6 +9,7 @@
 use crate::MasterPosition;
 
 const WINDOW: usize = 32;
+const _: () = assert!(WINDOW.is_power_of_two());
 
 /// The followed master of the last ticks.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,17 +33,15 @@ impl MasterSpeed {
     }
 
     /// Takes this tick's followed position after `dt_us`.
+    #[inline]
     pub(crate) fn update(&mut self, at: MasterPosition, dt_us: u32) {
-        let fixed = (i128::from(at.counts) << 32) | i128::from(at.fraction);
-        if let (Some(p), Some(d)) = (
-            self.positions.get_mut(self.next),
-            self.dts.get_mut(self.next),
-        ) {
-            *p = fixed;
-            *d = dt_us;
-        }
-        self.next = (self.next + 1) % WINDOW;
-        self.filled = (self.filled + 1).min(WINDOW);
+        // WINDOW is a power of two: masking keeps the index in range
+        // without a division or a bounds check.
+        let slot = self.next & (WINDOW - 1);
+        self.positions[slot] = (i128::from(at.counts) << 32) | i128::from(at.fraction);
+        self.dts[slot] = dt_us;
+        self.next = (slot + 1) & (WINDOW - 1);
+        self.filled += usize::from(self.filled < WINDOW);
     }
 
     /// The master's mean velocity over the window (counts/s, signed), 0

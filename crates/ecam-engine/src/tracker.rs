@@ -141,6 +141,7 @@ impl MasterTracker {
 
     /// Takes this tick's reading (`counts` + `fraction`/2^32) after `dt_us`
     /// and returns the position to follow.
+    #[inline]
     pub fn update(&mut self, counts: i64, fraction: u32, dt_us: u32) -> MasterPosition {
         let reading = MasterPosition::fixed(counts, fraction);
         let max_interval = match self.filter {
@@ -148,7 +149,8 @@ impl MasterTracker {
                 self.started = true;
                 self.reading = reading;
                 self.estimate = reading;
-                return MasterPosition::from_fixed(reading);
+                // The reading as it came (what `from_fixed` would give back).
+                return MasterPosition { counts, fraction };
             }
             MasterFilter::Interpolate { max_interval_us } => u64::from(max_interval_us.get()),
         };

@@ -70,4 +70,7 @@ impl CamCurve for CamTable {
     fn position(&self, master: f64, cursor: &mut Cursor) -> f64 {
         delegate!(self, t => t.position(master, cursor))
     }
+    fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
+        delegate!(self, t => t.positions_into(masters, out))
+    }
 }

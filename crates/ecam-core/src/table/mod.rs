@@ -18,6 +18,7 @@
 mod cam_table;
 pub mod derivatives;
 mod function;
+mod lines;
 mod point;
 mod resolution;
 mod segment;

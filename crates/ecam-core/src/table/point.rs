@@ -3,6 +3,7 @@
 
 use alloc::vec::Vec;
 
+use super::lines::Lines;
 use crate::{CamCurve, Cursor, Kinematics, TableError};
 
 /// One point of a point table.
@@ -27,11 +28,27 @@ impl CamPoint {
 /// Between points the slave is interpolated linearly, as both devices do.
 /// The Rust API puts no upper bound on the number of points; the PLC face
 /// checks its own limit of 512 sections when writing a register image.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+///
+/// Beside the exact integer points the table keeps float copies of each
+/// section (start, rise, span, slope), made once when it is built, so a
+/// lookup costs a few float operations (see `lines.rs`); they never
+/// change a result.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 #[serde(try_from = "RawPoints")]
 pub struct PointTable {
     points: Vec<CamPoint>,
+    /// Derived from `points`; not part of the table's identity or files.
+    #[serde(skip)]
+    lines: Lines,
 }
+
+impl PartialEq for PointTable {
+    fn eq(&self, other: &Self) -> bool {
+        self.points == other.points
+    }
+}
+
+impl Eq for PointTable {}
 
 /// The unchecked JSON shape of a point table; validated on the way in.
 // Unknown keys are refused: a misspelt key would otherwise vanish silently.
@@ -66,7 +83,8 @@ impl PointTable {
         if let Some(bad) = points.windows(2).position(|w| w[1].master <= w[0].master) {
             return Err(TableError::MasterNotIncreasing { section: bad + 1 });
         }
-        Ok(Self { points })
+        let lines = Lines::new(&points);
+        Ok(Self { points, lines })
     }
 
     /// Builds a table from `(master, slave)` pairs.
@@ -85,33 +103,6 @@ impl PointTable {
     /// Gives the points back.
     pub fn into_points(self) -> Vec<CamPoint> {
         self.points
-    }
-
-    /// Index `i` of the segment `[points[i], points[i+1]]` holding `master`,
-    /// trying the cursor's segment and its neighbours before a binary search.
-    fn locate(&self, master: f64, cursor: &mut Cursor) -> usize {
-        let last_segment = self.points.len() - 2;
-        let holds = |i: usize| {
-            let lo = self.points[i].master as f64;
-            let hi = self.points[i + 1].master as f64;
-            // Half-open [lo, hi): a master exactly on a point belongs to the
-            // segment starting there, whichever way it was reached.
-            (master >= lo || i == 0) && (master < hi || i == last_segment)
-        };
-        let guess = cursor.segment.min(last_segment);
-        let found = if holds(guess) {
-            guess
-        } else if guess < last_segment && holds(guess + 1) {
-            guess + 1
-        } else if guess > 0 && holds(guess - 1) {
-            guess - 1
-        } else {
-            // First point whose master exceeds `master`, minus one.
-            let upper = self.points.partition_point(|p| (p.master as f64) <= master);
-            upper.saturating_sub(1).min(last_segment)
-        };
-        cursor.segment = found;
-        found
     }
 }
 
@@ -132,22 +123,18 @@ impl CamCurve for PointTable {
         self.points.len() - 1
     }
 
+    #[inline]
     fn eval(&self, master: f64, cursor: &mut Cursor) -> Kinematics {
-        let first = self.master_first() as f64;
-        let master = if master.is_nan() { first } else { master };
-        let i = self.locate(master, cursor);
-        let (p0, p1) = (self.points[i], self.points[i + 1]);
-        // Differences in i128: any two i64 positions, no overflow.
-        let span = (i128::from(p1.master) - i128::from(p0.master)) as f64;
-        let rise = (i128::from(p1.slave) - i128::from(p0.slave)) as f64;
-        let m = master.clamp(first, self.master_last() as f64);
-        let u = (m - p0.master as f64) / span;
-        Kinematics {
-            s: p0.slave as f64 + rise * u,
-            v: rise / span,
-            a: 0.0,
-            j: 0.0,
-        }
+        self.lines.eval(master, cursor)
+    }
+
+    #[inline]
+    fn position(&self, master: f64, cursor: &mut Cursor) -> f64 {
+        self.lines.position(master, cursor)
+    }
+
+    fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
+        self.lines.positions_into(masters, out);
     }
 }
 

@@ -254,17 +254,15 @@ impl SegmentProfile {
         }
         let first = self.master_first() as f64;
         let pieces = (values - 1) as f64;
-        let mut cursor = Cursor::new();
-        let slaves = (0..values)
-            .map(|k| {
-                let s = if k + 1 == values {
-                    self.slave_last() as f64
-                } else {
-                    self.position(first + span as f64 * k as f64 / pieces, &mut cursor)
-                };
-                libm::round(s) as i64
-            })
+        let masters: Vec<f64> = (0..values)
+            .map(|k| first + span as f64 * k as f64 / pieces)
             .collect();
+        let mut positions = alloc::vec![0.0; values];
+        self.positions_into(&masters, &mut positions);
+        if let Some(end) = positions.last_mut() {
+            *end = self.slave_last() as f64;
+        }
+        let slaves = positions.iter().map(|&s| libm::round(s) as i64).collect();
         UniformTable::new(slaves, span)
     }
 

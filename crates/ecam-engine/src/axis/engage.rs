@@ -42,6 +42,7 @@ impl<C: CamCurve> CamAxis<C> {
             offsets: None,
             scaling: None,
             followed: i128::from(at) << 32,
+            steady: None,
         });
         Ok(())
     }

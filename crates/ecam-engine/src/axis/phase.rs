@@ -9,6 +9,7 @@ use crate::offset_ramp::OffsetRamp;
 use crate::ramp::Ramp;
 use crate::scaling::ScalingRamp;
 use crate::start::StartWatch;
+use crate::steady::Steady;
 use crate::stop::CycleEnd;
 use crate::switch::Pending;
 use crate::{AxisState, EngineError};
@@ -69,6 +70,10 @@ pub(super) struct Engaged<C> {
     /// The master followed at the last tick, counts × 2^32 plus the
     /// fraction (where a switch position is crossed from).
     pub(super) followed: i128,
+    /// The engagement's 64-bit constants once the cam has settled (no
+    /// ramp-in, no change under way); the general tick clears and refills
+    /// them, so they never outlive what they were taken from.
+    pub(super) steady: Option<Steady>,
 }
 
 impl<C> Engaged<C> {

@@ -1,0 +1,179 @@
+//! The steady tick against the general one: the same axis driven twice,
+//! once as `tick` runs it and once with the steady path switched off,
+//! must give identical outputs every tick, through engages, seams, jumps,
+//! master fractions, online offset changes and stops.
+
+use core::num::NonZeroU64;
+
+use ecam_core::PointTable;
+use proptest::prelude::*;
+use std::vec::Vec;
+
+use crate::{
+    AxisConfig, CamAxis, Coupling, OffsetChange, SlaveAlign, StopKind, SyncWindow, TickInput, Zoom,
+};
+
+fn table(slaves: &[i64], step: i64) -> PointTable {
+    let pairs: Vec<(i64, i64)> = slaves
+        .iter()
+        .enumerate()
+        .map(|(i, &s)| (i as i64 * step, s))
+        .collect();
+    PointTable::from_pairs(&pairs).unwrap()
+}
+
+fn coupling() -> impl Strategy<Value = Coupling> {
+    prop_oneof![
+        Just(Coupling::Periodic),
+        Just(Coupling::Repeat { min_stroke: 1 }),
+        Just(Coupling::Normal),
+        (0u16..3).prop_map(|repeats| Coupling::OneShot { repeats }),
+    ]
+}
+
+fn align() -> impl Strategy<Value = SlaveAlign> {
+    prop_oneof![
+        Just(SlaveAlign::Relative),
+        Just(SlaveAlign::Absolute),
+        Just(SlaveAlign::NearestEquivalent),
+        (-5000i64..5000).prop_map(SlaveAlign::Offset),
+    ]
+}
+
+/// One tick's master move and what else happens on it.
+#[derive(Clone, Copy, Debug)]
+enum Move {
+    Step(i64),
+    Fraction(i64, u32),
+    Offsets(i64, i64),
+    Stop,
+    Rearm,
+    /// A table queued for the next seam (its slaves scaled by this factor).
+    Queue(i64),
+    /// Slave scaling changed on the fly to this signed numerator / 4.
+    SlaveScaling(i32),
+    /// MC_CamOut as the standard: continue at the current velocity.
+    CamOut,
+}
+
+fn moves() -> impl Strategy<Value = Vec<Move>> {
+    proptest::collection::vec(
+        prop_oneof![
+            20 => (-40i64..200).prop_map(Move::Step),
+            2 => (-1_000_000i64..1_000_000).prop_map(Move::Step),
+            2 => ((0i64..50), any::<u32>()).prop_map(|(s, f)| Move::Fraction(s, f)),
+            1 => ((-300i64..300), (-300i64..300)).prop_map(|(m, s)| Move::Offsets(m, s)),
+            1 => Just(Move::Stop),
+            1 => Just(Move::Rearm),
+            1 => (-3i64..4).prop_map(Move::Queue),
+            1 => prop_oneof![(-12i32..-1), (1i32..12)].prop_map(Move::SlaveScaling),
+            1 => Just(Move::CamOut),
+        ],
+        1..300,
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    #[test]
+    fn steady_tick_equals_general_tick(
+        slaves in proptest::collection::vec(-20_000i64..20_000, 2..20),
+        step in 1i64..5000,
+        coupling in coupling(),
+        align in align(),
+        mzoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
+        szoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
+        start in -100_000i64..100_000,
+        moves in moves(),
+    ) {
+        let config = AxisConfig {
+            coupling,
+            slave_align: align,
+            master_zoom: Zoom::signed(mzoom.0, mzoom.1).unwrap(),
+            slave_zoom: Zoom::signed(szoom.0, szoom.1).unwrap(),
+            sync_windows: [
+                SyncWindow::new(0, step),
+                SyncWindow::new(step, 3 * step),
+                SyncWindow::OFF,
+                SyncWindow::new(-5, 5),
+            ],
+            ..AxisConfig::default()
+        };
+        // Signed scalings are refused where they make no sense (a one-shot
+        // run backwards): both paths see the same refusal.
+        let Ok(mut fast) = CamAxis::new(table(&slaves, step), config) else {
+            return Ok(());
+        };
+        fast.arm().unwrap();
+        let mut general = fast.clone();
+        let mut master = start;
+        for (i, m) in moves.into_iter().enumerate() {
+            let mut fraction = 0;
+            match m {
+                Move::Step(d) => master += d,
+                Move::Fraction(d, f) => {
+                    master += d;
+                    fraction = f;
+                }
+                Move::Offsets(dm, ds) => {
+                    let change = OffsetChange {
+                        master: dm,
+                        slave: ds,
+                        distance: NonZeroU64::new(500).unwrap(),
+                    };
+                    prop_assert_eq!(fast.change_offsets(change), general.change_offsets(change));
+                }
+                Move::Stop => {
+                    fast.stop(StopKind::EndOfCycle);
+                    general.stop(StopKind::EndOfCycle);
+                }
+                Move::Rearm => {
+                    prop_assert_eq!(fast.arm(), general.arm());
+                }
+                Move::Queue(factor) => {
+                    let scaled: Vec<i64> = slaves.iter().map(|s| s * factor).collect();
+                    prop_assert_eq!(
+                        fast.queue_curve(table(&scaled, step)),
+                        general.queue_curve(table(&scaled, step))
+                    );
+                }
+                Move::SlaveScaling(num) => {
+                    let zoom = Zoom::signed(num, 4).unwrap();
+                    let distance = NonZeroU64::new(700).unwrap();
+                    prop_assert_eq!(
+                        fast.change_slave_scaling(zoom, distance),
+                        general.change_slave_scaling(zoom, distance)
+                    );
+                }
+                Move::CamOut => {
+                    prop_assert_eq!(fast.cam_out_at_velocity(), general.cam_out_at_velocity());
+                }
+            }
+            let input = TickInput {
+                master_fraction: fraction,
+                ..TickInput::at(master, 100)
+            };
+            let a = fast.tick(&input);
+            let b = *general.step(&input, false);
+            prop_assert_eq!(a, b, "tick {} at master {}", i, master);
+            prop_assert_eq!(fast.commanded(), general.commanded());
+        }
+    }
+}
+
+#[test]
+fn a_settled_cam_takes_the_steady_path() {
+    let config = AxisConfig {
+        coupling: Coupling::Repeat { min_stroke: 1 },
+        ..AxisConfig::default()
+    };
+    let mut axis = CamAxis::new(table(&[0, 700, 1000], 100), config).unwrap();
+    axis.arm().unwrap();
+    for m in 0..5 {
+        let _ = axis.tick(&TickInput::at(m, 100));
+    }
+    let super::Phase::Running(engaged) = &axis.phase else {
+        panic!("not running");
+    };
+    assert!(engaged.steady.is_some());
+}

@@ -1,0 +1,122 @@
+//! The steady tick: a running cam with nothing changing, computed from
+//! constants fixed once per engagement, in 64-bit integers.
+//!
+//! While a cam simply runs (no ramp-in, switch, blend, offset or scaling
+//! change, no one-shot span, no end-of-cycle stop, whole master counts)
+//! every integer the coupling law needs is fixed from the engage instant
+//! on: zoom factors, the input offset, the stroke, the output offset. They
+//! are taken once, into 64-bit fields, the moment the cam settles, and each
+//! tick is then one cycle division, one lookup, one stroke division and one
+//! rounding. The arithmetic is the coupling law's own, in the same order
+//! (`coupling.rs`), so every result is the same; any product that would
+//! leave 64 bits hands the tick back to the general 128-bit path, which
+//! also reports every error. `axis.rs` tests both paths against each other.
+
+use ecam_core::{CamCurve, Cursor};
+
+use crate::coupling::round_half_away;
+
+/// The constants of one settled engagement (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Steady {
+    /// Master zoom numerator (table input per master count, × `mden`).
+    pub(crate) mnum: i64,
+    /// Added to `master × mnum` to give the offset from the table origin.
+    pub(crate) offset_num: i64,
+    /// One cycle in table-input units.
+    pub(crate) period_num: i64,
+    /// The table's first master.
+    pub(crate) origin: i64,
+    pub(crate) origin_f: f64,
+    /// Master zoom denominator.
+    pub(crate) mden: i64,
+    pub(crate) mden_f: f64,
+    /// Whole strokes added to the cycle index (nearest-equivalent start).
+    pub(crate) shift: i64,
+    /// Slave change per cycle, before zoom.
+    pub(crate) stroke: i64,
+    /// `stroke × snum`.
+    pub(crate) stroke_snum: i64,
+    pub(crate) snum_f: f64,
+    /// Slave zoom denominator.
+    pub(crate) sden: i64,
+    pub(crate) sden_f: f64,
+    /// The two zooms' product, as the coupling law forms it.
+    pub(crate) zoom_factor: f64,
+    /// Added to the zoomed table value.
+    pub(crate) output_offset: i64,
+    /// The cycle at the engage instant (cycles are reported from it).
+    pub(crate) k_engage: i64,
+    /// Document 002 `CamInputOffset`, reported each tick.
+    pub(crate) input_offset: i64,
+}
+
+/// What one steady tick computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SteadySample {
+    /// Cycle index and offset into it (as `coupling::Place`).
+    pub(crate) k: i64,
+    pub(crate) r_num: i64,
+    /// The commanded slave.
+    pub(crate) slave: i64,
+    /// Table value plus accumulated strokes, before slave zoom.
+    pub(crate) unzoomed: i64,
+    /// The table value in the cycle after slave zoom, rounded.
+    pub(crate) in_cycle_zoomed: i64,
+    pub(crate) velocity_ratio: f64,
+    /// Table input in the cycle after master zoom (floor).
+    pub(crate) master_in_cycle: i64,
+    /// The same before master zoom (floor).
+    pub(crate) master_in_cycle_raw: i64,
+}
+
+impl Steady {
+    /// The cam at `master`, or `None` when a value leaves 64 bits or the
+    /// curve gives no finite value (the general path then decides).
+    #[inline(always)]
+    pub(crate) fn sample<C: CamCurve + ?Sized>(
+        &self,
+        master: i64,
+        curve: &C,
+        cursor: &mut Cursor,
+    ) -> Option<SteadySample> {
+        let u = master
+            .checked_mul(self.mnum)?
+            .checked_add(self.offset_num)?;
+        let k = u.div_euclid(self.period_num);
+        let r_num = u.rem_euclid(self.period_num);
+        let x = self.origin_f + r_num as f64 / self.mden_f;
+        let kin = curve.eval(x, cursor);
+        if !(kin.s.is_finite() && kin.v.is_finite()) {
+            return None;
+        }
+        let strokes = k.checked_add(self.shift)?;
+        let accumulated = strokes.checked_mul(self.stroke_snum)?;
+        let whole = accumulated.div_euclid(self.sden);
+        let rem = accumulated.rem_euclid(self.sden);
+        let fraction = round_half_away((rem as f64 + kin.s * self.snum_f) / self.sden_f);
+        let slave = whole
+            .checked_add(whole_i64(fraction)?)?
+            .checked_add(self.output_offset)?;
+        let unzoomed = strokes
+            .checked_mul(self.stroke)?
+            .checked_add(whole_i64(round_half_away(kin.s))?)?;
+        Some(SteadySample {
+            k,
+            r_num,
+            slave,
+            unzoomed,
+            in_cycle_zoomed: round_half_away(kin.s * self.snum_f / self.sden_f) as i64,
+            velocity_ratio: kin.v * self.zoom_factor,
+            master_in_cycle: self.origin.checked_add(r_num / self.mden)?,
+            master_in_cycle_raw: r_num / self.mnum,
+        })
+    }
+}
+
+/// A rounded float as an `i64`, `None` when out of range.
+#[inline]
+fn whole_i64(v: f64) -> Option<i64> {
+    // Strictly inside ±2^63, so the conversion is exact.
+    (v > -9.2e18 && v < 9.2e18).then_some(v as i64)
+}

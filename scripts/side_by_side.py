@@ -1,0 +1,121 @@
+"""Reference half of scripts/bench-side-by-side (run it through that script).
+
+Runs the ecam timing binary, then times the references on the data it
+wrote, and prints one JSON object per line: case, ecam_ns, reference,
+reference_ns, ratio (= ecam / reference). Lookup lines also carry the
+largest difference between ecam's and numpy's results on the same queries
+(both interpolate the same straight lines, so it is rounding only).
+"""
+
+import argparse
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def median_ns_per_query(run, queries, reps):
+    times = []
+    for _ in range(reps):
+        start = time.perf_counter_ns()
+        run()
+        times.append((time.perf_counter_ns() - start) / queries)
+    times.sort()
+    return times[len(times) // 2]
+
+
+def emit(line):
+    print(json.dumps(line), flush=True)
+
+
+def with_reference(line, name, ns, **extra):
+    line = dict(line)
+    line["reference"] = name
+    line["reference_ns"] = round(ns, 2)
+    line["ratio"] = round(line["ecam_ns"] / ns, 3)
+    line.update(extra)
+    return line
+
+
+def peer_skip_reason():
+    """Why the PLCopen peer cannot run here, or None when it can."""
+    try:
+        import pyplcopen  # noqa: F401  (optional peer)
+    except ImportError as e:
+        return f"pyplcopen is not installed ({e})"
+    # Cam helpers that only build or load tables do not run a cam.
+    helpers = {"generate_cam_law", "load_cam_table_csv"}
+    names = [n for n in dir(pyplcopen) if "cam" in n.lower() and n not in helpers]
+    names += [n for n in dir(getattr(pyplcopen, "AxisSim", object)) if "cam" in n.lower()]
+    if not names:
+        from importlib.metadata import version as installed
+
+        version = installed("pyplcopen")
+        return (
+            f"pyplcopen ({version}) exposes no MC_CamIn to Python: its module offers "
+            "AxisSim moves, streaming and generate_cam_law/load_cam_table_csv only; "
+            "its C++ MC_CamIn is not reachable from the wheel"
+        )
+    return None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--ecam", required=True, help="the side_by_side example binary")
+    parser.add_argument("--data", required=True, help="where the binary writes the data")
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    data = Path(args.data)
+    quick = ["--quick"] if args.quick else []
+
+    def ecam(*extra):
+        run = subprocess.run([args.ecam, *extra, *quick], check=True, capture_output=True, text=True)
+        return {line["case"]: line for line in map(json.loads, run.stdout.splitlines())}
+
+    # The data first (and ecam's results on it for the agreement check).
+    ecam("--lookups", "--data", str(data))
+    table = np.loadtxt(data / "table.csv", delimiter=",", dtype=np.int64)
+    xp = table[:, 0].astype(np.float64)
+    fp = table[:, 1].astype(np.float64)
+    sets = {
+        "lookup-sequential": ("sequential", 40 if args.quick else 150),
+        "lookup-random": ("random", 40 if args.quick else 150),
+        "lookup-batch-1M": ("batch", 5 if args.quick else 11),
+    }
+    queries = {case: np.fromfile(data / f"{name}.f64", dtype="<f8") for case, (name, _) in sets.items()}
+    # Rounds alternate between ecam and numpy so that both see the same
+    # machine (a shared machine's load drifts); medians over the rounds.
+    rounds = 3 if args.quick else 7
+    ours = {case: [] for case in sets}
+    theirs = {case: [] for case in sets}
+    for _ in range(rounds):
+        for case, line in ecam("--lookups").items():
+            ours[case].append(line["ecam_ns"])
+        for case, (_, reps) in sets.items():
+            q = queries[case]
+            theirs[case].append(median_ns_per_query(lambda: np.interp(q, xp, fp), len(q), reps))
+    for case, (name, _) in sets.items():
+        mine = np.fromfile(data / f"{name}.ecam.f64", dtype="<f8")
+        diff = float(np.max(np.abs(np.interp(queries[case], xp, fp) - mine)))
+        line = {"case": case, "ecam_ns": round(float(np.median(ours[case])), 2)}
+        ns = float(np.median(theirs[case]))
+        emit(with_reference(line, "numpy.interp " + np.__version__, ns, max_abs_diff=diff))
+
+    lines = ecam("--ticks")
+    for case in ("tick-1", "tick-64", "tick-worst"):
+        emit(lines[case])
+    reason = peer_skip_reason()
+    peer = dict(lines["tick-peer"])
+    peer["reference"] = "pyplcopen MC_CamIn"
+    peer["reference_ns"] = None
+    peer["ratio"] = None
+    peer["skipped"] = reason or "pyplcopen offers a cam binding this script does not know yet"
+    emit(peer)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
