@@ -47,6 +47,7 @@ mod axis;
 mod blend;
 mod config;
 mod coupling;
+pub mod drive;
 mod error;
 mod input;
 mod master;
