@@ -151,6 +151,10 @@ mod tests {
             DriveFault::Drive { code: 0x7500 }.to_string(),
             "drive fault, error code 0x7500"
         );
-        assert!(DriveFault::Communication.to_string().contains("communication"));
+        assert!(
+            DriveFault::Communication
+                .to_string()
+                .contains("communication")
+        );
     }
 }

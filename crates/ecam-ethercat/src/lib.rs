@@ -14,3 +14,13 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod cia402;
+pub mod drive;
+pub mod emulation;
+mod error;
+pub mod link;
+pub mod pdo;
+pub mod segment;
+
+pub use drive::Cia402Drive;
+pub use error::EthercatError;
+pub use segment::{CycleReport, Segment, SegmentConfig, Transport};
