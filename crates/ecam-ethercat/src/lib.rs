@@ -17,6 +17,7 @@ pub mod cia402;
 pub mod drive;
 pub mod emulation;
 mod error;
+pub mod line;
 pub mod link;
 pub mod pdo;
 pub mod segment;
