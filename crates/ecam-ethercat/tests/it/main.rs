@@ -3,6 +3,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod bring_up;
+mod faults;
 mod rotary_knife;
 
 use std::sync::{Arc, Mutex};
