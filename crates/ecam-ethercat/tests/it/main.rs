@@ -3,6 +3,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod bring_up;
+mod bus_master;
 mod faults;
 mod rotary_knife;
 
