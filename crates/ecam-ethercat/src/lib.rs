@@ -20,6 +20,7 @@ mod error;
 pub mod line;
 pub mod link;
 pub mod pdo;
+pub mod rt;
 pub mod segment;
 
 pub use drive::Cia402Drive;

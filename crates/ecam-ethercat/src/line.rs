@@ -343,3 +343,13 @@ impl<C: CamCurve> CamLine<C> {
         self.state = LineState::Faulted;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// The line must move into the real-time cycle thread.
+    #[test]
+    fn line_is_send() {
+        fn assert_send<T: Send>() {}
+        assert_send::<super::CamLine<ecam_core::PointTable>>();
+    }
+}

@@ -12,7 +12,10 @@ use crate::rotary_knife::knife_axis;
 
 #[test]
 fn knife_follows_the_line_shaft_actual_position() {
-    let behaviour = DriveBehaviour { lag_cycles: 4, ..DriveBehaviour::default() };
+    let behaviour = DriveBehaviour {
+        lag_cycles: 4,
+        ..DriveBehaviour::default()
+    };
     let (segment, _emulation) = emulated(2, behaviour);
     let shaft = CamAxis::new(
         PointTable::from_pairs(&[(0, 0), (1000, 1000)]).unwrap(),
@@ -24,8 +27,16 @@ fn knife_follows_the_line_shaft_actual_position() {
     )
     .unwrap();
     let axes = vec![
-        CamDrive { axis: shaft, drive: 0, master: Master::Virtual },
-        CamDrive { axis: knife_axis(), drive: 1, master: Master::DriveActual { position: 0 } },
+        CamDrive {
+            axis: shaft,
+            drive: 0,
+            master: Master::Virtual,
+        },
+        CamDrive {
+            axis: knife_axis(),
+            drive: 1,
+            master: Master::DriveActual { position: 0 },
+        },
     ];
     let mut line = CamLine::new(segment, axes).unwrap();
     line.virtual_speed = 9;
@@ -51,5 +62,8 @@ fn knife_follows_the_line_shaft_actual_position() {
             assert_eq!(shaft_actual, report.virtual_master - 9 * 7, "cycle {cycle}");
         }
     }
-    assert!(line.segment().drives()[1].actual() > 8000, "the knife turned");
+    assert!(
+        line.segment().drives()[1].actual() > 8000,
+        "the knife turned"
+    );
 }
