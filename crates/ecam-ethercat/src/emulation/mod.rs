@@ -11,10 +11,12 @@
 mod drive;
 mod esc;
 mod sii;
+mod wire;
 
 pub use drive::{DriveBehaviour, DriveModel, ERROR_FOLLOWING};
 pub use esc::Esc;
 pub use sii::{EMULATED_NAME, EMULATED_PRODUCT_CODE, EMULATED_VENDOR_ID};
+pub use wire::WireEmulation;
 
 use esc::{Cmd, Hop};
 use std::time::Instant;

@@ -6,6 +6,7 @@ mod bring_up;
 mod bus_master;
 mod faults;
 mod rotary_knife;
+mod veth;
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
