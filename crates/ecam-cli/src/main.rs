@@ -41,6 +41,9 @@ enum Command {
     Mc(cmd::mc::Command),
     /// Run the PLC in real time behind Modbus TCP and HTTP (API + designer page).
     Serve(cmd::serve::Args),
+    /// Cams on CiA 402 servo drives over EtherCAT (real or emulated).
+    #[command(subcommand)]
+    Ethercat(cmd::ethercat::Command),
 }
 
 fn main() -> std::process::ExitCode {
@@ -53,6 +56,7 @@ fn main() -> std::process::ExitCode {
         Command::Pmd(command) => cmd::pmd::run(command),
         Command::Mc(command) => cmd::mc::run(command),
         Command::Serve(args) => cmd::serve::run(args),
+        Command::Ethercat(command) => cmd::ethercat::run(command),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

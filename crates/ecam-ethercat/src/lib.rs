@@ -14,6 +14,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod cia402;
+pub mod config;
 pub mod drive;
 pub mod emulation;
 mod error;

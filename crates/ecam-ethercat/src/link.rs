@@ -12,6 +12,7 @@ use std::time::Duration;
 use ethercrab::{PduRx, PduTx};
 
 use crate::emulation::EmulatedSegment;
+use crate::rt::{RtConfig, configure_current_thread};
 
 /// Wakes the link thread when ethercrab queues a frame.
 struct Unpark(Thread);
@@ -39,12 +40,15 @@ impl InProcessLink {
         mut tx: PduTx<'static>,
         mut rx: PduRx<'static>,
         segment: Arc<Mutex<EmulatedSegment>>,
+        rt: RtConfig,
     ) -> std::io::Result<Self> {
         let stop = Arc::new(AtomicBool::new(false));
         let stop_thread = Arc::clone(&stop);
         let thread = thread::Builder::new()
             .name("ecam-ethercat-emulated-link".into())
             .spawn(move || {
+                // Refusal falls back to normal scheduling.
+                let _ = configure_current_thread(&rt);
                 let waker = Waker::from(Arc::new(Unpark(thread::current())));
                 while !stop_thread.load(Ordering::Acquire) && !tx.should_exit() {
                     tx.replace_waker(&waker);

@@ -18,6 +18,7 @@ use crate::emulation::EmulatedSegment;
 use crate::error::EthercatError;
 use crate::link::InProcessLink;
 use crate::pdo::{CspInputs, INPUTS_LEN, OUTPUTS_LEN};
+use crate::rt::{RtConfig, configure_current_thread};
 
 /// Most drives one segment carries.
 pub const MAX_DRIVES: usize = 64;
@@ -50,6 +51,11 @@ pub struct SegmentConfig {
     pub state_timeout: Duration,
     /// Frames sent to settle the drives' clocks before SYNC0 starts.
     pub dc_static_sync_iterations: u32,
+    /// `SCHED_FIFO` priority of the thread that sends and receives the
+    /// frames (`None`: normal scheduling). With a real-time cycle it must
+    /// be real-time too, or the cycle waits on a thread the scheduler may
+    /// hold back.
+    pub link_fifo_priority: Option<u8>,
 }
 
 impl Default for SegmentConfig {
@@ -59,6 +65,7 @@ impl Default for SegmentConfig {
             frame_timeout: Duration::from_millis(30),
             state_timeout: Duration::from_secs(5),
             dc_static_sync_iterations: 1000,
+            link_fifo_priority: None,
         }
     }
 }
@@ -126,9 +133,14 @@ impl Segment {
         // (ethercrab's storage must outlive every frame in flight).
         let storage: &'static Storage = Box::leak(Box::new(PduStorage::new()));
         let (tx, rx, pdu_loop) = storage.try_split().map_err(|()| EthercatError::Storage)?;
+        let link_rt = RtConfig {
+            period: config.cycle,
+            fifo_priority: config.link_fifo_priority,
+            cpu: None,
+        };
         let link = match transport {
             Transport::Emulated(segment) => Link::Emulated {
-                _link: InProcessLink::spawn(tx, rx, segment)?,
+                _link: InProcessLink::spawn(tx, rx, segment, link_rt)?,
             },
             Transport::Interface(name) => {
                 let task = ethercrab::std::tx_rx_task(&name, tx, rx).map_err(|source| {
@@ -141,6 +153,9 @@ impl Segment {
                     _thread: thread::Builder::new()
                         .name("ecam-ethercat-tx-rx".into())
                         .spawn(move || {
+                            // Refusal falls back to normal scheduling; the
+                            // cycle thread reports what it got.
+                            let _ = configure_current_thread(&link_rt);
                             let _ = block_on(task);
                         })?,
                 }

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod ethercat;
 pub mod law;
 pub mod mc;
 pub mod plc;

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod ethercat;
 mod law;
 mod limits;
 mod mc_run;

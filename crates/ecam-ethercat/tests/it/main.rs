@@ -23,6 +23,7 @@ fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<Emu
         frame_timeout: Duration::from_millis(20),
         state_timeout: Duration::from_secs(5),
         dc_static_sync_iterations: 50,
+        link_fifo_priority: None,
     };
     let segment =
         Segment::bring_up(Transport::Emulated(Arc::clone(&emulation)), config).expect("bring-up");

@@ -105,6 +105,7 @@ fn cam_runs_over_a_veth_pair_in_a_namespace() {
         frame_timeout: Duration::from_millis(50),
         state_timeout: Duration::from_secs(5),
         dc_static_sync_iterations: 50,
+        link_fifo_priority: None,
     };
     let segment = Segment::bring_up(Transport::Interface(pair.master_end.clone()), config)
         .expect("bring-up over veth");
