@@ -7,7 +7,22 @@
 //! [`ecam_engine::drive::AxisDrive`] interface.
 //!
 //! - [`cia402`]: the drive state machine (statusword → state,
-//!   request → controlword).
+//!   request → controlword), both the master's and the drive's side.
+//! - [`pdo`]: the CSP process data and its packing.
+//! - [`drive`]: [`Cia402Drive`], a servo drive as an
+//!   [`ecam_engine::drive::AxisDrive`].
+//! - [`segment`]: bring-up to OP with distributed clocks (SYNC0 = the
+//!   cycle) and one exchange per cycle.
+//! - [`line`]: cams on drives, masters from the bus, the fault reaction.
+//! - [`rt`]: the real-time cycle (absolute deadlines, `SCHED_FIFO`,
+//!   pinning, lateness histogram).
+//! - [`config`]: the TOML line configuration.
+//! - [`emulation`] and [`link`]: emulated CSP drives, reachable by
+//!   ethercrab in-process or over a network interface, for tests and for
+//!   trying without hardware.
+//!
+//! The user guide is docs/ethercat.md; it says what was tested against
+//! the emulation only.
 //!
 //! Use something else when you need a full PLC runtime with its own
 //! motion kernel: this crate only runs cams on drives.

@@ -73,9 +73,10 @@ impl Default for SegmentConfig {
 /// What one exchange found.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CycleReport {
-    /// Working counter of the process data (3 per drive: read + write).
+    /// Working counter of the process data (3 per drive: read + write,
+    /// summed over the frames the image takes).
     pub working_counter: u16,
-    /// The working counter a complete segment returns.
+    /// The working counter the complete segment returned after bring-up.
     pub expected_working_counter: u16,
     /// Drives that did not answer.
     pub unreachable: usize,
@@ -108,6 +109,7 @@ pub struct Segment {
     group: OpGroup,
     drives: Vec<Cia402Drive>,
     config: SegmentConfig,
+    expected_working_counter: u16,
     _link: Link,
 }
 
@@ -166,6 +168,9 @@ impl Segment {
             Timeouts {
                 pdu: config.frame_timeout,
                 state_transition: config.state_timeout,
+                // EEPROM reads happen at bring-up only; a loaded host must
+                // not fail them (ethercrab's default is 10 ms).
+                eeprom: config.state_timeout,
                 ..Timeouts::default()
             },
             MainDeviceConfig {
@@ -175,15 +180,25 @@ impl Segment {
         );
         let group = block_on(bring_up_group(&maindevice, config))?;
         let drives = vec![Cia402Drive::new(); group.len()];
+        // 3 per drive (read and write of its process data); more when
+        // ethercrab splits the image over frames and a drive's outputs
+        // straddle two of them. The first exchange with every drive in OP
+        // tells.
+        let minimum = u16::try_from(drives.len() * 3).unwrap_or(u16::MAX);
         let mut segment = Self {
             maindevice,
             group,
             drives,
             config,
+            expected_working_counter: minimum,
             _link: link,
         };
         // One exchange so every drive's state and position are known.
-        segment.exchange()?;
+        let first = segment.exchange()?;
+        if first.unreachable > 0 || first.working_counter < minimum {
+            return Err(EthercatError::NotOp);
+        }
+        segment.expected_working_counter = first.working_counter;
         Ok(segment)
     }
 
@@ -229,7 +244,7 @@ impl Segment {
             let mut io = subdevice.io_raw_mut();
             drive.outputs().pack(io.outputs())?;
         }
-        let expected = u16::try_from(self.drives.len() * 3).unwrap_or(u16::MAX);
+        let expected = self.expected_working_counter;
         let response = match block_on(self.group.tx_rx_dc(&self.maindevice)) {
             Ok(response) => response,
             Err(ethercrab::error::Error::Timeout(_)) => {

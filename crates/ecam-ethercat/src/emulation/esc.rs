@@ -283,6 +283,7 @@ impl Esc {
         }
         let mut read_hit = false;
         let mut write_hit = false;
+        let mut outputs_complete = false;
         let datagram_len = u32::try_from(data.len()).unwrap_or(u32::MAX);
         for index in 0..8 {
             let base = REG_FMMU + index * 16;
@@ -316,6 +317,11 @@ impl Esc {
             if fmmu_write && matches!(cmd, Cmd::Lwr | Cmd::Lrw) {
                 self.memory[in_mem..in_mem + n].copy_from_slice(&data[in_data..in_data + n]);
                 write_hit = true;
+                // A buffered sync manager hands the outputs over when its
+                // last byte is written (the master may split them over
+                // two frames).
+                let last = usize::from(SM2_START) + OUTPUTS_LEN - 1;
+                outputs_complete |= (in_mem..in_mem + n).contains(&last);
             }
         }
         if read_hit {
@@ -323,11 +329,11 @@ impl Esc {
         }
         if write_hit {
             *wkc = wkc.wrapping_add(if cmd == Cmd::Lrw { 2 } else { 1 });
-            // The drive's application takes new outputs only in OP
-            // (SAFE-OP: inputs valid, outputs ignored).
-            if al == 8 {
-                self.run_drive();
-            }
+        }
+        // The drive's application takes new outputs only in OP
+        // (SAFE-OP: inputs valid, outputs ignored), once per cycle.
+        if outputs_complete && al == 8 {
+            self.run_drive();
         } else if read_hit {
             self.publish_inputs();
         }
@@ -501,4 +507,91 @@ fn word8(memory: &[u8], at: usize) -> [u8; 8] {
     let mut out = [0u8; 8];
     out.copy_from_slice(&memory[at..at + 8]);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HOP: Hop = Hop {
+        position: 0,
+        reachable: 1,
+        now_ns: 1_000,
+    };
+
+    fn write(esc: &mut Esc, register: u16, bytes: &[u8]) -> u16 {
+        let mut data = bytes.to_vec();
+        let mut wkc = 0;
+        let mut adp = 0;
+        esc.datagram(Cmd::Apwr, &mut adp, register, &mut data, &mut wkc, HOP);
+        wkc
+    }
+
+    fn read(esc: &mut Esc, register: u16, len: usize) -> Vec<u8> {
+        let mut data = vec![0; len];
+        let mut wkc = 0;
+        let mut adp = 0;
+        esc.datagram(Cmd::Aprd, &mut adp, register, &mut data, &mut wkc, HOP);
+        assert_eq!(wkc, 1);
+        assert_eq!(adp, 1, "auto-increment address counts up");
+        data
+    }
+
+    #[test]
+    fn al_state_machine_refuses_what_a_drive_refuses() {
+        let mut esc = Esc::new(1, DriveBehaviour::default());
+        assert_eq!(write(&mut esc, 0x0120, &[8, 0]), 1);
+        assert_eq!(
+            read(&mut esc, 0x0130, 2),
+            vec![0x11, 0],
+            "INIT → OP refused, error flag"
+        );
+        assert_eq!(read(&mut esc, 0x0134, 2), vec![0x11, 0]);
+        write(&mut esc, 0x0120, &[2, 0]);
+        assert_eq!(esc.al_state(), 2);
+        write(&mut esc, 0x0120, &[4, 0]);
+        assert_eq!(
+            read(&mut esc, 0x0134, 2),
+            vec![0x1D, 0],
+            "no output sync manager"
+        );
+        // SM2 at 0x1100, 7 bytes, enabled; SM3 at 0x1180, 12 bytes.
+        write(&mut esc, 0x0810, &[0x00, 0x11, 7, 0, 0x64, 0, 1, 0]);
+        write(&mut esc, 0x0818, &[0x80, 0x11, 12, 0, 0x20, 0, 1, 0]);
+        write(&mut esc, 0x0120, &[4, 0]);
+        assert_eq!(esc.al_state(), 4);
+        write(&mut esc, 0x0120, &[8, 0]);
+        assert_eq!(read(&mut esc, 0x0134, 2), vec![0x30, 0], "OP needs SYNC0");
+        write(&mut esc, 0x09A0, &1_000_000u32.to_le_bytes());
+        write(&mut esc, 0x0981, &[3]);
+        write(&mut esc, 0x0120, &[8, 0]);
+        assert_eq!(esc.al_state(), 8);
+    }
+
+    #[test]
+    fn sii_reads_eight_bytes_and_identity_registers_are_read_only() {
+        let mut esc = Esc::new(7, DriveBehaviour::default());
+        // Read word 0x0E: the serial number.
+        write(&mut esc, 0x0502, &[0x00, 0x01, 0x0E, 0x00, 0, 0]);
+        let control = read(&mut esc, 0x0502, 2);
+        assert_eq!(
+            u16::from_le_bytes([control[0], control[1]]) & 0x8000,
+            0,
+            "not busy"
+        );
+        assert_eq!(read(&mut esc, 0x0508, 4), 7u32.to_le_bytes().to_vec());
+        write(&mut esc, 0x0000, &[0xFF]);
+        assert_eq!(read(&mut esc, 0x0000, 1), vec![0x11]);
+    }
+
+    #[test]
+    fn read_write_commands_count_three() {
+        let mut esc = Esc::new(1, DriveBehaviour::default());
+        let mut data = vec![0x34, 0x12];
+        let (mut wkc, mut adp) = (0, 0);
+        esc.datagram(Cmd::Aprw, &mut adp, 0x0010, &mut data, &mut wkc, HOP);
+        assert_eq!(wkc, 3);
+        assert_eq!(data, vec![0, 0], "returns the old value");
+        assert_eq!(read(&mut esc, 0x0010, 2), vec![0x34, 0x12]);
+    }
 }

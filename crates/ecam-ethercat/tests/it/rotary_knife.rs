@@ -104,3 +104,54 @@ fn ten_thousand_cycles_on_eight_drives_are_exact() {
         assert_eq!(status.fault, None);
     }
 }
+
+/// 64 drives: the process image no longer fits one frame, so ethercrab
+/// splits it; the cams stay exact and the working counter stays whole.
+#[test]
+fn sixty_four_drives_over_two_frames_stay_exact() {
+    let behaviour = DriveBehaviour {
+        lag_cycles: 1,
+        ..DriveBehaviour::default()
+    };
+    let (segment, emulation) = emulated(64, behaviour);
+    let axes = (0..64)
+        .map(|drive| CamDrive {
+            axis: knife_axis(),
+            drive,
+            master: Master::Virtual,
+        })
+        .collect();
+    let mut line = CamLine::new(segment, axes).unwrap();
+    line.virtual_speed = 5;
+    line.start().unwrap();
+    while line.state() != LineState::Running {
+        line.cycle().unwrap();
+        assert_ne!(line.state(), LineState::Faulted, "{:?}", line.faults());
+    }
+    let mut previous: Option<Vec<i64>> = None;
+    for cycle in 0..300 {
+        let report = line.cycle().unwrap();
+        assert!(
+            !report.bus.working_counter_error(),
+            "cycle {cycle}: {:?}",
+            report.bus
+        );
+        let commanded: Vec<i64> = report.axes.iter().map(|o| o.slave).collect();
+        let emulation = emulation.lock().unwrap();
+        for (i, esc) in emulation.escs().iter().enumerate() {
+            assert_eq!(
+                i64::from(esc.drive().target()),
+                commanded[i],
+                "cycle {cycle} drive {i}"
+            );
+            if let Some(previous) = &previous {
+                assert_eq!(
+                    i64::from(esc.drive().actual()),
+                    previous[i],
+                    "cycle {cycle} drive {i}"
+                );
+            }
+        }
+        previous = Some(commanded);
+    }
+}

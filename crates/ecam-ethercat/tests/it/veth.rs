@@ -102,7 +102,7 @@ fn cam_runs_over_a_veth_pair_in_a_namespace() {
     .expect("emulation on the veth end");
     let config = SegmentConfig {
         cycle: Duration::from_millis(1),
-        frame_timeout: Duration::from_millis(50),
+        frame_timeout: Duration::from_millis(250),
         state_timeout: Duration::from_secs(5),
         dc_static_sync_iterations: 50,
         link_fifo_priority: None,
