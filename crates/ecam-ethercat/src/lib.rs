@@ -13,7 +13,7 @@
 //!   [`ecam_engine::drive::AxisDrive`].
 //! - [`segment`]: bring-up to OP with distributed clocks (SYNC0 = the
 //!   cycle) and one exchange per cycle.
-//! - [`line`]: cams on drives, masters from the bus, the fault reaction.
+//! - [`line`](mod@line): cams on drives, masters from the bus, the fault reaction.
 //! - [`rt`]: the real-time cycle (absolute deadlines, `SCHED_FIFO`,
 //!   pinning, lateness histogram).
 //! - [`config`]: the TOML line configuration.
