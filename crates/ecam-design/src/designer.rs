@@ -69,11 +69,13 @@ pub fn law_curves_json(name: &str, points: usize) -> Result<Value, String> {
     }))
 }
 
-/// The generators and their parameters, for the page's form, from
+/// The generators (name, title, one-line `about`) and their parameters, for the page's form, from
 /// [`schema`]: each field's key, label, type (`int`, `number` — arithmetic
 /// such as `5/3` allowed —, `text`, `bool`, `choice` with its `choices`, and
 /// `keys`: key points, one `master slave curve [resolution]` per line, read
-/// by `POST /api/keypoints` into the `key` array) and default.
+/// by `POST /api/keypoints` into the `key` array), default, unit (empty
+/// for counts of points and plain numbers), help text, and for whole
+/// numbers the accepted `min` and `max`.
 pub fn generators_json() -> Value {
     Value::Array(
         schema::GENERATORS
@@ -85,7 +87,7 @@ pub fn generators_json() -> Value {
                     .iter()
                     .map(|f| form_field(f, defaults.get(f.key)))
                     .collect();
-                json!({"name": g.name, "title": g.title, "fields": fields})
+                json!({"name": g.name, "title": g.title, "about": g.about, "fields": fields})
             })
             .collect(),
     )
@@ -108,9 +110,16 @@ fn form_field(field: &Field, default: Option<&Value>) -> Value {
         "label": field.label(),
         "type": field.kind.name(),
         "default": default,
+        "unit": field.unit,
+        "help": field.help,
     });
-    if let FieldKind::Choice(names) = field.kind {
-        value["choices"] = json!(names);
+    match field.kind {
+        FieldKind::Choice(names) => value["choices"] = json!(names),
+        FieldKind::Integer { min, max, .. } => {
+            value["min"] = json!(min);
+            value["max"] = json!(max);
+        }
+        _ => {}
     }
     value
 }
@@ -267,6 +276,40 @@ mod tests {
             kp["design"].is_null(),
             "key points are drawn from their exact points"
         );
+    }
+
+    #[test]
+    fn form_fields_carry_unit_help_and_range_from_the_schema() {
+        let list = generators_json();
+        let cut = list
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|g| g["name"] == "keypoints")
+            .unwrap();
+        let resolution = cut["fields"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["key"] == "resolution")
+            .unwrap();
+        let field = schema::find("keypoints")
+            .unwrap()
+            .field("resolution")
+            .unwrap();
+        let FieldKind::Integer { min, max, .. } = field.kind else {
+            panic!("an integer");
+        };
+        assert_eq!(resolution["min"], json!(min));
+        assert_eq!(resolution["max"], json!(max));
+        assert_eq!(resolution["help"], json!(field.help));
+        let initial = cut["fields"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["key"] == "initial_slave")
+            .unwrap();
+        assert_eq!(initial["unit"], "pulses");
     }
 
     #[test]

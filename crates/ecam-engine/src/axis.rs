@@ -6,30 +6,37 @@
 //! output. No step allocates or loops over anything but the four sync
 //! windows; the curve lookup is O(1) through the cursor while the master
 //! moves continuously.
-
-use core::num::NonZeroU64;
+//!
+//! The steps with more to them live beside this file: `phase` (what each
+//! phase of the axis holds), `engage` (engagement and ramp-in), `online`
+//! (changes requested while the cam runs) and `takeover` (carrying out a
+//! table switch inside the tick).
 
 use ecam_core::{CamCurve, Cursor};
 
 use crate::MissedActivation;
-use crate::blend::{Blend, BlendEnd};
 use crate::config::effective_frequency;
 use crate::coupling::{Engagement, Geometry, Place, Sample};
 use crate::master::TurnUnwrap;
-use crate::offset_ramp::OffsetRamp;
 use crate::pulse::PulseOutput;
-use crate::ramp::Ramp;
-use crate::ramp_in::{RampDirection, RampInLimits};
-use crate::scaling::ScalingRamp;
+use crate::ramp_in::RampInLimits;
 use crate::speed::MasterSpeed;
 use crate::start::{StartStep, StartWatch};
 use crate::stop::{CycleEnd, StopAt};
-use crate::switch::{Pending, Takeover, Trigger};
 use crate::sync::active_windows;
 use crate::{
-    AxisConfig, AxisState, EngineError, Events, MasterTracker, OffsetChange, RampIn, SlaveAlign,
-    StopKind, SwitchAt, SyncWindow, TickInput, TickOutput, Zoom,
+    AxisConfig, AxisState, EngineError, Events, MasterTracker, StopKind, SyncWindow, TickInput,
+    TickOutput,
 };
+
+mod cam_out;
+mod engage;
+mod online;
+mod phase;
+mod takeover;
+
+pub use online::AfterPass;
+use phase::{Armed, Engaged, Phase};
 
 /// A slave axis coupled to a master through a cam curve.
 ///
@@ -66,99 +73,6 @@ pub struct CamAxis<C> {
     /// The master's speed for sizing a ramp-in (see `speed.rs`).
     speed: MasterSpeed,
     last: TickOutput,
-}
-
-/// The life of an axis; each phase holds what only it has, so a stopping
-/// axis without a cycle end, or a running one without an engagement,
-/// cannot be built.
-#[derive(Clone, Debug)]
-enum Phase<C> {
-    /// Not coupled; the slave holds.
-    Idle,
-    /// Waiting for the start condition.
-    Armed(Armed),
-    /// Following the cam.
-    Running(Engaged<C>),
-    /// Following the cam to the end of the current cycle.
-    Stopping(Engaged<C>, CycleEnd),
-    /// A one-shot ended or an end-of-cycle stop completed; the slave holds.
-    Finished,
-}
-
-/// An armed axis' start watch.
-#[derive(Clone, Copy, Debug)]
-struct Armed {
-    watch: StartWatch,
-    /// The master of the last tick since arming: delays and crossings
-    /// count from the first tick after arming, not from motion before it.
-    previous: Option<i64>,
-    /// The start came and a delay is being counted.
-    delaying: bool,
-}
-
-/// What an engaged axis has.
-#[derive(Clone, Debug)]
-struct Engaged<C> {
-    engagement: Engagement,
-    ramp: Option<Ramp>,
-    /// The place followed at the last tick (where a stop is measured from).
-    place: Place,
-    /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
-    queued: Option<(C, AfterPass)>,
-    /// The blend for the queued table's seam switch.
-    seam_blend: Option<NonZeroU64>,
-    /// A table waiting for a master position or the next tick
-    /// ([`CamAxis::switch_curve`]); never together with `queued`.
-    pending: Option<Pending<C>>,
-    /// The blend from the last switch's old cam, while it runs.
-    blend: Option<Blend>,
-    /// An offset change being ramped in ([`CamAxis::change_offsets`]).
-    offsets: Option<OffsetRamp>,
-    /// A slave-scaling change being ramped in
-    /// ([`CamAxis::change_slave_scaling`]).
-    scaling: Option<ScalingRamp>,
-    /// The master followed at the last tick, counts × 2^32 plus the
-    /// fraction (where a switch position is crossed from).
-    followed: i128,
-}
-
-impl<C> Engaged<C> {
-    /// A table switch, blend, offset or scaling change is under way.
-    fn changing(&self) -> bool {
-        self.offsets.is_some()
-            || self.scaling.is_some()
-            || self.blend.is_some()
-            || self.pending.is_some()
-            || self.queued.is_some()
-    }
-
-    /// The engagement in effect at `master`, an offset ramp included.
-    fn engagement_at(&self, master: i64) -> Result<Engagement, EngineError> {
-        match &self.offsets {
-            Some(ramp) => ramp.apply(&self.engagement, master),
-            None => Ok(self.engagement),
-        }
-    }
-}
-
-impl<C> Phase<C> {
-    fn state(&self) -> AxisState {
-        match self {
-            Self::Idle => AxisState::Idle,
-            Self::Armed(Armed { delaying: true, .. }) => AxisState::Delaying,
-            Self::Armed(_) => AxisState::Armed,
-            Self::Running(_) => AxisState::Running,
-            Self::Stopping(..) => AxisState::Stopping,
-            Self::Finished => AxisState::Finished,
-        }
-    }
-
-    fn engaged(&self) -> Option<&Engaged<C>> {
-        match self {
-            Self::Running(e) | Self::Stopping(e, _) => Some(e),
-            _ => None,
-        }
-    }
 }
 
 impl<C: CamCurve> CamAxis<C> {
@@ -260,215 +174,6 @@ impl<C: CamCurve> CamAxis<C> {
         Ok(core::mem::replace(&mut self.curve, curve))
     }
 
-    /// Hands a new table to the axis. Idle, armed or finished, it replaces
-    /// the table at once. While the cam is engaged it takes over at the next
-    /// seam (cycle boundary) the master crosses, in either direction: the
-    /// new table's cycle starts there and the output continues from the
-    /// slave position at the seam, without a step (velocity is continuous
-    /// when the tables' slopes agree at the seam). A second call before the
-    /// seam replaces the waiting table. After the switch the old table can
-    /// be taken back with [`CamAxis::take_retired_curve`].
-    ///
-    /// # Errors
-    /// As [`CamAxis::new`] for a table that does not fit the configuration,
-    /// and [`EngineError::NoSeam`] for an engaged normal (non-repeating)
-    /// cam; the running cam is left untouched.
-    pub fn queue_curve(&mut self, curve: C) -> Result<(), EngineError> {
-        self.queue_curve_then(curve, AfterPass::Repeat)
-    }
-
-    /// As [`CamAxis::queue_curve`], and says what follows the new table's
-    /// first pass: with [`AfterPass::Finish`] the axis runs the table once
-    /// from the seam and finishes at its end (the PLC's midCAMend table,
-    /// which ends at standstill). Idle or armed, `then` is ignored: the
-    /// configuration's coupling decides.
-    ///
-    /// # Errors
-    /// As [`CamAxis::queue_curve`].
-    pub fn queue_curve_then(&mut self, curve: C, then: AfterPass) -> Result<(), EngineError> {
-        let geometry = Geometry::new(&curve, &self.config)?;
-        match &mut self.phase {
-            Phase::Running(engaged) | Phase::Stopping(engaged, _) => {
-                if geometry.extent == crate::coupling::Extent::Single {
-                    return Err(EngineError::NoSeam);
-                }
-                engaged.pending = None;
-                engaged.seam_blend = None;
-                engaged.queued = Some((curve, then));
-            }
-            Phase::Idle | Phase::Armed(_) | Phase::Finished => {
-                self.geometry = geometry;
-                self.cursor = Cursor::new();
-                self.retired = Some(core::mem::replace(&mut self.curve, curve));
-            }
-        }
-        Ok(())
-    }
-
-    /// Hands a new table to the axis, taking over where `at` says. Idle,
-    /// armed or finished, it replaces the table at once. While the cam is
-    /// running, [`SwitchAt::NextSeam`] is [`CamAxis::queue_curve`]; with
-    /// [`SwitchAt::MasterPosition`] and [`SwitchAt::Now`] the new cam takes
-    /// over at that master position (or this tick's master), aligned to
-    /// the master as [`AxisConfig::master_align`] says (as at engage) and
-    /// anchored on the old cam there: the slave's position is continuous.
-    /// With a blend distance the velocity is too: the slave's velocity
-    /// moves from the old cam's to the new cam's over that master travel
-    /// and stays between them (see docs/engine.md, "Changing the table
-    /// while engaged"). A second call before the switch replaces the
-    /// waiting table; a switch that comes due while a blend runs waits for
-    /// its end. `events.table_switched` marks the tick of the switch; the
-    /// old table can be taken back with [`CamAxis::take_retired_curve`].
-    ///
-    /// # Errors
-    /// As [`CamAxis::queue_curve`]; [`EngineError::Busy`] for a position
-    /// or at-once switch during an end-of-cycle stop. The running cam is
-    /// left untouched.
-    pub fn switch_curve(&mut self, curve: C, at: SwitchAt) -> Result<(), EngineError> {
-        let (trigger, blend) = match at {
-            SwitchAt::NextSeam { blend } => {
-                self.queue_curve(curve)?;
-                if let Phase::Running(engaged) | Phase::Stopping(engaged, _) = &mut self.phase {
-                    engaged.seam_blend = blend;
-                }
-                return Ok(());
-            }
-            SwitchAt::MasterPosition { position, blend } => (Trigger::Position(position), blend),
-            SwitchAt::Now { blend } => (Trigger::Now, blend),
-        };
-        Geometry::new(&curve, &self.config)?;
-        match &mut self.phase {
-            Phase::Running(engaged) if engaged.offsets.is_some() || engaged.scaling.is_some() => {
-                Err(EngineError::Busy)
-            }
-            Phase::Running(engaged) => {
-                engaged.queued = None;
-                engaged.pending = Some(Pending::new(Takeover::Table(curve), trigger, blend));
-                Ok(())
-            }
-            Phase::Stopping(..) => Err(EngineError::Busy),
-            Phase::Idle | Phase::Armed(_) | Phase::Finished => self.queue_curve(curve),
-        }
-    }
-
-    /// True while a queued table waits for the next seam, a master
-    /// position or the next tick.
-    pub fn has_queued_curve(&self) -> bool {
-        self.phase
-            .engaged()
-            .is_some_and(|e| e.queued.is_some() || e.pending.is_some())
-    }
-
-    /// Changes the master and slave offsets of the running cam by
-    /// `change`, ramped in over `change.distance` master counts from the
-    /// master the axis followed last (PLCopen `MasterOffset` and
-    /// `SlaveOffset` changed in sync; see docs/engine.md, "Offsets on the
-    /// fly"). Position, velocity and acceleration stay continuous; the
-    /// final offsets are exact.
-    ///
-    /// # Errors
-    /// [`EngineError::NotRunning`] unless the cam is running;
-    /// [`EngineError::Busy`] while a table switch waits or blends, or an
-    /// offset change is still being ramped in.
-    pub fn change_offsets(&mut self, change: OffsetChange) -> Result<(), EngineError> {
-        let mden = self.geometry.master_den();
-        match &mut self.phase {
-            Phase::Running(engaged) => {
-                if engaged.changing() {
-                    return Err(EngineError::Busy);
-                }
-                let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
-                engaged.offsets = Some(OffsetRamp::new(change, from, mden));
-                Ok(())
-            }
-            _ => Err(EngineError::NotRunning),
-        }
-    }
-
-    /// Changes the slave scaling (slave zoom) of the running cam, ramped
-    /// in over `distance` master counts from the master the axis followed
-    /// last (PLCopen `SlaveScaling` changed in sync; see docs/engine.md,
-    /// "Scaling on the fly"): the command moves from the cam with the old
-    /// scaling to the cam with the new one, position and velocity
-    /// continuous; afterwards it is exactly the cam with the new scaling
-    /// and [`AxisConfig::slave_zoom`] reads the new value.
-    ///
-    /// # Errors
-    /// As [`CamAxis::change_offsets`].
-    pub fn change_slave_scaling(
-        &mut self,
-        zoom: Zoom,
-        distance: NonZeroU64,
-    ) -> Result<(), EngineError> {
-        let target = self.geometry.with_slave_zoom(zoom);
-        match &mut self.phase {
-            Phase::Running(engaged) => {
-                if engaged.changing() {
-                    return Err(EngineError::Busy);
-                }
-                let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
-                engaged.scaling = Some(ScalingRamp::new(target, from, distance));
-                self.config.slave_zoom = zoom;
-                Ok(())
-            }
-            _ => Err(EngineError::NotRunning),
-        }
-    }
-
-    /// Changes the master scaling (master zoom) of the running cam at the
-    /// next whole master count (as [`SwitchAt::Now`]): the cam's phase (its
-    /// table input) and the slave's position are kept there and from then
-    /// on the table runs at the new scaling; with `blend` the velocity
-    /// moves from the old to the new over that master travel, as a table
-    /// switch's blend does. Afterwards [`AxisConfig::master_zoom`] reads
-    /// the new value and the cam is an exact function of the master again.
-    ///
-    /// # Errors
-    /// As [`CamAxis::change_offsets`], and as [`CamAxis::new`] for a
-    /// scaling that does not fit the table.
-    pub fn change_master_scaling(
-        &mut self,
-        zoom: Zoom,
-        blend: Option<NonZeroU64>,
-    ) -> Result<(), EngineError> {
-        Geometry::new(
-            &self.curve,
-            &AxisConfig {
-                master_zoom: zoom,
-                ..self.config
-            },
-        )?;
-        match &mut self.phase {
-            Phase::Running(engaged) => {
-                if engaged.changing() {
-                    return Err(EngineError::Busy);
-                }
-                engaged.pending = Some(Pending::new(
-                    Takeover::MasterScaling(zoom),
-                    Trigger::Now,
-                    blend,
-                ));
-                Ok(())
-            }
-            _ => Err(EngineError::NotRunning),
-        }
-    }
-
-    /// True while an offset change is being ramped in.
-    pub fn is_changing_offsets(&self) -> bool {
-        self.phase.engaged().is_some_and(|e| e.offsets.is_some())
-    }
-
-    /// True while a switch's blend runs.
-    pub fn is_blending(&self) -> bool {
-        self.phase.engaged().is_some_and(|e| e.blend.is_some())
-    }
-
-    /// The table the last switch or replacement retired, if not yet taken.
-    pub fn take_retired_curve(&mut self) -> Option<C> {
-        self.retired.take()
-    }
-
     /// Sets the limits the next ramp-ins keep to (PLCopen ramp-in with
     /// limits, `ramp_in_pos`, `ramp_in_neg`; see docs/engine.md, "Ramp-in
     /// under limits"): at engage the ramp's master distance becomes the
@@ -482,7 +187,7 @@ impl<C: CamCurve> CamAxis<C> {
 
     /// Chooses what a backward pass of an activation position does (a
     /// [`crate::StartMode::AtMasterPosition`] start, a
-    /// [`SwitchAt::MasterPosition`] switch): take effect there
+    /// [`crate::SwitchAt::MasterPosition`] switch): take effect there
     /// ([`MissedActivation::StartNow`], the default and the behaviour
     /// before this setting) or wait for the next forward pass
     /// ([`MissedActivation::NextPass`]). Either way the tick reports
@@ -533,15 +238,20 @@ impl<C: CamCurve> CamAxis<C> {
     /// armed axis changes nothing; a finished axis can be armed again.
     ///
     /// # Errors
-    /// [`EngineError::Busy`] while the cam is engaged.
+    /// [`EngineError::Busy`] while the cam is engaged or the slave moves at
+    /// velocity after a cam-out (stop it first).
     pub fn arm(&mut self) -> Result<(), EngineError> {
         match self.phase {
-            Phase::Running(_) | Phase::Stopping(..) => Err(EngineError::Busy),
+            Phase::Running(_) | Phase::Stopping(..) | Phase::Velocity(_) => Err(EngineError::Busy),
             Phase::Armed(_) => Ok(()),
             Phase::Idle | Phase::Finished => {
                 self.missed = false;
                 self.phase = Phase::Armed(Armed {
-                    watch: StartWatch::arm_with(self.config.start, self.missed_policy),
+                    watch: StartWatch::arm_with(
+                        self.config.start,
+                        self.missed_policy,
+                        self.config.single_turn,
+                    ),
                     previous: None,
                     delaying: false,
                 });
@@ -554,7 +264,10 @@ impl<C: CamCurve> CamAxis<C> {
     /// and goes idle; [`StopKind::EndOfCycle`] keeps following to the end of
     /// the current cycle (either direction), or, requested while the master
     /// is exactly on a cycle end, finishes there at once. Either cancels a
-    /// pending start. The next tick reports what a stop here did.
+    /// pending start, and either holds a slave moving at velocity after
+    /// [`CamAxis::cam_out_at_velocity`] where it is (for a stop under a
+    /// deceleration limit see [`CamAxis::stop_decelerating`]). The next
+    /// tick reports what a stop here did.
     pub fn stop(&mut self, kind: StopKind) {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         self.phase = match (phase, kind) {
@@ -575,7 +288,7 @@ impl<C: CamCurve> CamAxis<C> {
                 self.end_run(engaged);
                 Phase::Idle
             }
-            (Phase::Armed(_), _) => {
+            (Phase::Armed(_) | Phase::Velocity(_), _) => {
                 self.pending_events.stopped = true;
                 Phase::Idle
             }
@@ -588,49 +301,13 @@ impl<C: CamCurve> CamAxis<C> {
         self.stop(StopKind::Immediate);
     }
 
-    /// Ends a run: a table still queued is the one to restart with.
-    fn end_run(&mut self, engaged: Engaged<C>) {
-        let Engaged {
-            queued,
-            pending,
-            scaling,
-            ..
-        } = engaged;
-        // The configuration already names the new scaling.
-        if let Some(ramp) = scaling {
-            self.geometry = ramp.target;
-        }
-        let mut next = queued.map(|(curve, _)| curve);
-        match pending.map(|p| p.takeover) {
-            Some(Takeover::Table(curve)) => next = Some(curve),
-            Some(Takeover::MasterScaling(zoom)) => {
-                let config = AxisConfig {
-                    master_zoom: zoom,
-                    ..self.config
-                };
-                if let Ok(geometry) = Geometry::new(&self.curve, &config) {
-                    self.config = config;
-                    self.geometry = geometry;
-                }
-            }
-            None => {}
-        }
-        if let Some(curve) = next
-            && let Ok(geometry) = Geometry::new(&curve, &self.config)
-        {
-            self.geometry = geometry;
-            self.cursor = Cursor::new();
-            self.retired = Some(core::mem::replace(&mut self.curve, curve));
-        }
-    }
-
     /// Leaves any active phase for `Idle` at once (output inhibit, fault).
     fn halt(&mut self) {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         match phase {
             Phase::Running(engaged) | Phase::Stopping(engaged, _) => self.end_run(engaged),
             Phase::Finished => self.phase = Phase::Finished,
-            Phase::Idle | Phase::Armed(_) => {}
+            Phase::Idle | Phase::Armed(_) | Phase::Velocity(_) => {}
         }
     }
 
@@ -700,6 +377,23 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Stopping(engaged, end) => {
                 self.follow(engaged, Some(end), master, estimate.fraction)
             }
+            Phase::Velocity(mut coast) => {
+                let (at, rest) = coast.advance(input.dt_us);
+                self.commanded = at;
+                let stopped = Events {
+                    stopped: rest,
+                    ..Events::default()
+                };
+                Ok((
+                    if rest {
+                        Phase::Idle
+                    } else {
+                        Phase::Velocity(coast)
+                    },
+                    None,
+                    stopped,
+                ))
+            }
             other => Ok((other, None, Events::default())),
         };
         match followed {
@@ -720,97 +414,6 @@ impl<C: CamCurve> CamAxis<C> {
             .pulse
             .step(self.commanded, input.output_enabled, hz, input.dt_us);
         self.report(master, sample, pulses, events, fault)
-    }
-
-    fn engage(&mut self, at: i64) -> Result<(), EngineError> {
-        let mut engagement = Engagement::new(
-            &self.geometry,
-            &self.config,
-            &self.curve,
-            &mut self.cursor,
-            at,
-            self.commanded,
-        )?;
-        let place = self
-            .geometry
-            .locate(engagement.table_input(&self.geometry, at));
-        let ramp_in = match self.ramp_limits {
-            Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
-            None => self.config.ramp_in,
-        };
-        self.phase = Phase::Running(Engaged {
-            engagement,
-            ramp: ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded)),
-            place,
-            queued: None,
-            seam_blend: None,
-            pending: None,
-            blend: None,
-            offsets: None,
-            scaling: None,
-            followed: i128::from(at) << 32,
-        });
-        Ok(())
-    }
-
-    /// The place of `master` under `geometry` (a one-shot held in its span).
-    fn resolve_on(&self, geometry: &Geometry, engagement: &Engagement, master: i64) -> Place {
-        let mut t = engagement.table_input(geometry, master);
-        if let Some((begin, end)) = engagement.span {
-            t = t.clamp(begin, end);
-        }
-        geometry.locate(t)
-    }
-
-    /// The ramp-in that keeps to `limits` for the engagement at `place`,
-    /// after moving its target by whole strokes for a restricted direction.
-    fn limited_ramp(
-        &mut self,
-        limits: RampInLimits,
-        engagement: &mut Engagement,
-        place: Place,
-    ) -> Result<Option<RampIn>, EngineError> {
-        let hold = i128::from(self.commanded);
-        let mut cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-        let wrong_way = |slave: i64| {
-            let gap = i128::from(slave) - hold;
-            match limits.direction {
-                RampDirection::Either => false,
-                RampDirection::Positive => gap < 0,
-                RampDirection::Negative => gap > 0,
-            }
-        };
-        if wrong_way(cam.slave) {
-            let stroke = self.geometry.stroke_pulses();
-            if stroke == 0.0 {
-                return Err(EngineError::RampDirection);
-            }
-            let gap = (i128::from(cam.slave) - hold) as f64;
-            let strokes = libm::ceil(libm::fabs(gap / stroke));
-            let toward = match limits.direction {
-                RampDirection::Negative => -1.0,
-                _ => 1.0,
-            };
-            let n = strokes * toward * libm::copysign(1.0, stroke);
-            engagement.add_strokes(n as i128);
-            cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-            if wrong_way(cam.slave) {
-                // Rounding left it a pulse short: one stroke more.
-                engagement.add_strokes(libm::copysign(1.0, n) as i128);
-                cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-            }
-        }
-        let gap = (i128::from(cam.slave) - hold) as f64;
-        let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
-        let configured = self.config.ramp_in.map(|r| r.distance.get());
-        Ok(match (needed, configured) {
-            (Some(a), Some(b)) => NonZeroU64::new(a.max(b)),
-            (Some(d), None) | (None, Some(d)) => NonZeroU64::new(d),
-            // A master at rest gives no speed to size the ramp for: one
-            // master count per 1/1.875 pulse of gap.
-            (None, None) => NonZeroU64::new(libm::ceil(1.875 * libm::fabs(gap)).max(1.0) as u64),
-        }
-        .map(|distance| RampIn { distance }))
     }
 
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
@@ -893,164 +496,6 @@ impl<C: CamCurve> CamAxis<C> {
         }
     }
 
-    /// Carries out a waiting position or at-once switch at master `at`:
-    /// the new cam is aligned to the master as at engage and anchored on
-    /// the old cam's position there; a blend then carries the slave from
-    /// the old cam's velocity to the new cam's.
-    fn switch_at(&mut self, engaged: &mut Engaged<C>, at: i64) -> Result<(), EngineError> {
-        let Some(pending) = engaged.pending.take() else {
-            return Ok(());
-        };
-        let place = self.resolve(&engaged.engagement, None, at).place;
-        let old =
-            engaged
-                .engagement
-                .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-        match pending.takeover {
-            Takeover::Table(curve) => {
-                let geometry = Geometry::new(&curve, &self.config)?;
-                let mut cursor = Cursor::new();
-                let config = AxisConfig {
-                    slave_align: SlaveAlign::Relative,
-                    ..self.config
-                };
-                let engagement =
-                    Engagement::new(&geometry, &config, &curve, &mut cursor, at, old.slave)?;
-                engaged.engagement = engagement;
-                self.geometry = geometry;
-                self.cursor = cursor;
-                self.retired = Some(core::mem::replace(&mut self.curve, curve));
-            }
-            Takeover::MasterScaling(zoom) => {
-                let config = AxisConfig {
-                    master_zoom: zoom,
-                    ..self.config
-                };
-                let geometry = Geometry::new(&self.curve, &config)?;
-                let mut engagement =
-                    engaged
-                        .engagement
-                        .with_master_rescaled(&self.geometry, &geometry, at)?;
-                let place = self.resolve_on(&geometry, &engagement, at);
-                let new = engagement.sample(&geometry, &self.curve, &mut self.cursor, place)?;
-                // Anchored: the new table unit may round the phase.
-                engagement.shift_output(i128::from(old.slave) - i128::from(new.slave))?;
-                engaged.engagement = engagement;
-                self.geometry = geometry;
-                self.config = config;
-            }
-        }
-        engaged.blend = match pending.blend {
-            Some(distance) => {
-                let engagement = engaged.engagement;
-                Some(self.blend_onto(&engagement, at, distance, old.slave, old.velocity_ratio)?)
-            }
-            None => None,
-        };
-        Ok(())
-    }
-
-    /// Takes a queued table over at the seam between the last place and
-    /// `to`, if one waits; gives back the engagement on the new table.
-    fn switch_at_seam(&mut self, engaged: &mut Engaged<C>, to: Place) -> Result<bool, EngineError> {
-        let from = engaged.place;
-        // A seam crossed while a blend runs is not taken: the switch waits
-        // for the next seam after the blend.
-        if from.k == to.k
-            || engaged.queued.is_none()
-            || engaged.blend.is_some()
-            || engaged.offsets.is_some()
-            || engaged.scaling.is_some()
-        {
-            return Ok(false);
-        }
-        let forward = to.k > from.k;
-        // The first boundary crossed: the end of the last cycle going
-        // forwards, its start going backwards.
-        let at_seam = if forward {
-            self.geometry.cycle_end(from.k)
-        } else {
-            Geometry::cycle_start(from.k)
-        };
-        let old =
-            engaged
-                .engagement
-                .sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
-        let Some((curve, then)) = engaged.queued.take() else {
-            return Ok(false);
-        };
-        // A blend starts at the last whole master count before the seam,
-        // on the old cam there.
-        let blend_from = match engaged.seam_blend.take() {
-            Some(distance) => {
-                let at = engaged
-                    .engagement
-                    .master_at_seam(&self.geometry, from.k, forward);
-                let place = self.resolve(&engaged.engagement, None, at).place;
-                // Exactly on the seam: seen from the old cycle's side.
-                let there = if place.k == from.k {
-                    engaged.engagement.sample(
-                        &self.geometry,
-                        &self.curve,
-                        &mut self.cursor,
-                        place,
-                    )?
-                } else {
-                    old
-                };
-                Some((at, distance, there.slave, there.velocity_ratio))
-            }
-            None => None,
-        };
-        let geometry = Geometry::new(&curve, &self.config)?;
-        let mut cursor = Cursor::new();
-        let mut next = engaged.engagement.across_seam(
-            &self.geometry,
-            &geometry,
-            &curve,
-            &mut cursor,
-            from.k,
-            forward,
-            old.slave,
-        )?;
-        if then == AfterPass::Finish {
-            next.finish_after_first_pass(&geometry, forward);
-        }
-        self.geometry = geometry;
-        self.cursor = cursor;
-        self.retired = Some(core::mem::replace(&mut self.curve, curve));
-        engaged.engagement = next;
-        if let Some((at, distance, p0, v0)) = blend_from {
-            engaged.blend = Some(self.blend_onto(&engaged.engagement, at, distance, p0, v0)?);
-        }
-        Ok(true)
-    }
-
-    /// A blend from the slave at `p0` with velocity ratio `v0` at master
-    /// `at` onto the (new) cam of `engagement`.
-    fn blend_onto(
-        &mut self,
-        engagement: &Engagement,
-        at: i64,
-        distance: NonZeroU64,
-        p0: i64,
-        v0: f64,
-    ) -> Result<Blend, EngineError> {
-        let mut ends = [BlendEnd {
-            slave: 0,
-            velocity_ratio: 0.0,
-        }; 2];
-        for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
-            let place = self.resolve(engagement, None, master).place;
-            let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-            *end = BlendEnd {
-                slave: cam.slave,
-                velocity_ratio: cam.velocity_ratio,
-            };
-        }
-        Blend::start(at, distance.get(), p0, v0, ends)
-    }
-
     /// Follows the cam for one tick; gives the phase after it, what was
     /// followed and what happened.
     fn follow(
@@ -1090,10 +535,11 @@ impl<C: CamCurve> CamAxis<C> {
             let previous = engaged.followed;
             let now = (i128::from(master) << 32) | i128::from(fraction);
             let policy = self.missed_policy;
+            let turn = self.config.single_turn;
             let fired = engaged
                 .pending
                 .as_mut()
-                .map(|p| p.fires(previous, now, blending, policy));
+                .map(|p| p.fires(previous, now, blending, policy, turn));
             events.activation_missed |= fired.is_some_and(|f| f.missed);
             if let Some(at) = fired.and_then(|f| f.at) {
                 self.switch_at(&mut engaged, at)?;
@@ -1117,7 +563,18 @@ impl<C: CamCurve> CamAxis<C> {
                 stop_at.as_ref(),
                 next_master,
             );
-            let (_, next_slave, _, _) = self.command_at(&mut engaged, ahead.place, next_master)?;
+            // A table queued for the seam takes over there, so the old cam
+            // past the seam is not where the slave goes: aim at the seam.
+            let aim = if engaged.queued.is_some() && ahead.place.k != place.k {
+                if ahead.place.k > place.k {
+                    self.geometry.cycle_end(place.k)
+                } else {
+                    Geometry::cycle_start(place.k)
+                }
+            } else {
+                ahead.place
+            };
+            let (_, next_slave, _, _) = self.command_at(&mut engaged, aim, next_master)?;
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
             slave =
@@ -1214,16 +671,6 @@ impl<C: CamCurve> CamAxis<C> {
         self.last = out;
         out
     }
-}
-
-/// What an axis does once a table queued at the seam has run its first pass.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum AfterPass {
-    /// Keep repeating it as the coupling says.
-    #[default]
-    Repeat,
-    /// Finish at the end of the pass (the slave holds there).
-    Finish,
 }
 
 /// Where the cam stands for one master position.

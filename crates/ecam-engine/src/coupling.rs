@@ -98,14 +98,17 @@ impl Geometry {
             Extent::Single => (first, i128::from(last) - i128::from(first)),
             _ => (origin, span),
         };
+        if config.master_zoom.is_negative() && matches!(extent, Extent::Cycles(_)) {
+            return Err(EngineError::ReversedOneShot);
+        }
         let mden = i128::from(config.master_zoom.den());
         Ok(Self {
             origin,
             origin_num: i128::from(origin) * mden,
             period_num: span * mden,
-            mnum: i128::from(config.master_zoom.num()),
+            mnum: i128::from(config.master_zoom.signed_num()),
             mden,
-            snum: i128::from(config.slave_zoom.num()),
+            snum: i128::from(config.slave_zoom.signed_num()),
             sden: i128::from(config.slave_zoom.den()),
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
@@ -126,7 +129,7 @@ impl Geometry {
     /// The same geometry with another slave zoom.
     pub(crate) fn with_slave_zoom(&self, zoom: crate::Zoom) -> Self {
         Self {
-            snum: i128::from(zoom.num()),
+            snum: i128::from(zoom.signed_num()),
             sden: i128::from(zoom.den()),
             ..*self
         }
@@ -178,9 +181,10 @@ impl Geometry {
         clamp_i64(i128::from(self.origin).saturating_add(whole))
     }
 
-    /// The same place in master counts before zoom (floor).
+    /// The same place in master counts before zoom (floor; a master zoom
+    /// running the table backwards counts the travel the same way).
     pub(crate) fn raw_in_cycle(&self, place: Place) -> i64 {
-        clamp_i64(div_floor(place.r_num, self.mnum).0)
+        clamp_i64(div_floor(place.r_num, self.mnum.abs().max(1)).0)
     }
 
     /// Table input as a float for the curve (the only float in the chain).
@@ -475,12 +479,16 @@ impl Engagement {
         let t = geo
             .boundary(k, forward)
             .saturating_sub(self.input_offset_num);
-        let (q, r) = div_floor(t, geo.mnum.max(1));
-        clamp_i64(if !forward && r != 0 {
-            q.saturating_add(1)
+        // master = t / mnum; the side of the old cycle is below the
+        // boundary going forwards (above going backwards) in table input,
+        // which a negative master zoom turns round in master counts.
+        let (t, up) = if geo.mnum < 0 {
+            (t.saturating_neg(), forward)
         } else {
-            q
-        })
+            (t, !forward)
+        };
+        let (q, r) = div_floor(t, geo.mnum.abs().max(1));
+        clamp_i64(if up && r != 0 { q.saturating_add(1) } else { q })
     }
 
     /// Moves the whole output by `delta` pulses (a blend that ended

@@ -37,6 +37,12 @@ pub enum EngineError {
     /// A ramp-in restricted to one direction cannot close its gap that
     /// way (a cam without a stroke to add).
     RampDirection,
+    /// A PLCopen `BufferMode` the cam facade does not offer (the blending
+    /// modes); aborting and buffered are supported.
+    UnsupportedBufferMode,
+    /// A negative master zoom on a one-shot cam: its travel is counted
+    /// forwards from the engage point, so it cannot run backwards.
+    ReversedOneShot,
 }
 
 use ecam_core::{CODE_PARAMETER, CODE_TABLE};
@@ -55,7 +61,9 @@ impl EngineError {
             | Self::NoSeam
             | Self::NotRunning
             | Self::RampInLimits
-            | Self::RampDirection => CODE_PARAMETER,
+            | Self::RampDirection
+            | Self::UnsupportedBufferMode
+            | Self::ReversedOneShot => CODE_PARAMETER,
         }
     }
 }
@@ -90,6 +98,12 @@ impl fmt::Display for EngineError {
             }
             Self::RampDirection => {
                 "the ramp-in cannot close its gap in the allowed direction (no stroke to add); the cam was stopped"
+            }
+            Self::ReversedOneShot => {
+                "a one-shot cam cannot run backwards: use a positive master scaling, or a periodic or absolute-master table"
+            }
+            Self::UnsupportedBufferMode => {
+                "this BufferMode is not supported for cams: use aborting (at once or at the activation position, blended over CamIn::blend) or buffered (at the next seam, blended)"
             }
         };
         write!(f, "{text} (error {})", self.code())

@@ -45,6 +45,7 @@ extern crate std;
 
 mod axis;
 mod blend;
+mod coast;
 mod config;
 mod coupling;
 pub mod drive;
@@ -65,6 +66,7 @@ mod stop;
 mod switch;
 mod sync;
 mod tracker;
+mod turn_position;
 mod zoom;
 
 pub use axis::{AfterPass, CamAxis};

@@ -19,6 +19,10 @@ pub enum AxisState {
     /// A one-shot ended or an end-of-cycle stop completed; the slave holds.
     /// [`crate::CamAxis::arm`] starts again.
     Finished,
+    /// Out of the cam, the slave moving on at the velocity it had (PLCopen
+    /// `MC_CamOut`, [`crate::CamAxis::cam_out_at_velocity`]) or
+    /// decelerating to rest ([`crate::CamAxis::stop_decelerating`]).
+    Velocity,
 }
 
 impl AxisState {
@@ -27,11 +31,12 @@ impl AxisState {
         matches!(self, Self::Running | Self::Stopping)
     }
 
-    /// Armed, delaying, running or stopping (document 003 flag bit 0).
+    /// Armed, delaying, running or stopping (document 003 flag bit 0), or
+    /// moving at velocity after a cam-out: the axis commands the slave.
     pub const fn is_active(self) -> bool {
         matches!(
             self,
-            Self::Armed | Self::Delaying | Self::Running | Self::Stopping
+            Self::Armed | Self::Delaying | Self::Running | Self::Stopping | Self::Velocity
         )
     }
 }

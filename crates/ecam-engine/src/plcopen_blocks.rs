@@ -9,13 +9,16 @@
 use ecam_core::CamCurve;
 
 use crate::EngineError;
-use crate::plcopen::{CamIn, CamStatus, CamTableSelect, McCamAxis};
+use crate::plcopen::{CamIn, CamStatus, CamTableSelect, ExecutionMode, McCamAxis};
 
 /// `MC_CamTableSelect` outputs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TableSelectOutputs {
-    /// The table was selected.
+    /// The table was selected (for [`ExecutionMode::Queued`] while a cam
+    /// runs: it took over).
     pub done: bool,
+    /// A queued selection waits for the running cam's cycle to end.
+    pub busy: bool,
     /// The selection was refused; see `error_id`.
     pub error: bool,
     /// Why it was refused.
@@ -31,7 +34,8 @@ pub struct TableSelectBlock {
 
 impl TableSelectBlock {
     /// One call: on a rising edge of `execute` selects `table` (taken from
-    /// `table` only then).
+    /// `table` only then). A queued selection on a running cam is `Busy`
+    /// until its table takes over, then `Done`.
     pub fn call<C: CamCurve>(
         &mut self,
         axis: &mut McCamAxis<C>,
@@ -40,22 +44,31 @@ impl TableSelectBlock {
         select: CamTableSelect,
     ) -> TableSelectOutputs {
         if execute && !self.execute {
+            let queued =
+                select.execution_mode == ExecutionMode::Queued && axis.axis().state().is_engaged();
             self.out = match table.take().map(|t| axis.select_table(t, select)) {
                 Some(Ok(())) => TableSelectOutputs {
-                    done: true,
+                    done: !queued,
+                    busy: queued,
                     ..TableSelectOutputs::default()
                 },
                 Some(Err(e)) => TableSelectOutputs {
                     done: false,
+                    busy: false,
                     error: true,
                     error_id: Some(e),
                 },
                 None => TableSelectOutputs {
                     done: false,
+                    busy: false,
                     error: true,
                     error_id: Some(EngineError::EmptyCycle),
                 },
             };
+        }
+        if self.out.busy && !axis.has_queued_table() {
+            self.out.busy = false;
+            self.out.done = true;
         }
         self.execute = execute;
         self.out

@@ -13,6 +13,13 @@
 //! and a distance of at least
 //! `D_v = 1.875 |g| V / (v_max − 1.78 |r| V)` and the `D_a` that solves
 //! `V² (5.78 |g| / D² + 4.63 |r| / D) = a_max`.
+//!
+//! With a jerk limit the third derivative counts too: the ramp's jerk is
+//! `V³ × (r × (3w'' + u w''') / D² + w''' × g / D³)` plus the cam's own,
+//! with `|w'''| ≤ 60` and `|3w'' + u w'''| ≤ 60` on `[0, 1]`, so the
+//! distance is also at least the `D_j` that solves
+//! `V³ (60 |g| / D³ + 60 |r| / D²) = j_max`. The quintic keeps its shape:
+//! the limits only stretch it.
 
 use core::num::{NonZeroU32, NonZeroU64};
 
@@ -40,6 +47,8 @@ pub struct RampInLimits {
     pub max_acceleration: NonZeroU64,
     /// Which way the gap may be closed.
     pub direction: RampDirection,
+    /// Slave jerk limit, pulses per second³ (`None`: no jerk limit).
+    pub max_jerk: Option<NonZeroU64>,
 }
 
 /// Constants of the quintic's derivatives (upper bounds on [0, 1]).
@@ -47,6 +56,8 @@ const W1: f64 = 1.875;
 const H: f64 = 1.78;
 const H1: f64 = 4.63;
 const W2: f64 = 5.78;
+const W3: f64 = 60.0;
+const J1: f64 = 60.0;
 
 impl RampInLimits {
     /// The shortest ramp distance (master counts) for a gap `gap` (pulses),
@@ -77,12 +88,47 @@ impl RampInLimits {
         let c = self.max_acceleration.get() as f64;
         // D² c − b D − a ≥ 0.
         let d_a = (b + libm::sqrt(b * b + 4.0 * a * c)) / (2.0 * c);
-        let d = libm::ceil(d_v.max(d_a)).max(1.0);
+        let d_j = match self.max_jerk {
+            Some(j) => jerk_distance(g, r, v, j.get() as f64),
+            None => 0.0,
+        };
+        let d = libm::ceil(d_v.max(d_a).max(d_j)).max(1.0);
         if !d.is_finite() {
             return Err(EngineError::RampInLimits);
         }
         Ok(Some(if d >= 1.8e19 { u64::MAX } else { d as u64 }))
     }
+}
+
+/// The smallest `D > 0` with `j D³ − J1 |r| V³ D − W3 |g| V³ ≥ 0` (the
+/// left side has one positive root and grows beyond it): bisection on a
+/// bracket found by doubling, a bounded number of steps.
+fn jerk_distance(g: f64, r: f64, v: f64, j: f64) -> f64 {
+    let v3 = v * v * v;
+    let excess = |d: f64| j * d * d * d - J1 * r * v3 * d - W3 * g * v3;
+    let at_one = excess(1.0);
+    if at_one.is_nan() {
+        return f64::NAN;
+    }
+    if at_one >= 0.0 {
+        return 1.0;
+    }
+    let mut high = 2.0;
+    let mut steps = 0;
+    while excess(high) < 0.0 && steps < 1100 {
+        high *= 2.0;
+        steps += 1;
+    }
+    let mut low = high / 2.0;
+    for _ in 0..64 {
+        let mid = 0.5 * (low + high);
+        if excess(mid) < 0.0 {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    high
 }
 
 #[cfg(test)]
@@ -94,6 +140,7 @@ mod tests {
             max_velocity: NonZeroU32::new(10_000).unwrap(),
             max_acceleration: NonZeroU64::new(100_000).unwrap(),
             direction: RampDirection::Either,
+            max_jerk: None,
         }
     }
 
@@ -102,8 +149,11 @@ mod tests {
         let w1 = |u: f64| 30.0 * u * u * (1.0 - u) * (1.0 - u);
         let w2 = |u: f64| 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u);
         let w = |u: f64| u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+        let w3 = |u: f64| 60.0 - 360.0 * u + 360.0 * u * u;
         for i in 0..=10_000 {
             let u = f64::from(i) / 10_000.0;
+            assert!(w3(u).abs() <= W3 + 1e-9);
+            assert!((3.0 * w2(u) + u * w3(u)).abs() <= J1 + 1e-9);
             assert!(w1(u) <= W1 + 1e-12);
             assert!(w(u) + u * w1(u) <= H);
             assert!((2.0 * w1(u) + u * w2(u)).abs() <= H1);
@@ -122,5 +172,20 @@ mod tests {
             l.distance(0.0, 10.0, 1000.0),
             Err(EngineError::RampInLimits)
         );
+    }
+
+    #[test]
+    fn a_jerk_limit_lengthens_the_ramp_to_its_root() {
+        let free = limits().distance(1000.0, 1.0, 1000.0).unwrap().unwrap();
+        let limited = RampInLimits {
+            max_jerk: NonZeroU64::new(1_000_000),
+            ..limits()
+        };
+        let d = limited.distance(1000.0, 1.0, 1000.0).unwrap().unwrap();
+        assert!(d > free);
+        // At the distance the jerk bound is met, one count shorter it is not.
+        let jerk = |d: f64| 1e9 * (60.0 * 1000.0 / (d * d * d) + 60.0 / (d * d));
+        assert!(jerk(d as f64) <= 1_000_000.0);
+        assert!(jerk(d as f64 - 1.0) > 1_000_000.0);
     }
 }

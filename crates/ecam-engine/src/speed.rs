@@ -45,6 +45,26 @@ impl MasterSpeed {
         self.filled = (self.filled + 1).min(WINDOW);
     }
 
+    /// The master's mean velocity over the window (counts/s, signed), 0
+    /// before two readings: what a cam-out continues from.
+    pub(crate) fn velocity(&self) -> f64 {
+        if self.filled < 2 {
+            return 0.0;
+        }
+        let newest = (self.next + WINDOW - 1) % WINDOW;
+        let oldest = (self.next + WINDOW - self.filled) % WINDOW;
+        let mut us: u64 = 0;
+        for i in 1..self.filled {
+            us += u64::from(self.dts.get((oldest + i) % WINDOW).copied().unwrap_or(0));
+        }
+        if us == 0 {
+            return 0.0;
+        }
+        let travel = self.positions.get(newest).copied().unwrap_or(0)
+            - self.positions.get(oldest).copied().unwrap_or(0);
+        travel as f64 / 4_294_967_296.0 * 1.0e6 / us as f64
+    }
+
     /// An upper bound of the master's speed (counts/s, either sign as
     /// magnitude), 0 before two readings.
     pub(crate) fn bound(&self) -> f64 {

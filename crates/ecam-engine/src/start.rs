@@ -4,6 +4,9 @@
 //! engages, so the phase of the cam does not depend on the tick period
 //! (a delay of N counts engages at N counts even when a tick jumps past it).
 
+use core::num::NonZeroU64;
+
+use crate::turn_position::nearest;
 use crate::{Compare, MissedActivation, StartMode};
 
 /// What the start logic decided this tick.
@@ -32,6 +35,9 @@ pub(crate) struct StartWatch {
     mode: StartMode,
     phase: Phase,
     policy: MissedActivation,
+    /// A single-turn master's turn: the start position comes round once
+    /// per turn.
+    turn: Option<NonZeroU64>,
     /// The start position was passed backwards this tick.
     missed: bool,
 }
@@ -40,12 +46,17 @@ impl StartWatch {
     /// Armed with `mode`; a start position passed backwards starts there.
     #[cfg(test)]
     pub(crate) fn arm(mode: StartMode) -> Self {
-        Self::arm_with(mode, MissedActivation::StartNow)
+        Self::arm_with(mode, MissedActivation::StartNow, None)
     }
 
     /// Armed with `mode`; a start position passed backwards is handled
-    /// as `policy` says.
-    pub(crate) fn arm_with(mode: StartMode, policy: MissedActivation) -> Self {
+    /// as `policy` says; on a single-turn master (`turn`) the start
+    /// position is a place in the turn.
+    pub(crate) fn arm_with(
+        mode: StartMode,
+        policy: MissedActivation,
+        turn: Option<NonZeroU64>,
+    ) -> Self {
         let phase = match mode {
             StartMode::Immediate => Phase::Now,
             StartMode::OnRisingEdge
@@ -63,6 +74,7 @@ impl StartWatch {
             mode,
             phase,
             policy,
+            turn,
             missed: false,
         }
     }
@@ -111,6 +123,7 @@ impl StartWatch {
             }
             (Phase::Position { fresh }, StartMode::AtMasterPosition { position, .. }) => {
                 self.phase = Phase::Position { fresh: false };
+                let position = nearest(position, self.turn, previous, master >= previous);
                 let forward = !fresh && previous < position && position < master;
                 // Arriving on the position from above is a backward pass.
                 let backward = !fresh && master <= position && position < previous;

@@ -116,11 +116,23 @@ impl<C> Pending<C> {
         now: i128,
         blending: bool,
         policy: MissedActivation,
+        turn: Option<NonZeroU64>,
     ) -> Fired {
         let (low, high) = (previous.min(now), previous.max(now));
         let mut missed = false;
         let at = match self.trigger {
             Trigger::Position(p) => {
+                // The whole count at or beyond `previous` in the direction
+                // of travel, for the turn's place of `p`.
+                let forward = now >= previous;
+                let from = if forward {
+                    (previous + ((1 << 32) - 1)) >> 32
+                } else {
+                    previous >> 32
+                };
+                let from =
+                    i64::try_from(from).unwrap_or(if from < 0 { i64::MIN } else { i64::MAX });
+                let p = crate::turn_position::nearest(p, turn, from, forward);
                 let fixed = i128::from(p) << 32;
                 let passed = low <= fixed && fixed <= high;
                 missed = passed && now < previous;
@@ -159,24 +171,37 @@ mod tests {
     fn a_position_fires_where_it_is_crossed_either_way() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         assert_eq!(
-            p.fires(0, 99 * ONE, false, MissedActivation::StartNow).at,
+            p.fires(0, 99 * ONE, false, MissedActivation::StartNow, None)
+                .at,
             None
         );
         assert_eq!(
-            p.fires(99 * ONE, 150 * ONE, false, MissedActivation::StartNow)
+            p.fires(99 * ONE, 150 * ONE, false, MissedActivation::StartNow, None)
                 .at,
             Some(100)
         );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         // Backwards, between 101 and 100: not yet.
         assert_eq!(
-            p.fires(101 * ONE, 100 * ONE + 5, false, MissedActivation::StartNow)
-                .at,
+            p.fires(
+                101 * ONE,
+                100 * ONE + 5,
+                false,
+                MissedActivation::StartNow,
+                None
+            )
+            .at,
             None
         );
         assert_eq!(
-            p.fires(100 * ONE + 5, 100 * ONE, false, MissedActivation::StartNow)
-                .at,
+            p.fires(
+                100 * ONE + 5,
+                100 * ONE,
+                false,
+                MissedActivation::StartNow,
+                None
+            )
+            .at,
             Some(100)
         );
     }
@@ -185,25 +210,43 @@ mod tests {
     fn at_once_takes_the_first_whole_count_reached() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
         assert_eq!(
-            p.fires(7 * ONE, 9 * ONE, false, MissedActivation::StartNow)
+            p.fires(7 * ONE, 9 * ONE, false, MissedActivation::StartNow, None)
                 .at,
             Some(7)
         );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
         assert_eq!(
-            p.fires(7 * ONE + 3, 7 * ONE + 9, false, MissedActivation::StartNow)
-                .at,
+            p.fires(
+                7 * ONE + 3,
+                7 * ONE + 9,
+                false,
+                MissedActivation::StartNow,
+                None
+            )
+            .at,
             None
         );
         assert_eq!(
-            p.fires(7 * ONE + 9, 8 * ONE + 1, false, MissedActivation::StartNow)
-                .at,
+            p.fires(
+                7 * ONE + 9,
+                8 * ONE + 1,
+                false,
+                MissedActivation::StartNow,
+                None
+            )
+            .at,
             Some(8)
         );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Now, None);
         assert_eq!(
-            p.fires(-7 * ONE + 3, -8 * ONE, false, MissedActivation::StartNow)
-                .at,
+            p.fires(
+                -7 * ONE + 3,
+                -8 * ONE,
+                false,
+                MissedActivation::StartNow,
+                None
+            )
+            .at,
             Some(-7)
         );
     }
@@ -211,7 +254,7 @@ mod tests {
     #[test]
     fn a_backward_pass_is_reported_and_follows_the_policy() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
-        let fired = p.fires(120 * ONE, 90 * ONE, false, MissedActivation::NextPass);
+        let fired = p.fires(120 * ONE, 90 * ONE, false, MissedActivation::NextPass, None);
         assert_eq!(
             fired,
             Fired {
@@ -219,7 +262,7 @@ mod tests {
                 missed: true
             }
         );
-        let fired = p.fires(90 * ONE, 130 * ONE, false, MissedActivation::NextPass);
+        let fired = p.fires(90 * ONE, 130 * ONE, false, MissedActivation::NextPass, None);
         assert_eq!(
             fired,
             Fired {
@@ -228,7 +271,7 @@ mod tests {
             }
         );
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
-        let fired = p.fires(120 * ONE, 90 * ONE, false, MissedActivation::StartNow);
+        let fired = p.fires(120 * ONE, 90 * ONE, false, MissedActivation::StartNow, None);
         assert_eq!(
             fired,
             Fired {
@@ -242,18 +285,24 @@ mod tests {
     fn a_switch_due_during_a_blend_waits_for_its_end() {
         let mut p = Pending::new(Takeover::Table(()), Trigger::Position(100), None);
         assert_eq!(
-            p.fires(90 * ONE, 110 * ONE, true, MissedActivation::StartNow)
+            p.fires(90 * ONE, 110 * ONE, true, MissedActivation::StartNow, None)
                 .at,
             None
         );
         assert_eq!(
-            p.fires(110 * ONE, 120 * ONE, true, MissedActivation::StartNow)
+            p.fires(110 * ONE, 120 * ONE, true, MissedActivation::StartNow, None)
                 .at,
             None
         );
         assert_eq!(
-            p.fires(120 * ONE, 130 * ONE, false, MissedActivation::StartNow)
-                .at,
+            p.fires(
+                120 * ONE,
+                130 * ONE,
+                false,
+                MissedActivation::StartNow,
+                None
+            )
+            .at,
             Some(120)
         );
     }

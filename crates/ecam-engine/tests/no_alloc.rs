@@ -136,6 +136,7 @@ fn tick_allocates_nothing() {
         // Every other axis ramps in under limits, in one direction.
         if n % 2 == 1 {
             axis.set_ramp_in_limits(Some(RampInLimits {
+                max_jerk: NonZeroU64::new(1_000_000_000),
                 max_velocity: NonZeroU32::new(100_000).unwrap(),
                 max_acceleration: NonZeroU64::new(10_000_000).unwrap(),
                 direction: RampDirection::Positive,
@@ -157,6 +158,14 @@ fn tick_allocates_nothing() {
             match i % 701 {
                 5 => axis.stop(StopKind::EndOfCycle),
                 300 => axis.stop(StopKind::Immediate),
+                // Out of the cam at velocity, then a decelerating stop.
+                250 => {
+                    axis.cam_out_at_velocity().ok();
+                }
+                270 => {
+                    axis.stop_decelerating(NonZeroU64::new(1_000_000).unwrap())
+                        .ok();
+                }
                 301 | 320 => {
                     axis.arm().ok();
                 }

@@ -188,6 +188,8 @@ pub struct Devices {
     x: Vec<bool>,
     y: Vec<bool>,
     c: Vec<i32>,
+    /// V0–V7 then Z0–Z7, 16 bits each.
+    index: [u16; 16],
     timers: Timers,
 }
 
@@ -206,6 +208,7 @@ impl Devices {
             x: vec![false; usize::from(XY_COUNT)],
             y: vec![false; usize::from(XY_COUNT)],
             c: vec![0; usize::from(C_COUNT)],
+            index: [0; 16],
             timers: Timers::new(),
         }
     }
@@ -377,6 +380,58 @@ impl Devices {
         Ok(())
     }
 
+    /// Index register Vn or Zn as a signed 16-bit word.
+    ///
+    /// # Errors
+    /// [`DeviceError::OutOfRange`] past V7/Z7.
+    pub fn index_register(&self, register: crate::il::IndexReg) -> Result<i16, DeviceError> {
+        self.index
+            .get(index_slot(register)?)
+            .map(|&w| w as i16)
+            .ok_or(DeviceError::OutOfRange)
+    }
+
+    /// Sets Vn or Zn.
+    ///
+    /// # Errors
+    /// [`DeviceError::OutOfRange`] past V7/Z7.
+    pub fn set_index_register(
+        &mut self,
+        register: crate::il::IndexReg,
+        value: i16,
+    ) -> Result<(), DeviceError> {
+        let slot = self
+            .index
+            .get_mut(index_slot(register)?)
+            .ok_or(DeviceError::OutOfRange)?;
+        *slot = value as u16;
+        Ok(())
+    }
+
+    /// The pair Vn (high word) : Zn (low word) as one 32-bit value, as a
+    /// 32-bit FX3U instruction reads `Zn`.
+    ///
+    /// # Errors
+    /// [`DeviceError::OutOfRange`] past 7.
+    pub fn index_pair(&self, n: u8) -> Result<i32, DeviceError> {
+        use crate::il::IndexReg;
+        let low = self.index_register(IndexReg::Z(n))? as u16;
+        let high = self.index_register(IndexReg::V(n))? as u16;
+        Ok(((u32::from(high) << 16) | u32::from(low)) as i32)
+    }
+
+    /// Writes the pair Vn:Zn (Zn the low word).
+    ///
+    /// # Errors
+    /// [`DeviceError::OutOfRange`] past 7 (nothing written).
+    pub fn set_index_pair(&mut self, n: u8, value: i32) -> Result<(), DeviceError> {
+        use crate::il::IndexReg;
+        let bits = value as u32;
+        self.index_register(IndexReg::V(n))?;
+        self.set_index_register(IndexReg::Z(n), bits as u16 as i16)?;
+        self.set_index_register(IndexReg::V(n), (bits >> 16) as u16 as i16)
+    }
+
     /// Timers T0–T255 (values and contacts).
     pub fn timers(&self) -> &Timers {
         &self.timers
@@ -390,6 +445,16 @@ impl Devices {
     /// The raw word image of D0…D8511 (for the Modbus face and state files).
     pub fn words(&self) -> &[u16] {
         &self.d
+    }
+}
+
+/// Slot of Vn/Zn in the index array: V0–V7, then Z0–Z7.
+fn index_slot(register: crate::il::IndexReg) -> Result<usize, DeviceError> {
+    use crate::il::{INDEX_COUNT, IndexReg};
+    match register {
+        IndexReg::V(n) if n < INDEX_COUNT => Ok(usize::from(n)),
+        IndexReg::Z(n) if n < INDEX_COUNT => Ok(usize::from(INDEX_COUNT + n)),
+        _ => Err(DeviceError::OutOfRange),
     }
 }
 
@@ -438,6 +503,21 @@ mod tests {
         assert_eq!(dev.word_bit(5, 16), Err(DeviceError::OutOfRange));
         assert_eq!(
             dev.set_word_bit(8512, 0, true),
+            Err(DeviceError::OutOfRange)
+        );
+    }
+
+    #[test]
+    fn index_pair_is_z_low_v_high() {
+        use crate::il::IndexReg;
+        let mut dev = Devices::new();
+        dev.set_index_pair(0, 70000).unwrap();
+        assert_eq!(dev.index_register(IndexReg::Z(0)), Ok(4464));
+        assert_eq!(dev.index_register(IndexReg::V(0)), Ok(1));
+        assert_eq!(dev.index_pair(0), Ok(70000));
+        assert_eq!(dev.index_pair(8), Err(DeviceError::OutOfRange));
+        assert_eq!(
+            dev.set_index_register(IndexReg::V(8), 1),
             Err(DeviceError::OutOfRange)
         );
     }

@@ -16,7 +16,9 @@ pub struct OperationError {
 
 /// FX code for an operand whose value is out of range (e.g. a PLSY frequency).
 pub const CODE_OPERAND: u16 = 6705;
-/// FX code for a device number out of range at run time.
+/// FX code for a device number out of range at run time, including an
+/// index-modified operand (`D10Z0`) whose V/Z value moves it out of range
+/// (the FX3U uses this code for both).
 pub const CODE_DEVICE_RANGE: u16 = 6706;
 
 /// FX code for CALL nested deeper than the FX3U's five levels.

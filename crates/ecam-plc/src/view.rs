@@ -2,7 +2,8 @@
 //! value. `D100` is a signed 16-bit word, `DD100` the signed 32-bit value in
 //! D100/D101 (low word first), `DE100` the float in D100/D101, `M0`/`X17`/`Y7`
 //! a bit (0/1), `C231` a counter's value, `D2001.1` one bit of a word (0/1,
-//! bit 0–F), `T0` a timer's current value.
+//! bit 0–F), `T0` a timer's current value, `V0`…`V7`/`Z0`…`Z7` an index
+//! register (signed 16-bit).
 
 use core::fmt;
 
@@ -25,6 +26,8 @@ pub enum View {
     WordBit(u16, u8),
     /// `Tn`: the timer's current value.
     Timer(u16),
+    /// `Vn`/`Zn`: an index register, signed 16-bit.
+    Index(crate::il::IndexReg),
 }
 
 /// A value read through a [`View`].
@@ -65,7 +68,7 @@ fn device_message(text: &str, err: DeviceError) -> ViewError {
             "device `{text}` is out of range (D0-D8511, M0-M8511, X/Y 0-377 octal, C0-C255)"
         ),
         _ => format!(
-            "unknown device `{text}` (expected Dn, DDn, DEn, Mn, Xn, Yn or Cn; X/Y in octal)"
+            "unknown device `{text}` (expected Dn, DDn, DEn, Mn, Xn, Yn, Cn, Tn, Vn or Zn; X/Y in octal)"
         ),
     })
 }
@@ -98,6 +101,26 @@ impl View {
                 .filter(|b| *b < 16 && bit.len() == 1)
                 .ok_or_else(|| ViewError(format!("`{text}`: the bit is one hex digit 0-F")))?;
             return Ok(Self::WordBit(n, bit));
+        }
+        for (prefix, make) in [
+            ('V', crate::il::IndexReg::V as fn(u8) -> crate::il::IndexReg),
+            ('Z', crate::il::IndexReg::Z),
+        ] {
+            if let Some(number) = upper.strip_prefix(prefix)
+                && !number.is_empty()
+                && number.bytes().all(|b| b.is_ascii_digit())
+            {
+                let n = number
+                    .parse::<u8>()
+                    .ok()
+                    .filter(|n| *n < crate::il::INDEX_COUNT)
+                    .ok_or_else(|| {
+                        ViewError(format!(
+                            "index register `{text}` is out of range (V0-V7, Z0-Z7)"
+                        ))
+                    })?;
+                return Ok(Self::Index(make(n)));
+            }
         }
         if let Some(number) = upper.strip_prefix('T')
             && !number.is_empty()
@@ -154,6 +177,15 @@ impl View {
             Self::Timer(n) => step(n, 1)
                 .filter(|n| *n < crate::timers::T_COUNT)
                 .map(Self::Timer),
+            Self::Index(r) => {
+                use crate::il::IndexReg;
+                step(u16::from(r.number()), 1)
+                    .filter(|n| *n < u16::from(crate::il::INDEX_COUNT))
+                    .map(|n| match r {
+                        IndexReg::V(_) => Self::Index(IndexReg::V(n as u8)),
+                        IndexReg::Z(_) => Self::Index(IndexReg::Z(n as u8)),
+                    })
+            }
             Self::WordBit(n, b) => {
                 let bit = u16::from(b).checked_add(k).filter(|b| *b < 16);
                 bit.map(|b| Self::WordBit(n, b as u8))
@@ -199,6 +231,7 @@ impl View {
             Self::Counter(n) => Value::Int(devices.counter(n).map_or(0, i64::from)),
             Self::WordBit(n, b) => Value::Int(i64::from(devices.word_bit(n, b).unwrap_or(false))),
             Self::Timer(n) => Value::Int(devices.timers().value(n).map_or(0, i64::from)),
+            Self::Index(r) => Value::Int(devices.index_register(r).map_or(0, i64::from)),
         }
     }
 
@@ -258,6 +291,10 @@ impl View {
             Self::Timer(n) => devices
                 .timers_mut()
                 .set_value(n, int(0, 32767, "an integer 0..32767")? as i16),
+            Self::Index(r) => devices.set_index_register(
+                r,
+                int(-32768, 65535, "an integer -32768..65535")? as u16 as i16,
+            ),
         };
         result.map_err(|err| device_message(&self.to_string(), err))
     }
@@ -273,6 +310,7 @@ impl fmt::Display for View {
             Self::Counter(n) => write!(f, "C{n}"),
             Self::WordBit(n, b) => write!(f, "D{n}.{b:X}"),
             Self::Timer(n) => write!(f, "T{n}"),
+            Self::Index(r) => write!(f, "{r}"),
         }
     }
 }

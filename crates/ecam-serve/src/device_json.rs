@@ -1,6 +1,7 @@
 //! Device names and values as JSON, for `GET`/`POST /api/devices`: the
 //! same names and value forms as `ecam plc run --dump/--set` (`D2000`,
-//! `DD2019` signed 32-bit, `DE106` float, `M0`, `X17`, `Y7`, `C231`;
+//! `DD2019` signed 32-bit, `DE106` float, `M0`, `X17`, `Y7`, `C231`,
+//! `V0`/`Z0` index registers (read only here: the program sets them);
 //! `NAME:COUNT` for consecutive devices).
 
 use std::collections::HashSet;
@@ -116,6 +117,13 @@ fn sets_from_json(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
             View::Timer(_) => {
                 return Err(format!("{view} is a timer: the program drives it"));
             }
+            View::Index(_) => {
+                // Index registers are not part of the journalled register
+                // image; the program sets them (MOV K5 Z0).
+                return Err(format!(
+                    "{view} is an index register: the program drives it"
+                ));
+            }
             View::WordBit(n, _) => {
                 // One bit of a word is a read-modify-write of the word, which a
                 // batch of plain word writes cannot express atomically.
@@ -137,7 +145,7 @@ fn sets_from_json(body: &Value) -> Result<(WriteBatch, Vec<View>), String> {
             View::Bit(device) => {
                 batch.bit(device, scratch.bit(device).unwrap_or(false));
             }
-            View::Counter(_) | View::Timer(_) | View::WordBit(..) => {}
+            View::Counter(_) | View::Timer(_) | View::WordBit(..) | View::Index(_) => {}
         }
         views.push(view);
     }
@@ -185,6 +193,22 @@ mod tests {
     }
 
     #[test]
+    fn index_registers_read_like_words() {
+        let mut devices = Devices::new();
+        devices
+            .set_index_register(ecam_plc::il::IndexReg::Z(1), -4)
+            .unwrap();
+        devices.set_index_pair(2, 70000).unwrap();
+        let views = parse_device_names("Z1,V2,Z2,V7:1").unwrap();
+        assert_eq!(
+            devices_to_json(&views, &devices),
+            r#"{"Z1": -4, "V2": 1, "Z2": 4464, "V7": 0}"#
+        );
+        assert!(parse_device_names("V8").is_err());
+        assert!(parse_device_names("Z7:2").is_err());
+    }
+
+    #[test]
     fn sets_become_word_and_bit_writes() {
         let (batch, views) = sets_from_json(
             &json!({"DD100": -2, "DE106": 1.5, "M0": true, "X17": "1", "D7": 65535}),
@@ -223,6 +247,8 @@ mod tests {
             json!({"D300": 5, "d300": 6}),
             json!({"DD100": 1, "D101": 5}),
             json!({"X17": 1, "x017": 0}),
+            json!({"Z0": 5}),
+            json!({"V7": 5}),
         ] {
             assert!(sets_from_json(&body).is_err(), "{body}");
         }

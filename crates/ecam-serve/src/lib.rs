@@ -10,8 +10,9 @@
 //! file and line, [`Damage`], or is stepped over, [`OnDamage`]), which devices a restart keeps ([`is_kept`],
 //! [`LatchedImage`]), device names as JSON for the HTTP API
 //! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
-//! and the PLC shared by the scan loop and the servers ([`Shared`]), paced
-//! by the wall clock ([`scan_loop`]).
+//! the PLC shared by the scan loop and the servers ([`Shared`]), paced
+//! by the wall clock ([`scan_loop`]), and what the designer's live view
+//! samples of a DECAM block ([`LiveRequest`], [`LiveSample`]).
 //!
 //! It has no async runtime and prints nothing: the binary owns the
 //! sockets, the threads and stderr, and hears what the operator should
@@ -60,6 +61,7 @@ mod device_json;
 #[doc(hidden)]
 pub mod fuzz;
 mod journal;
+mod live;
 mod map;
 mod mbap;
 mod pdu;
@@ -76,6 +78,7 @@ pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
     OnDamage, Recovery, SNAPSHOT_FILE,
 };
+pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
     CoilArea, CoilRange, RegisterRange, X_COIL_BASE, Y_COIL_BASE, coil_range, register_range,
     writable_coil_range,

@@ -37,5 +37,6 @@ pub fn state_name(state: AxisState) -> &'static str {
         AxisState::Running => "running",
         AxisState::Stopping => "stopping",
         AxisState::Finished => "finished",
+        AxisState::Velocity => "velocity",
     }
 }

@@ -39,7 +39,7 @@ pub struct RunArgs {
     /// Run this many milliseconds of simulated time.
     #[arg(long, value_name = "T")]
     pub ms: Option<u64>,
-    /// Set a device before the first scan: D100=3183, DD100=3183, DE106=1.6667, M0=1, X2=1, C231=0.
+    /// Set a device before the first scan: D100=3183, DD100=3183, DE106=1.6667, M0=1, X2=1, C231=0, D200.F=1, T0=5, Z0=5.
     #[arg(long = "set", value_name = "DEV=VALUE")]
     pub sets: Vec<String>,
     /// Wire a pulse output to a counter input, e.g. Y1:X0.
@@ -50,7 +50,7 @@ pub struct RunArgs {
     /// point count), D2039 and the points from D2040.
     #[arg(long = "load", value_name = "Dn=FILE")]
     pub loads: Vec<String>,
-    /// Print a device (or COUNT consecutive ones) after the run: D2000, D2019:2, DD2019, Y7.
+    /// Print a device (or COUNT consecutive ones) after the run: D2000, D2019:2, DD2019, Y7, D2001.1, T0, Z0:8.
     #[arg(long = "dump", value_name = "DEV[:COUNT]")]
     pub dumps: Vec<String>,
     /// Write one CSV row per scan (header `t_us,DEV...`) to this file.

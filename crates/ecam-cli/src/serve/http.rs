@@ -1,10 +1,10 @@
 //! The HTTP face: device memory and status as JSON, the designer's JSON
-//! endpoints, and the designer page itself (`web/`, compiled into the
-//! binary so `ecam serve` works from any directory).
+//! endpoints, the live view's WebSocket, and the designer page itself
+//! (`crates/ecam-cli/web/`, compiled into the binary by [`super::assets`]).
 //!
 //! | route | what |
 //! |---|---|
-//! | `GET /` , `/app.js`, `/style.css` | the designer page |
+//! | `GET /`, `/app.js`, … | the designer page ([`super::assets::ASSETS`]) |
 //! | `GET /api/status` | scan count, PLC time, lag, Modbus counters, state dir |
 //! | `GET /api/devices?names=D2000,M0,DD2019,D100:4` | values, as `ecam plc run --dump` prints them |
 //! | `POST /api/devices` `{"D100": 3183, "M0": 1}` | set (durably, like a Modbus write); answers the new values |
@@ -14,6 +14,7 @@
 //! | `POST /api/table/gen` `{"generator": "rotary-cut", "params": {...}}` | a generated table with its curves |
 //! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
 //! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block, one durable write (409 while its cam runs, unless `at-seam`) |
+//! | `GET /api/live?block=2000&rate=20` (WebSocket) | the cam's master, slave, speeds and sync output, [`super::live`] |
 //!
 //! Errors answer `{"error": "message"}` with status 400 (bad request), 404
 //! (unknown route) or 500 (the write could not be made durable).
@@ -35,11 +36,8 @@ use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tower::Service as _;
 
+use super::assets::{ASSETS, Asset, INDEX};
 use super::limits::ConnectionLimits;
-
-const INDEX_HTML: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/index.html"));
-const APP_JS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/app.js"));
-const STYLE_CSS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../web/style.css"));
 
 /// Serves `router` on `listener` for ever, within `limits`: at most so many
 /// connections (the newest refused at the cap), request headers complete
@@ -71,7 +69,9 @@ pub async fn serve(listener: TcpListener, router: Router, limits: ConnectionLimi
             let connection = hyper::server::conn::http1::Builder::new()
                 .timer(TokioTimer::new())
                 .header_read_timeout(limits.partial)
-                .serve_connection(TokioIo::new(stream), service);
+                .serve_connection(TokioIo::new(stream), service)
+                // The live view's WebSocket (`/api/live`).
+                .with_upgrades();
             // Errors only mean the client went away (or was sent away).
             let _ = connection.await;
             drop(slot);
@@ -179,23 +179,11 @@ async fn guard(State(access): State<Arc<Access>>, request: Request, next: Next) 
 
 /// The router of `ecam serve`'s HTTP face, behind [`Access`].
 pub fn router(shared: Arc<Shared>, access: Access) -> Router {
-    Router::new()
-        .route(
-            "/",
-            get(|| async { asset("text/html; charset=utf-8", INDEX_HTML) }),
-        )
-        .route(
-            "/index.html",
-            get(|| async { asset("text/html; charset=utf-8", INDEX_HTML) }),
-        )
-        .route(
-            "/app.js",
-            get(|| async { asset("text/javascript; charset=utf-8", APP_JS) }),
-        )
-        .route(
-            "/style.css",
-            get(|| async { asset("text/css; charset=utf-8", STYLE_CSS) }),
-        )
+    let mut router = Router::new().route("/", get(|| async { asset(INDEX) }));
+    for &file in ASSETS {
+        router = router.route(file.path, get(move || async move { asset(file) }));
+    }
+    router
         .route("/api/status", get(status))
         .route("/api/devices", get(get_devices).post(post_devices))
         .route(
@@ -210,13 +198,14 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
         .route("/api/table/load", post(table_load))
+        .route("/api/live", get(super::live::live))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
         .with_state(shared)
         .layer(middleware::from_fn_with_state(Arc::new(access), guard))
 }
 
-fn asset(content_type: &'static str, body: &'static str) -> Response {
-    ([(header::CONTENT_TYPE, content_type)], body).into_response()
+fn asset(file: Asset) -> Response {
+    ([(header::CONTENT_TYPE, file.content_type)], file.body).into_response()
 }
 
 fn json_text(status: StatusCode, body: String) -> Response {
@@ -227,7 +216,8 @@ fn json_value(status: StatusCode, value: &Value) -> Response {
     json_text(status, value.to_string())
 }
 
-fn error(status: StatusCode, message: &str) -> Response {
+/// `{"error": message}` with `status`.
+pub(super) fn error(status: StatusCode, message: &str) -> Response {
     json_value(status, &json!({ "error": message }))
 }
 

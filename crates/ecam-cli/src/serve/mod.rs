@@ -4,8 +4,12 @@
 //! - [`modbus`]: the Modbus TCP listener (one task per client),
 //! - [`http`]: the HTTP API and the designer page (whose JSON answers are
 //!   [`ecam_design`]'s),
+//! - [`assets`]: the designer page's files, compiled in,
+//! - [`live`]: the live view's WebSocket,
 //! - [`limits`]: connection caps and timeouts both listeners keep.
 
+pub mod assets;
 pub mod http;
 pub mod limits;
+pub mod live;
 pub mod modbus;

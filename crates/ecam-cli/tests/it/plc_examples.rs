@@ -312,23 +312,28 @@ fn bad_table_sets_6782_and_clears_when_corrected() {
 
 /// `decam_flow.il`: the manual's flow charts as a program. Cycles of 200 ms
 /// (5000 counts at 25 kHz); three cuts a run, then a 500 ms dwell (T0), then
-/// the next run. Times are chosen away from the cycle seams.
+/// the next run. Times are chosen away from the cycle seams. Each cut logs
+/// the master position C231 through index register Z0 (DD300, DD302,
+/// DD304): the seams are at whole multiples of 5000 counts, and the dwell
+/// stops the master, so run r's cuts are at 15000·(r−1) + 5000·k. The cut
+/// count shows on the word group K1Y20.
 #[test]
 fn decam_flow_counts_cuts_stops_after_n_and_dwells() {
     let dumps = [
-        "D2001", "D2002", "D8067", "D100", "D101", "D102", "M0", "M1", "Y10",
+        "D2001", "D2002", "D8067", "D100", "D101", "D102", "M0", "M1", "Y10", "DD300", "DD302",
+        "DD304", "Z0", "V0", "Y20", "Y21", "Y22", "Y23",
     ];
-    // (ms, cuts in this run D101, runs completed D102, running M0)
-    for (ms, cuts, runs, running) in [
-        ("100", 0, 0, true),
-        ("300", 1, 0, true),
-        ("500", 2, 0, true),
-        ("700", 3, 1, false),
-        ("1000", 3, 1, false),
-        ("1400", 1, 1, true),
-        ("2000", 3, 2, false),
-        ("2500", 1, 2, true),
-        ("3000", 3, 3, false),
+    // (ms, cuts in this run D101, runs completed D102, running M0, the cut log)
+    for (ms, cuts, runs, running, log) in [
+        ("100", 0, 0, true, [0, 0, 0]),
+        ("300", 1, 0, true, [5000, 0, 0]),
+        ("500", 2, 0, true, [5000, 10000, 0]),
+        ("700", 3, 1, false, [5000, 10000, 15000]),
+        ("1000", 3, 1, false, [5000, 10000, 15000]),
+        ("1400", 1, 1, true, [20000, 10000, 15000]),
+        ("2000", 3, 2, false, [20000, 25000, 30000]),
+        ("2500", 1, 2, true, [35000, 25000, 30000]),
+        ("3000", 3, 3, false, [35000, 40000, 45000]),
     ] {
         let d = run("decam_flow.il", &["--wire", "Y1:X0", "--ms", ms], &dumps);
         assert_eq!(int(&d, "D2002"), 0, "no block error at {ms} ms");
@@ -342,5 +347,11 @@ fn decam_flow_counts_cuts_stops_after_n_and_dwells() {
         assert_eq!(flags & 1 != 0, running, "flag bit 0 at {ms} ms");
         assert_eq!(flags & 2, 0, "flag bit 1 is reset once counted ({ms} ms)");
         assert_eq!(int(&d, "Y10") == 1, running, "Y10 follows bit 0 ({ms} ms)");
+        let logged = [int(&d, "DD300"), int(&d, "DD302"), int(&d, "DD304")];
+        assert_eq!(logged, log, "cut log at {ms} ms");
+        assert_eq!(int(&d, "Z0"), 2 * cuts, "Z0 steps 2 words a cut ({ms} ms)");
+        assert_eq!(int(&d, "V0"), 0);
+        let lamps = (0..4).fold(0, |v, i| v | int(&d, &format!("Y2{i}")) << i);
+        assert_eq!(lamps, cuts, "K1Y20 shows the cut count ({ms} ms)");
     }
 }

@@ -466,3 +466,67 @@ fn load_writes_a_table_file_as_the_blocks_register_image() {
     ]);
     assert!(err.contains("not a D register"), "{err}");
 }
+
+#[test]
+fn index_registers_are_dump_set_and_trace_names() {
+    let p = program(
+        "index_registers.il",
+        "LD M8000\nMOV K123 D10Z0\nDMOV K70000 Z1\nMOV K-1 K2Y0Z2\n",
+    );
+    let trace = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("index_registers.csv");
+    let out = ok_stdout(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--scans",
+        "2",
+        "--set",
+        "Z0=5",
+        "--set",
+        "Z2=8",
+        "--dump",
+        "Z0",
+        "--dump",
+        "D15",
+        "--dump",
+        "V1",
+        "--dump",
+        "Z1",
+        "--dump",
+        "Y7:3",
+        "--trace",
+        trace.to_str().unwrap(),
+        "--trace-dev",
+        "Z1",
+        "--trace-dev",
+        "V1",
+    ]);
+    // D10Z0 = D15; 70000 = V1 1, Z1 4464; K2Y0Z2 = K2Y10 (Z2 = 8 = 10 octal).
+    assert_eq!(
+        out.trim(),
+        r#"{"Z0": 5, "D15": 123, "V1": 1, "Z1": 4464, "Y7": 0, "Y10": 1, "Y11": 1}"#
+    );
+    let csv = std::fs::read_to_string(&trace).unwrap();
+    assert!(csv.starts_with("t_us,Z1,V1\n"), "{csv}");
+    assert!(csv.contains(",4464,1\n"), "{csv}");
+    let err = failure(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--scans",
+        "1",
+        "--dump",
+        "Z8",
+    ]);
+    assert!(err.contains("V0-V7, Z0-Z7"), "{err}");
+    let err = failure(&[
+        "plc",
+        "run",
+        p.to_str().unwrap(),
+        "--scans",
+        "1",
+        "--set",
+        "V0=70000",
+    ]);
+    assert!(err.contains("-32768..65535"), "{err}");
+}

@@ -531,7 +531,7 @@ fn http_api_and_designer_page() {
 
     let (status, page) = server.http("GET", "/", None);
     assert_eq!(status, 200);
-    assert!(page.contains("<canvas") && page.contains("app.js"));
+    assert!(page.contains("uPlot.iife.min.js") && page.contains("app.js"));
     let (status, js) = server.http("GET", "/app.js", None);
     assert_eq!(status, 200);
     assert!(js.contains("/api/law/"));

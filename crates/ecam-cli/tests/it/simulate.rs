@@ -396,15 +396,16 @@ fn tables_from_files_and_generators() {
 #[test]
 fn a_closed_stdout_is_an_error_not_a_panic() {
     use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
+    // The reading end is closed before the child starts, so its first write
+    // fails however the two processes are scheduled.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_ecam"))
         .args(["simulate", scenario("001-repeat.toml").to_str().unwrap()])
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
-        .spawn()
+        .output()
         .unwrap();
-    // Close the reading end before the run (10 000 ticks) prints its line.
-    drop(child.stdout.take());
-    let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!err.contains("panicked"), "{err}");
     assert!(!out.status.success());

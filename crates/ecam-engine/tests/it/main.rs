@@ -2,6 +2,7 @@
 //! each module is one area, named after what it checks.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
+mod cam_out;
 mod doc001_repeat;
 mod doc002_profile;
 mod doc003_decam;
@@ -9,10 +10,12 @@ mod master_sources;
 mod missed_activation;
 mod offsets_on_the_fly;
 mod plcopen;
+mod plcopen_reference;
 mod properties;
 mod ramp_in_limits;
 mod safe_motion;
 mod scaling_on_the_fly;
+mod signed_scaling;
 mod starts_stops;
 mod table_switch;
 

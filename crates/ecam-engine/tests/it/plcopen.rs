@@ -20,6 +20,7 @@ fn relative_master_starts_the_table_at_its_beginning() {
         periodic: true,
         master_absolute: false,
         slave_absolute: false,
+        ..CamTableSelect::default()
     })
     .unwrap();
     axis.set_slave_position(50).unwrap();
@@ -57,6 +58,7 @@ fn non_periodic_table_ends_the_coupling() {
         periodic: false,
         master_absolute: false,
         slave_absolute: true,
+        ..CamTableSelect::default()
     })
     .unwrap();
     axis.cam_in(&CamIn::default()).unwrap();
@@ -84,7 +86,7 @@ fn ramp_in_reports_in_sync_when_done_and_cam_out_holds() {
     assert!(s.in_sync);
     // The same inputs again while engaged change nothing.
     axis.cam_in(&CamIn::default()).unwrap();
-    axis.cam_out(CamOut);
+    axis.cam_out(CamOut::Hold);
     let held = axis.tick(700, 1_000_000);
     assert!(!held.active && !held.in_sync);
     assert_eq!(held.output.slave, s.output.slave);
@@ -206,6 +208,7 @@ fn non_periodic_absolute_master_stays_coupled_at_the_end() {
         periodic: false,
         master_absolute: true,
         slave_absolute: true,
+        ..CamTableSelect::default()
     })
     .unwrap();
     axis.cam_in(&CamIn::default()).unwrap();
@@ -304,7 +307,7 @@ mod blocks {
         assert!(out.command_aborted);
 
         // MC_CamOut aborts the second.
-        axis.cam_out(CamOut);
+        axis.cam_out(CamOut::Hold);
         let s = axis.tick(400, 1_000_000);
         assert!(second.call(&mut axis, true, &good, &s).command_aborted);
     }
@@ -324,5 +327,238 @@ mod blocks {
                 .done
         );
         assert!(axis.take_retired_table().is_some());
+    }
+}
+
+mod inputs {
+    //! The facade inputs not covered above: ExecutionMode, the refused
+    //! blending modes, ActivationMode next cycle, ramp limits, scalings
+    //! changed while engaged.
+    use core::num::{NonZeroU32, NonZeroU64};
+
+    use ecam_core::PointTable;
+    use ecam_engine::plcopen::{
+        ActivationMode, BufferMode, CamIn, CamInStartMode, CamTableSelect, ExecutionMode, McCamAxis,
+    };
+    use ecam_engine::plcopen_blocks::TableSelectBlock;
+    use ecam_engine::{EngineError, RampDirection, RampInLimits, Zoom};
+
+    fn line(slope: i64) -> PointTable {
+        PointTable::from_pairs(&[(0, 0), (1000, 1000 * slope)]).unwrap()
+    }
+
+    #[test]
+    fn execution_mode_queued_takes_over_at_the_seam_busy_until_then() {
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        axis.cam_in(&CamIn {
+            start_mode: CamInStartMode::Relative,
+            ..CamIn::default()
+        })
+        .unwrap();
+        let _ = axis.tick(0, 1000);
+        let _ = axis.tick(300, 1000);
+        let mut block = TableSelectBlock::default();
+        let mut next = Some(line(2));
+        let queued = CamTableSelect {
+            execution_mode: ExecutionMode::Queued,
+            ..CamTableSelect::default()
+        };
+        let out = block.call(&mut axis, true, &mut next, queued);
+        assert!(out.busy && !out.done && !out.error);
+        assert!(axis.has_queued_table());
+        assert_eq!(axis.tick(900, 1000).output.slave, 900);
+        assert!(block.call(&mut axis, true, &mut next, queued).busy);
+        // No MC_CamIn needed: the table takes over at the seam by itself.
+        let s = axis.tick(1100, 1000);
+        assert!(s.output.events.table_switched);
+        assert_eq!(s.output.slave, 1200);
+        let out = block.call(&mut axis, true, &mut next, queued);
+        assert!(out.done && !out.busy);
+    }
+
+    #[test]
+    fn execution_mode_immediate_waits_for_the_next_cam_in() {
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        axis.cam_in(&CamIn::default()).unwrap();
+        let _ = axis.tick(100, 1000);
+        let mut block = TableSelectBlock::default();
+        let mut next = Some(line(2));
+        let out = block.call(&mut axis, true, &mut next, CamTableSelect::default());
+        assert!(out.done && !out.busy);
+        assert!(!axis.has_queued_table());
+        // Still the old table until MC_CamIn switches.
+        assert_eq!(axis.tick(1500, 1000).output.slave, 500);
+    }
+
+    #[test]
+    fn table_select_errors_latch_until_the_next_edge() {
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        axis.select(CamTableSelect {
+            periodic: false,
+            ..CamTableSelect::default()
+        })
+        .unwrap();
+        axis.cam_in(&CamIn::default()).unwrap();
+        let _ = axis.tick(100, 1000);
+        let mut block = TableSelectBlock::default();
+        let mut next = Some(line(2));
+        // Queued on a non-periodic cam: no seam to wait for.
+        let queued = CamTableSelect {
+            periodic: false,
+            execution_mode: ExecutionMode::Queued,
+            ..CamTableSelect::default()
+        };
+        let out = block.call(&mut axis, true, &mut next, queued);
+        assert!(out.error && !out.done && !out.busy);
+        assert_eq!(out.error_id, Some(EngineError::NoSeam));
+        assert!(block.call(&mut axis, true, &mut next, queued).error);
+        // Another interpretation while engaged is refused.
+        let _ = block.call(&mut axis, false, &mut next, queued);
+        let mut next = Some(line(2));
+        let out = block.call(&mut axis, true, &mut next, CamTableSelect::default());
+        assert_eq!(out.error_id, Some(EngineError::Busy));
+    }
+
+    #[test]
+    fn blending_buffer_modes_are_refused_with_the_supported_ones_named() {
+        for mode in [
+            BufferMode::BlendingLow,
+            BufferMode::BlendingPrevious,
+            BufferMode::BlendingNext,
+            BufferMode::BlendingHigh,
+        ] {
+            let mut axis = McCamAxis::new(line(1)).unwrap();
+            let err = axis
+                .cam_in(&CamIn {
+                    buffer_mode: mode,
+                    ..CamIn::default()
+                })
+                .unwrap_err();
+            assert_eq!(err, EngineError::UnsupportedBufferMode);
+            let text = err.to_string();
+            assert!(
+                text.contains("aborting") && text.contains("buffered"),
+                "{text}"
+            );
+            assert!(!axis.tick(0, 1000).busy, "nothing changed");
+        }
+    }
+
+    #[test]
+    fn activation_next_cycle_idle_engages_at_the_next_cycle_start() {
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        let _ = axis.tick(1234, 1000);
+        axis.cam_in(&CamIn {
+            activation: ActivationMode::NextCycle,
+            master_offset: 100,
+            ..CamIn::default()
+        })
+        .unwrap();
+        // Table input = master + 100: cycle starts at masters 900, 1900, ...
+        for m in (1240..1900).step_by(20) {
+            assert!(!axis.tick(m, 1000).active, "master {m}");
+        }
+        let s = axis.tick(1910, 1000);
+        assert!(s.active && s.output.events.engaged);
+        assert_eq!(s.output.slave, 10);
+    }
+
+    #[test]
+    fn activation_next_cycle_engaged_switches_at_the_seam() {
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        axis.cam_in(&CamIn {
+            start_mode: CamInStartMode::Relative,
+            ..CamIn::default()
+        })
+        .unwrap();
+        let _ = axis.tick(0, 1000);
+        let _ = axis.tick(200, 1000);
+        axis.select_table(line(2), CamTableSelect::default())
+            .unwrap();
+        axis.cam_in(&CamIn {
+            start_mode: CamInStartMode::Relative,
+            activation: ActivationMode::NextCycle,
+            ..CamIn::default()
+        })
+        .unwrap();
+        assert!(!axis.tick(999, 1000).output.events.table_switched);
+        assert!(axis.tick(1001, 1000).output.events.table_switched);
+    }
+
+    #[test]
+    fn ramp_limits_keep_the_direction() {
+        // Absolute slave at 0, table value 500 at master 500: ramp_in_neg
+        // must not move forwards, so it closes the gap a stroke lower.
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        axis.select(CamTableSelect {
+            slave_absolute: true,
+            ..CamTableSelect::default()
+        })
+        .unwrap();
+        let _ = axis.tick(500, 1000);
+        axis.cam_in(&CamIn {
+            start_mode: CamInStartMode::Relative,
+            ramp_limits: Some(RampInLimits {
+                max_jerk: None,
+                max_velocity: NonZeroU32::new(100_000).unwrap(),
+                max_acceleration: NonZeroU64::new(10_000_000).unwrap(),
+                direction: RampDirection::Positive,
+            }),
+            ..CamIn::default()
+        })
+        .unwrap();
+        let mut last = axis.tick(500, 1000).output.slave;
+        let mut m = 500;
+        for _ in 0..2000 {
+            m += 1;
+            let s = axis.tick(m, 1000);
+            assert!(s.output.slave >= last, "master {m}: went back");
+            last = s.output.slave;
+        }
+        assert!(axis.tick(m, 1000).in_sync);
+    }
+
+    #[test]
+    fn scalings_changed_in_sync_are_ramped_not_stepped() {
+        let mut axis = McCamAxis::new(line(1)).unwrap();
+        axis.cam_in(&CamIn {
+            start_mode: CamInStartMode::Relative,
+            ..CamIn::default()
+        })
+        .unwrap();
+        let _ = axis.tick(0, 1000);
+        let _ = axis.tick(100, 1000);
+        let slave = CamIn {
+            start_mode: CamInStartMode::Relative,
+            slave_scaling: Zoom::new(2, 1).unwrap(),
+            blend: NonZeroU64::new(200).unwrap(),
+            ..CamIn::default()
+        };
+        axis.cam_in(&slave).unwrap();
+        let mut last = 100;
+        for m in 101..=400 {
+            let s = axis.tick(m, 1000);
+            // The mix of old and new adds a little while the weight moves
+            // (the gap between them grows with the position), never a step.
+            let step = s.output.slave - last;
+            assert!((1..=4).contains(&step), "master {m}: step {step}");
+            last = s.output.slave;
+        }
+        assert_eq!(axis.tick(401, 1000).output.slave - last, 2);
+        // Master scaling: phase kept, velocity blended to the new ratio.
+        let master = CamIn {
+            master_scaling: Zoom::new(1, 2).unwrap(),
+            ..slave
+        };
+        axis.cam_in(&master).unwrap();
+        let mut last = axis.tick(401, 1000).output.slave;
+        for m in 402..=800 {
+            let s = axis.tick(m, 1000);
+            let step = s.output.slave - last;
+            assert!((0..=2).contains(&step), "master {m}: step {step}");
+            last = s.output.slave;
+        }
+        let a = axis.tick(1000, 1000).output.slave;
+        assert_eq!(axis.tick(1100, 1000).output.slave - a, 100);
     }
 }

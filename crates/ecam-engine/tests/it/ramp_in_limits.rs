@@ -1,5 +1,5 @@
 //! Ramp-in under limits: engaging a moving master, the slave catches up
-//! within its velocity and acceleration limits, and a direction-restricted
+//! within its velocity, acceleration and (optional) jerk limits, and a direction-restricted
 //! ramp-in closes the gap only that way (PLCopen `ramp_in_pos`/`_neg`).
 
 use core::num::{NonZeroU32, NonZeroU64};
@@ -19,6 +19,7 @@ fn a_cam_without_a_stroke_cannot_be_caught_up_one_way_only() {
     let mut axis = CamAxis::new(table, AxisConfig::default()).unwrap();
     axis.set_slave_position(500).unwrap();
     axis.set_ramp_in_limits(Some(RampInLimits {
+        max_jerk: None,
         max_velocity: NonZeroU32::new(10_000).unwrap(),
         max_acceleration: NonZeroU64::new(1_000_000).unwrap(),
         direction: RampDirection::Positive,
@@ -63,6 +64,7 @@ proptest! {
         headroom in 1.5f64..5.0,
         max_acceleration in 200_000u64..10_000_000,
         restrict in any::<bool>(),
+        max_jerk in prop::option::of(10_000_000u64..1_000_000_000),
     ) {
         let table = PointTable::from_pairs(&[(0, 0), (1000, 1000 * ratio)]).unwrap();
         let config = AxisConfig {
@@ -80,6 +82,7 @@ proptest! {
             (true, false) => RampDirection::Negative,
         };
         axis.set_ramp_in_limits(Some(RampInLimits {
+            max_jerk: max_jerk.and_then(NonZeroU64::new),
             max_velocity: NonZeroU32::new(max_velocity).unwrap(),
             max_acceleration: NonZeroU64::new(max_acceleration).unwrap(),
             direction,
@@ -120,6 +123,24 @@ proptest! {
             let a = (w[K] - w[0]) / window;
             prop_assert!(a.abs() <= max_acceleration as f64 * 1.01 + 4.0 / (window * window),
                 "tick {i}: {a} pulses/s² above {max_acceleration}");
+        }
+        if let Some(max_jerk) = max_jerk {
+            // Jerk over 50 ms windows: third differences of positions, so
+            // a pulse of rounding (and a count of master quantisation, up
+            // to `ratio` pulses) is 8 × (ratio + 1) / window³.
+            const J: usize = 50;
+            let window = J as f64 * f64::from(TICK_US) / 1e6;
+            let v: Vec<f64> = slaves
+                .windows(J + 1)
+                .map(|w| (w[J] - w[0]) as f64 / window)
+                .collect();
+            let a: Vec<f64> = v.windows(J + 1).map(|w| (w[J] - w[0]) / window).collect();
+            let noise = 8.0 * (ratio as f64 + 1.0) / (window * window * window);
+            for (i, w) in a.windows(J + 1).enumerate() {
+                let jerk = (w[J] - w[0]) / window;
+                prop_assert!(jerk.abs() <= max_jerk as f64 * 1.01 + noise,
+                    "tick {i}: {jerk} pulses/s³ above {max_jerk}");
+            }
         }
         if restrict {
             let sign = speed.signum();

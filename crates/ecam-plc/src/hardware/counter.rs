@@ -11,8 +11,16 @@
 //! - [`HIGH_SPEED_COUNTERS`]: one-phase high-speed counters; they count every
 //!   pulse on their input while their coil is driven, down while M8000+n is on.
 //!
-//! A contact `LD Cn` is on while the value ≥ the set value of the last coil
-//! execution (off while the coil has never run).
+//! The contact `LD Cn` is a latch, as on the FX3U: it is decided when the
+//! counter counts and by RST, not by reading the value. A 16-bit counter's
+//! contact turns on when a count reaches the set value and stays on until
+//! RST; a 32-bit counter's turns on when a count up leaves the value at or
+//! above the set value and off when a count down leaves it below (so the
+//! ring wrap 2147483647 → −2147483648 while counting up keeps it on).
+//! Writing the current value (MOV, `--set`) does not move the contact
+//! until the next count. Before the first count or RST since power-up (a
+//! retained counter restored by `ecam serve`), the contact reads as value ≥
+//! set value; off while the coil has never run.
 
 use crate::devices::{C_32BIT_FIRST, C_COUNT, Device, Devices};
 use crate::special::M_COUNTER_DIRECTION_BASE;
@@ -49,6 +57,8 @@ fn is_high_speed(counter: u16) -> bool {
 pub struct Counters {
     set_values: Vec<Option<i32>>,
     coils: Vec<bool>,
+    /// The latched contacts; `None` until the first count or RST.
+    contacts: Vec<Option<bool>>,
     last_input: [bool; HIGH_SPEED_INPUTS],
 }
 
@@ -57,6 +67,7 @@ impl Default for Counters {
         Self {
             set_values: vec![None; usize::from(C_COUNT)],
             coils: vec![false; usize::from(C_COUNT)],
+            contacts: vec![None; usize::from(C_COUNT)],
             last_input: [false; HIGH_SPEED_INPUTS],
         }
     }
@@ -78,26 +89,71 @@ impl Counters {
         }
         let value = devices.counter(counter).unwrap_or(0);
         if counter < C_32BIT_FIRST {
-            // K0 counts as K1 (FX3U manual).
-            if value < set_value.max(1) {
-                let _ = devices.set_counter(counter, value.saturating_add(1));
+            // K0 counts as K1 (FX3U manual). At or past the set value the
+            // count input is ignored and the contact (re)latches on.
+            let target = set_value.max(1);
+            let next = if value < target {
+                value.saturating_add(1)
+            } else {
+                value
+            };
+            let _ = devices.set_counter(counter, next);
+            if let Some(contact) = self.contacts.get_mut(index) {
+                let was = contact.unwrap_or(false);
+                *contact = Some(was || next >= target);
             }
         } else {
-            count(devices, counter, 1);
+            self.count(devices, counter, 1);
         }
     }
 
-    /// The counter's contact: value ≥ set value (off before the coil ran).
-    /// A 16-bit counter with set value K0 behaves as with K1, as the FX3U
-    /// manual says: its contact turns on at the first count.
+    /// The counter's contact (see the module text): latched at counts and
+    /// RST; before the first of them, value ≥ set value. A 16-bit counter
+    /// with set value K0 behaves as with K1, as the FX3U manual says.
     pub fn contact(&self, devices: &Devices, counter: u16) -> bool {
-        match (
-            self.set_values.get(usize::from(counter)),
-            devices.counter(counter),
-        ) {
+        let index = usize::from(counter);
+        if let Some(Some(latched)) = self.contacts.get(index) {
+            return *latched;
+        }
+        match (self.set_values.get(index), devices.counter(counter)) {
             (Some(Some(sv)), Ok(value)) if counter < C_32BIT_FIRST => value >= (*sv).max(1),
             (Some(Some(sv)), Ok(value)) => value >= *sv,
             _ => false,
+        }
+    }
+
+    /// RST Cn: the value to 0 and the contact off.
+    pub fn reset(&mut self, devices: &mut Devices, counter: u16) {
+        let _ = devices.set_counter(counter, 0);
+        if let Some(contact) = self.contacts.get_mut(usize::from(counter)) {
+            *contact = Some(false);
+        }
+    }
+
+    /// Counts `pulses` on a 32-bit counter, up or down by its M8200+n flag,
+    /// wrapping at 32 bits (FX ring counter), and moves its contact.
+    fn count(&mut self, devices: &mut Devices, counter: u16, pulses: u32) {
+        let down = M_COUNTER_DIRECTION_BASE
+            .checked_add(counter)
+            .and_then(|m| devices.m(m).ok())
+            .unwrap_or(false);
+        let before = self.contact(devices, counter);
+        let value = devices.counter(counter).unwrap_or(0);
+        let step = pulses as i32;
+        let next = if down {
+            value.wrapping_sub(step)
+        } else {
+            value.wrapping_add(step)
+        };
+        let _ = devices.set_counter(counter, next);
+        let index = usize::from(counter);
+        let set_value = self.set_values.get(index).copied().flatten();
+        if let (Some(sv), Some(contact)) = (set_value, self.contacts.get_mut(index)) {
+            *contact = Some(if down {
+                before && next >= sv
+            } else {
+                before || next >= sv
+            });
         }
     }
 
@@ -115,7 +171,7 @@ impl Counters {
     pub fn feed(&mut self, devices: &mut Devices, input: u16, pulses: u32) {
         for counter in counters_on_input(input) {
             if self.is_counting(counter) {
-                count(devices, counter, pulses);
+                self.count(devices, counter, pulses);
             }
         }
     }
@@ -135,22 +191,6 @@ impl Counters {
             }
         }
     }
-}
-
-/// Counts `pulses` on a 32-bit counter, up or down by its M8200+n flag.
-fn count(devices: &mut Devices, counter: u16, pulses: u32) {
-    let down = M_COUNTER_DIRECTION_BASE
-        .checked_add(counter)
-        .and_then(|m| devices.m(m).ok())
-        .unwrap_or(false);
-    let value = devices.counter(counter).unwrap_or(0);
-    let step = pulses as i32;
-    let next = if down {
-        value.wrapping_sub(step)
-    } else {
-        value.wrapping_add(step)
-    };
-    let _ = devices.set_counter(counter, next);
 }
 
 #[cfg(test)]

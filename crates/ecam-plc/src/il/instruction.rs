@@ -98,6 +98,109 @@ pub enum Source {
     Timer(u16),
     /// A word group `KnM`/`KnX`/`KnY`: n × 4 bits read as a number.
     Group(WordGroup),
+    /// An index register as a value: Vn or Zn at 16 bit; at 32 bit `Zn`
+    /// names the pair Vn (high word) : Zn (low word), as on the FX3U.
+    Index(IndexReg),
+    /// An operand modified by an index register (`D10V0`, `K4M0Z1`,
+    /// `K10Z0`): the address (or, for a K/H constant, the value) is offset
+    /// at run time.
+    Indexed(Indexed),
+}
+
+/// An index register V0–V7 or Z0–Z7 (16 bits each; Vn:Zn pair as 32 bits).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum IndexReg {
+    /// Vn, n = 0–7.
+    V(u8),
+    /// Zn, n = 0–7.
+    Z(u8),
+}
+
+/// Number of V (and of Z) registers: V0–V7, Z0–Z7.
+pub const INDEX_COUNT: u8 = 8;
+
+impl IndexReg {
+    /// The register number n of Vn/Zn.
+    pub fn number(self) -> u8 {
+        match self {
+            Self::V(n) | Self::Z(n) => n,
+        }
+    }
+}
+
+impl core::fmt::Display for IndexReg {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::V(n) => write!(f, "V{n}"),
+            Self::Z(n) => write!(f, "Z{n}"),
+        }
+    }
+}
+
+/// What an index register modifies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IndexBase {
+    /// A K/H constant: the register's value is added to it.
+    Constant(i32),
+    /// Dn: the register n + offset.
+    Register(u16),
+    /// Cn: counter n + offset.
+    Counter(u16),
+    /// Tn: timer n + offset.
+    Timer(u16),
+    /// KnM/KnX/KnY: the group starts offset bits later (X/Y: the offset
+    /// counts in the octal numbering, as on the FX).
+    Group(WordGroup),
+}
+
+/// An operand and the index register that modifies it (`D10V0`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Indexed {
+    /// The operand as written before the modifier.
+    pub base: IndexBase,
+    /// The modifier. In a 32-bit instruction only Zn is allowed and the
+    /// offset is the 32-bit pair Vn:Zn (FX3U rule).
+    pub by: IndexReg,
+}
+
+impl core::fmt::Display for Indexed {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self.base {
+            IndexBase::Constant(v) => write!(f, "K{v}")?,
+            IndexBase::Register(n) => write!(f, "D{n}")?,
+            IndexBase::Counter(n) => write!(f, "C{n}")?,
+            IndexBase::Timer(n) => write!(f, "T{n}")?,
+            IndexBase::Group(g) => write!(f, "{g}")?,
+        }
+        write!(f, "{}", self.by)
+    }
+}
+
+/// Where a word instruction (MOV, ADD, INC, MUL …) writes its result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dest {
+    /// Dn (Dn, Dn+1 at 32 bit).
+    Register(u16),
+    /// Current value of counter Cn.
+    Counter(u16),
+    /// Vn/Zn; at 32 bit Zn names the pair Vn:Zn.
+    Index(IndexReg),
+    /// `KnM`/`KnY`: only the group's n × 4 bits are written.
+    Group(WordGroup),
+    /// Dn, Cn or a group modified by an index register.
+    Indexed(Indexed),
+}
+
+impl core::fmt::Display for Dest {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Register(n) => write!(f, "D{n}"),
+            Self::Counter(n) => write!(f, "C{n}"),
+            Self::Index(r) => write!(f, "{r}"),
+            Self::Group(g) => write!(f, "{g}"),
+            Self::Indexed(i) => write!(f, "{i}"),
+        }
+    }
 }
 
 /// The bit devices a word group is made of.
@@ -170,6 +273,9 @@ pub enum BitRef {
     WordBit(WordBit),
     /// Timer Tn: its contact, or (RST) the whole timer.
     Timer(u16),
+    /// An X, Y or M bit modified by an index register (`X0Z0`, `M0Z1`):
+    /// the bit number is offset at run time (X/Y in octal numbering).
+    Indexed(Device, IndexReg),
 }
 
 /// A bit device that instructions may drive: Y or M.
@@ -287,8 +393,8 @@ pub enum Instruction {
         exec: Exec,
         /// Source.
         src: Source,
-        /// Destination D or C.
-        dst: Device,
+        /// Destination: D, C, V/Z, a word group KnM/KnY, or one of them index-modified.
+        dst: Dest,
     },
     /// `DEMOV`(`P`) S D: 32-bit float move (E constant or Dn).
     FloatMove {
@@ -322,8 +428,8 @@ pub enum Instruction {
         s1: Source,
         /// Second operand.
         s2: Source,
-        /// Destination D or C.
-        dst: Device,
+        /// Destination: D, C, V/Z, a word group KnM/KnY, or one of them index-modified.
+        dst: Dest,
     },
     /// `MUL`/`DMUL`(`P`) S1 S2 D: the signed product, twice as wide as the
     /// operands, in D, D+1 (16 bit) or D…D+3 (32 bit), low word first.
@@ -336,8 +442,9 @@ pub enum Instruction {
         s1: Source,
         /// Multiplier.
         s2: Source,
-        /// First register of the product.
-        dst: u16,
+        /// First register of the product, or a word group (which takes
+        /// the product's low bits).
+        dst: Dest,
     },
     /// `DIV`/`DDIV`(`P`) S1 S2 D: quotient in D (D, D+1 for 32 bit),
     /// remainder in D+1 (D+2, D+3); truncated toward zero, the remainder has
@@ -351,8 +458,9 @@ pub enum Instruction {
         s1: Source,
         /// Divisor.
         s2: Source,
-        /// First register of quotient and remainder.
-        dst: u16,
+        /// First register of quotient and remainder, or a word group
+        /// (which takes the quotient only, as on the FX).
+        dst: Dest,
     },
     /// `WAND`/`WOR`/`WXOR`, `DAND`/`DOR`/`DXOR`(`P`) S1 S2 D.
     Logic {
@@ -366,8 +474,8 @@ pub enum Instruction {
         s1: Source,
         /// Second operand.
         s2: Source,
-        /// Destination D or C.
-        dst: Device,
+        /// Destination: D, C, V/Z, a word group KnM/KnY, or one of them index-modified.
+        dst: Dest,
     },
     /// `NEG`/`DNEG`(`P`) D: two's complement in place (wrapping: NEG of
     /// −32768 is −32768).
@@ -376,8 +484,8 @@ pub enum Instruction {
         width: Width,
         /// Continuous or pulse form.
         exec: Exec,
-        /// The register or counter.
-        dst: Device,
+        /// The register, counter, index register or word group.
+        dst: Dest,
     },
     /// `INC`/`DEC`/`DINC`/`DDEC`(`P`) D: add or subtract 1, wrapping, no flags (FX).
     Step {
@@ -387,8 +495,8 @@ pub enum Instruction {
         width: Width,
         /// Continuous or pulse form.
         exec: Exec,
-        /// The register or counter.
-        dst: Device,
+        /// The register, counter, index register or word group.
+        dst: Dest,
     },
     /// `CMP`/`DCMP`(`P`) S1 S2 D: D = S1>S2, D+1 = S1=S2, D+2 = S1<S2.
     Compare {
@@ -402,6 +510,66 @@ pub enum Instruction {
         s2: Source,
         /// First of three bits (M or Y).
         dst: Device,
+    },
+    /// `ZCP`/`DZCP`(`P`) S1 S2 S3 D: D = S3 < S1, D+1 = S1 ≤ S3 ≤ S2,
+    /// D+2 = S3 > S2 (a lower limit above the upper one is taken as the
+    /// upper one too, as on the FX3U).
+    ZoneCompare {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// Lower limit.
+        low: Source,
+        /// Upper limit.
+        high: Source,
+        /// The value compared.
+        value: Source,
+        /// First of three bits (M or Y).
+        dst: Device,
+    },
+    /// `BMOV`(`P`) S D n: copy n consecutive registers from S to D, as if
+    /// through a buffer (overlapping blocks copy correctly).
+    BlockMove {
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First source register (D, optionally index-modified).
+        src: Dest,
+        /// First destination register (D, optionally index-modified).
+        dst: Dest,
+        /// Number of words, 1–512 (K or D).
+        count: Source,
+    },
+    /// `FMOV`/`DFMOV`(`P`) S D n: write S into n consecutive registers
+    /// (32 bit: n register pairs) from D.
+    Fill {
+        /// 16 or 32 bit.
+        width: Width,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// The value.
+        src: Source,
+        /// First destination register (D, optionally index-modified).
+        dst: Dest,
+        /// Number of words (pairs), 1–512 (K or D).
+        count: Source,
+    },
+    /// `SFTL`/`SFTR`(`P`) S D n1 n2: shift the n1 bits from D by n2 places
+    /// toward higher (SFTL) or lower (SFTR) numbers; the n2 bits from S fill
+    /// the freed places, the n2 bits shifted out are lost.
+    BitShift {
+        /// True for SFTL, false for SFTR.
+        left: bool,
+        /// Continuous or pulse form.
+        exec: Exec,
+        /// First bit shifted in (X, Y or M).
+        src: Device,
+        /// First bit of the shifted block (Y or M).
+        dst: Device,
+        /// Length of the block, n1.
+        length: u16,
+        /// Places per shift, n2 (1 ≤ n2 ≤ n1).
+        places: u16,
     },
     /// PLSY/DPLSY S1 S2 D: pulses at S1 Hz, S2 pulses (0 = endless), on Y0..Y3.
     PulseOutput {

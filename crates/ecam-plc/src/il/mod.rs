@@ -15,12 +15,14 @@ mod parser;
 mod validate;
 
 pub(crate) use flow::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
+pub(crate) use parser::BLOCK_MAX;
 pub(crate) use validate::is_output;
 
 pub use error::ParseError;
 pub use instruction::{
-    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, GroupKind, Instruction, Join, LogicOp,
-    MasterSpec, Relation, Source, Statement, Width, WordBit, WordGroup, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, GroupKind, INDEX_COUNT, IndexBase,
+    IndexReg, Indexed, Instruction, Join, LogicOp, MasterSpec, Relation, Source, Statement, Width,
+    WordBit, WordGroup, ZoneDevice,
 };
 pub use parser::parse;
 

@@ -1,7 +1,7 @@
 //! Operand tokens: devices (`D100`, `X17`, `C231`), constants (`K-5`, `H1F`)
 //! and float constants (`E1.6667`).
 
-use super::instruction::{GroupKind, WordBit, WordGroup};
+use super::instruction::{GroupKind, INDEX_COUNT, IndexReg, WordBit, WordGroup};
 use crate::devices::{Device, DeviceError};
 
 /// A lexed operand before the instruction checks its kind.
@@ -21,18 +21,114 @@ pub(crate) enum Operand {
     Float(f32),
     /// A word group `KnM`/`KnX`/`KnY`.
     Group(WordGroup),
+    /// An index register `Vn`/`Zn` itself.
+    Index(IndexReg),
+    /// An operand modified by an index register: `D10V0`, `K4M0Z1`, `K10Z0`.
+    Indexed(Modified, IndexReg),
+}
+
+/// The part of an index-modified operand before its modifier.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Modified {
+    /// A device D, M, X, Y or C.
+    Device(Device),
+    /// Timer Tn (current value, or contact).
+    Timer(u16),
+    /// K constant.
+    Decimal(i64),
+    /// H constant.
+    Hex(u64),
+    /// Word group.
+    Group(WordGroup),
 }
 
 impl Operand {
     /// Parses one token; the message says what was expected.
     pub(crate) fn parse(token: &str) -> Result<Self, String> {
         let upper = token.to_ascii_uppercase();
+        if let Some(register) = Self::index_register(token, &upper) {
+            return register.map(Self::Index);
+        }
         if let Some((word, bit)) = upper.split_once('.') {
+            if index_suffix(word).is_some() {
+                return Err(format!(
+                    "`{token}`: a bit of an index-modified register is not allowed (the FX refuses Dn.b with V/Z); use D(n+offset).b or a word group"
+                ));
+            }
             if word.starts_with(['D', 'M', 'X', 'Y', 'C']) {
                 return Self::word_bit(token, word, bit);
             }
         }
-        if let Some(group) = Self::group(token, &upper) {
+        if let Some((base, by)) = index_suffix(&upper) {
+            return Self::modified(token, base, by);
+        }
+        Self::plain(token, &upper)
+    }
+
+    /// `Vn`/`Zn` standing alone: `None` when the token is not shaped so.
+    fn index_register(token: &str, upper: &str) -> Option<Result<IndexReg, String>> {
+        let (kind, digits) = match upper.split_at_checked(1)? {
+            ("V", d) => (IndexReg::V as fn(u8) -> IndexReg, d),
+            ("Z", d) => (IndexReg::Z as fn(u8) -> IndexReg, d),
+            _ => return None,
+        };
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        Some(
+            digits
+                .parse::<u8>()
+                .ok()
+                .filter(|n| *n < INDEX_COUNT)
+                .map(kind)
+                .ok_or_else(|| format!("index register `{token}` is out of range (V0-V7, Z0-Z7)")),
+        )
+    }
+
+    /// `D10V0`: checks what an index register may modify.
+    fn modified(token: &str, base: &str, by: &str) -> Result<Self, String> {
+        let by = match Self::index_register(by, by) {
+            Some(Ok(reg)) => reg,
+            Some(Err(m)) => return Err(format!("`{token}`: {m}")),
+            None => {
+                return Err(format!(
+                    "`{token}`: the modifier must be an index register V0-V7 or Z0-Z7"
+                ));
+            }
+        };
+        if index_suffix(base).is_some() {
+            return Err(format!(
+                "`{token}`: an operand takes one index modifier; an index register cannot modify {base}"
+            ));
+        }
+        let modified = match Self::plain(token, base)? {
+            Self::Device(d) => Modified::Device(d),
+            Self::Timer(n) => Modified::Timer(n),
+            Self::Decimal(v) => Modified::Decimal(v),
+            Self::Hex(v) => Modified::Hex(v),
+            Self::Group(g) => Modified::Group(g),
+            Self::Float(_) => {
+                return Err(format!(
+                    "`{token}`: an E constant cannot be index-modified (K and H constants can)"
+                ));
+            }
+            Self::Index(_) | Self::Indexed(..) | Self::WordBit(_) => {
+                return Err(format!(
+                    "`{token}`: an index register cannot modify {base} (the FX modifies D, C, T, X, Y, M, word groups and K/H constants)"
+                ));
+            }
+        };
+        Ok(Self::Indexed(modified, by))
+    }
+
+    /// An operand without index modifier.
+    fn plain(token: &str, upper: &str) -> Result<Self, String> {
+        if Self::index_register(upper, upper).is_some() {
+            return Err(format!(
+                "`{token}`: an index register cannot be index-modified"
+            ));
+        }
+        if let Some(group) = Self::group(token, upper) {
             return group;
         }
         let mut chars = upper.chars();
@@ -60,7 +156,7 @@ impl Operand {
                 .filter(|v| v.is_finite())
                 .map(Self::Float)
                 .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)")),
-            _ => Device::parse(&upper).map(Self::Device).map_err(|err| match err {
+            _ => Device::parse(upper).map(Self::Device).map_err(|err| match err {
                 DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"),
                 _ => format!("unknown device `{token}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"),
             }),
@@ -147,8 +243,34 @@ impl Operand {
             Self::Hex(v) => format!("H{v:X}"),
             Self::Float(v) => format!("E{v}"),
             Self::Group(g) => g.to_string(),
+            Self::Index(r) => r.to_string(),
+            Self::Indexed(base, by) => {
+                let base = match base {
+                    Modified::Device(d) => d.to_string(),
+                    Modified::Timer(n) => format!("T{n}"),
+                    Modified::Decimal(v) => format!("K{v}"),
+                    Modified::Hex(v) => format!("H{v:X}"),
+                    Modified::Group(g) => g.to_string(),
+                };
+                format!("{base}{by}")
+            }
         }
     }
+}
+
+/// Splits `D10V0` into (`D10`, `V0`) when the token ends with an index
+/// modifier: V or Z and digits after a base that is not empty. `V0` alone
+/// is no modifier; neither is anything without digits before the V/Z.
+fn index_suffix(upper: &str) -> Option<(&str, &str)> {
+    let at = upper.rfind(['V', 'Z'])?;
+    let (base, by) = upper.split_at(at);
+    let digits = by.get(1..)?;
+    let base_ends_in_digit = base.bytes().last().is_some_and(|b| b.is_ascii_hexdigit());
+    (at > 0
+        && base_ends_in_digit
+        && !digits.is_empty()
+        && digits.bytes().all(|b| b.is_ascii_digit()))
+    .then_some((base, by))
 }
 
 #[cfg(test)]

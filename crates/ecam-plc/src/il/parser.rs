@@ -4,11 +4,11 @@ use super::Program;
 use super::error::ParseError;
 use super::flow;
 use super::instruction::{
-    ArithOp, BitDest, BitRef, Contact, Exec, FloatSource, Instruction, Join, LogicOp, MasterSpec,
-    Relation, Source, Statement, Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, IndexBase, IndexReg, Indexed,
+    Instruction, Join, LogicOp, MasterSpec, Relation, Source, Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
-use super::operand::Operand;
+use super::operand::{Modified, Operand};
 use super::validate;
 use crate::devices::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
 
@@ -181,8 +181,15 @@ fn arity(mnemonic: &str, operands: &[Operand], names: &[&str]) -> Result<(), Str
 }
 
 fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> String {
+    // Say why an index-modified operand that is otherwise of the right
+    // kind (`DECAM D0Z0 …`) does not fit.
+    let note = if matches!(operand, Operand::Indexed(..)) && !expected.contains("index-modified") {
+        " (this operand cannot be index-modified)"
+    } else {
+        ""
+    };
     format!(
-        "{mnemonic} operand {}: expected {expected}, found {}",
+        "{mnemonic} operand {}: expected {expected}, found {}{note}",
         index + 1,
         operand.describe()
     )
@@ -191,9 +198,9 @@ fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> Str
 /// Splits `DMOVP` into (Double, "MOV", Pulse) for the applied instructions
 /// that have 32-bit and pulse forms.
 fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
-    const BASES: [&str; 17] = [
+    const BASES: [&str; 22] = [
         "MOV", "EMOV", "ADD", "SUB", "MUL", "DIV", "INC", "DEC", "NEG", "WAND", "WOR", "WXOR",
-        "CMP", "ZRST", "PLSY", "ECAM", "ECAMTBX",
+        "CMP", "ZCP", "BMOV", "FMOV", "SFTL", "SFTR", "ZRST", "PLSY", "ECAM", "ECAMTBX",
     ];
     // The 32-bit word logic is DAND/DOR/DXOR, not DWAND.
     for (double, word) in [("DAND", "WAND"), ("DOR", "WOR"), ("DXOR", "WXOR")] {
@@ -257,19 +264,30 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
             Instruction::Set(coil(mnemonic, 0, &ops[0])?)
         }
         "RST" => {
-            arity(mnemonic, ops, &["Y/M/D/C/T/Dn.b"])?;
+            arity(mnemonic, ops, &["Y/M/D/C/T/V/Z/Dn.b"])?;
             match ops[0] {
                 Operand::Device(
                     d @ (Device::Y(_) | Device::M(_) | Device::D(_) | Device::C(_)),
                 ) => Instruction::Reset(BitRef::Device(d)),
                 Operand::WordBit(b) => Instruction::Reset(BitRef::WordBit(b)),
                 Operand::Timer(n) => Instruction::Reset(BitRef::Timer(n)),
+                Operand::Indexed(Modified::Device(d @ (Device::Y(_) | Device::M(_))), by) => {
+                    Instruction::Reset(BitRef::Indexed(d, by))
+                }
+                // RST Vn/Zn clears the register while the power flow is on:
+                // exactly what a continuous `MOV K0 Zn` does.
+                Operand::Index(register) => Instruction::Move {
+                    width: Width::Word,
+                    exec: Exec::Continuous,
+                    src: Source::Constant(0),
+                    dst: Dest::Index(register),
+                },
                 ref other => {
                     return Err(wrong(
                         mnemonic,
                         0,
                         other,
-                        "a Y, M, D, C or T device or a bit Dn.b",
+                        "a Y, M, D, C, T, V or Z device or a bit Dn.b",
                     ));
                 }
             }
@@ -356,9 +374,12 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
         [Operand::Timer(timer), set] => {
             let preset = source("OUT", 1, set, Width::Word)?;
             match preset {
-                Source::Counter(_) | Source::Timer(_) => {
-                    Err(wrong("OUT", 1, set, "a K/H constant or a D register"))
-                }
+                preset if !is_set_value(preset) => Err(wrong(
+                    "OUT",
+                    1,
+                    set,
+                    "a K/H constant or a D register (optionally index-modified, D10Z0)",
+                )),
                 // FX timers take a set value of 0-32767.
                 Source::Constant(v) if v < 0 => Err(format!(
                     "OUT T{timer} operand 2: set value {v} is out of range for a timer (K0 to K32767)"
@@ -380,8 +401,13 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
                 Width::Word
             };
             let set_value = source("OUT", 1, set, width)?;
-            if matches!(set_value, Source::Counter(_)) {
-                return Err(wrong("OUT", 1, set, "a K/H constant or a D register"));
+            if !is_set_value(set_value) {
+                return Err(wrong(
+                    "OUT",
+                    1,
+                    set,
+                    "a K/H constant or a D register (optionally index-modified, D10Z0)",
+                ));
             }
             // FX 16-bit counters count up to a set value of 0-32767; a
             // negative one would make the contact on from the first scan.
@@ -408,6 +434,20 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             ops.len()
         )),
     }
+}
+
+/// The set value of a timer or counter coil: a K/H constant or a D
+/// register, which may be index-modified (FX3U).
+fn is_set_value(source: Source) -> bool {
+    matches!(
+        source,
+        Source::Constant(_)
+            | Source::Register(_)
+            | Source::Indexed(Indexed {
+                base: IndexBase::Register(_),
+                ..
+            })
+    )
 }
 
 fn applied_instruction(
@@ -493,18 +533,36 @@ fn applied_instruction(
             let s1 = source(mnemonic, 0, &ops[0], width)?;
             let s2 = source(mnemonic, 1, &ops[1], width)?;
             let words: u16 = if width == Width::Double { 4 } else { 2 };
-            let dst = match ops[2] {
-                Operand::Device(Device::D(n))
-                    if n.checked_add(words - 1).is_some_and(|l| l < D_COUNT) =>
-                {
-                    n
+            // A 16-bit MUL's product is 32 bits wide: K1–K8 groups take it.
+            let digits = if base == "MUL" || width == Width::Double {
+                8
+            } else {
+                4
+            };
+            let dst = match result_dest(mnemonic, 2, &ops[2], width, digits)? {
+                Dest::Register(n) if n.checked_add(words - 1).is_some_and(|l| l < D_COUNT) => {
+                    Dest::Register(n)
                 }
-                Operand::Device(Device::D(n)) => {
+                Dest::Register(n) => {
                     return Err(format!(
                         "{mnemonic} operand 3: the result takes {words} registers from D{n}, past D8511"
                     ));
                 }
-                ref other => return Err(wrong(mnemonic, 2, other, "a D register")),
+                dst @ (Dest::Group(_)
+                | Dest::Indexed(Indexed {
+                    base: IndexBase::Register(_) | IndexBase::Group(_),
+                    ..
+                })) => dst,
+                // 16-bit MUL into Zn is allowed by the FX3U (low word only);
+                // we keep the result where the user can see all of it.
+                _ => {
+                    return Err(wrong(
+                        mnemonic,
+                        2,
+                        &ops[2],
+                        "a D register or a word group KnM/KnY (optionally index-modified)",
+                    ));
+                }
             };
             if base == "MUL" {
                 Instruction::Multiply {
@@ -558,23 +616,83 @@ fn applied_instruction(
         }
         "CMP" => {
             arity(mnemonic, ops, &["S1", "S2", "D"])?;
-            let dst = bit_dest(mnemonic, 2, &ops[2])?.0;
-            let last_ok = match dst {
-                Device::M(n) => n.checked_add(2).is_some_and(|l| l < M_COUNT),
-                Device::Y(n) => n.checked_add(2).is_some_and(|l| l < XY_COUNT),
-                _ => false,
-            };
-            if !last_ok {
-                return Err(format!(
-                    "{mnemonic} operand 3: {dst} and the two bits after it must exist"
-                ));
-            }
             Instruction::Compare {
                 width,
                 exec,
                 s1: source(mnemonic, 0, &ops[0], width)?,
                 s2: source(mnemonic, 1, &ops[1], width)?,
+                dst: three_bits(mnemonic, 2, &ops[2])?,
+            }
+        }
+        "ZCP" => {
+            arity(mnemonic, ops, &["S1 (low)", "S2 (high)", "S3", "D"])?;
+            Instruction::ZoneCompare {
+                width,
+                exec,
+                low: source(mnemonic, 0, &ops[0], width)?,
+                high: source(mnemonic, 1, &ops[1], width)?,
+                value: source(mnemonic, 2, &ops[2], width)?,
+                dst: three_bits(mnemonic, 3, &ops[3])?,
+            }
+        }
+        "BMOV" => {
+            no_double()?;
+            arity(mnemonic, ops, &["S", "D", "n"])?;
+            Instruction::BlockMove {
+                exec,
+                src: block(mnemonic, 0, &ops[0])?,
+                dst: block(mnemonic, 1, &ops[1])?,
+                count: block_count(mnemonic, 2, &ops[2])?,
+            }
+        }
+        "SFTL" | "SFTR" => {
+            no_double()?;
+            arity(mnemonic, ops, &["S", "D", "n1", "n2"])?;
+            let count = |i: usize| match ops[i] {
+                Operand::Decimal(n) if (1..=i64::from(SHIFT_MAX)).contains(&n) => Ok(n as u16),
+                ref other => Err(wrong(
+                    mnemonic,
+                    i,
+                    other,
+                    &format!("a K constant 1 to {SHIFT_MAX}"),
+                )),
+            };
+            let (length, places) = (count(2)?, count(3)?);
+            if places > length {
+                return Err(format!(
+                    "{mnemonic}: n2 = {places} is more than n1 = {length} (the shift cannot be longer than the block)"
+                ));
+            }
+            let src = match ops[0] {
+                Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_))) => d,
+                ref other => return Err(wrong(mnemonic, 0, other, "an X, Y or M bit")),
+            };
+            let dst = bit_dest(mnemonic, 1, &ops[1])?.0;
+            for (index, first, bits) in [(0, src, places), (1, dst, length)] {
+                if !bits_exist(first, bits) {
+                    return Err(format!(
+                        "{mnemonic} operand {}: {bits} bits from {first} run past the last device",
+                        index + 1
+                    ));
+                }
+            }
+            Instruction::BitShift {
+                left: base == "SFTL",
+                exec,
+                src,
                 dst,
+                length,
+                places,
+            }
+        }
+        "FMOV" => {
+            arity(mnemonic, ops, &["S", "D", "n"])?;
+            Instruction::Fill {
+                width,
+                exec,
+                src: source(mnemonic, 0, &ops[0], width)?,
+                dst: block(mnemonic, 1, &ops[1])?,
+                count: block_count(mnemonic, 2, &ops[2])?,
             }
         }
         "ZRST" => {
@@ -708,6 +826,10 @@ fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, Stri
         }
         Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
         Operand::Timer(n) => Ok(BitRef::Timer(*n)),
+        Operand::Indexed(
+            Modified::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_))),
+            by,
+        ) => Ok(BitRef::Indexed(*d, *by)),
         other => Err(wrong(
             mnemonic,
             index,
@@ -722,11 +844,14 @@ fn coil(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
     match op {
         Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitRef::Device(*d)),
         Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
+        Operand::Indexed(Modified::Device(d @ (Device::Y(_) | Device::M(_))), by) => {
+            Ok(BitRef::Indexed(*d, *by))
+        }
         other => Err(wrong(
             mnemonic,
             index,
             other,
-            "an output Y, a relay M or a bit of a register Dn.b",
+            "an output Y, a relay M (optionally index-modified, M0Z1) or a bit of a register Dn.b",
         )),
     }
 }
@@ -735,6 +860,80 @@ fn bit_dest(mnemonic: &str, index: usize, op: &Operand) -> Result<BitDest, Strin
     match op {
         Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitDest(*d)),
         other => Err(wrong(mnemonic, index, other, "an output Y or a relay M")),
+    }
+}
+
+/// The result bits of CMP/ZCP: M or Y, with the two bits after it.
+fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, String> {
+    let dst = bit_dest(mnemonic, index, op)?.0;
+    let last_ok = match dst {
+        Device::M(n) => n.checked_add(2).is_some_and(|l| l < M_COUNT),
+        Device::Y(n) => n.checked_add(2).is_some_and(|l| l < XY_COUNT),
+        _ => false,
+    };
+    if last_ok {
+        Ok(dst)
+    } else {
+        Err(format!(
+            "{mnemonic} operand {}: {dst} and the two bits after it must exist",
+            index + 1
+        ))
+    }
+}
+
+/// Longest SFTL/SFTR block (FX3U: n1 ≤ 1024).
+const SHIFT_MAX: u16 = 1024;
+
+/// Whether `bits` consecutive bit devices from `first` exist.
+fn bits_exist(first: Device, bits: u16) -> bool {
+    let (n, count) = match first {
+        Device::X(n) | Device::Y(n) => (n, XY_COUNT),
+        Device::M(n) => (n, M_COUNT),
+        _ => return false,
+    };
+    u32::from(n) + u32::from(bits) <= u32::from(count)
+}
+
+/// Most words BMOV/FMOV move at once (FX3U: n ≤ 512).
+pub(crate) const BLOCK_MAX: i32 = 512;
+
+/// A block of BMOV/FMOV: the first D register, optionally index-modified
+/// (the length is checked when the instruction runs).
+fn block(mnemonic: &str, index: usize, op: &Operand) -> Result<Dest, String> {
+    match *op {
+        Operand::Device(Device::D(n)) => Ok(Dest::Register(n)),
+        Operand::Indexed(Modified::Device(Device::D(n)), by) => Ok(Dest::Indexed(Indexed {
+            base: IndexBase::Register(n),
+            by: modifier(mnemonic, index, op, by, Width::Word)?,
+        })),
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a D register (optionally index-modified)",
+        )),
+    }
+}
+
+/// n of BMOV/FMOV: K1–K512, or a D register read at run time (the blocks
+/// are checked against D8511 when the instruction runs, as their start
+/// may be index-modified).
+fn block_count(mnemonic: &str, index: usize, op: &Operand) -> Result<Source, String> {
+    match *op {
+        Operand::Decimal(n) if (1..=i64::from(BLOCK_MAX)).contains(&n) => {
+            Ok(Source::Constant(n as i32))
+        }
+        Operand::Decimal(n) => Err(format!(
+            "{mnemonic} operand {}: n = {n} is out of range (K1 to K{BLOCK_MAX})",
+            index + 1
+        )),
+        Operand::Device(Device::D(n)) => Ok(Source::Register(n)),
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a K constant 1-512 or a D register",
+        )),
     }
 }
 
@@ -758,18 +957,12 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
         )
     };
     match (*op, width) {
-        (Operand::Decimal(v), Width::Word) => i16::try_from(v)
-            .map(|v| Source::Constant(i32::from(v)))
-            .map_err(|_| out_of_range("K-32768 to K32767")),
-        (Operand::Decimal(v), Width::Double) => i32::try_from(v)
+        (Operand::Decimal(v), _) => constant(v, None, width)
             .map(Source::Constant)
-            .map_err(|_| out_of_range("K-2147483648 to K2147483647")),
-        (Operand::Hex(v), Width::Word) => u16::try_from(v)
-            .map(|v| Source::Constant(i32::from(v as i16)))
-            .map_err(|_| out_of_range("H0 to HFFFF")),
-        (Operand::Hex(v), Width::Double) => u32::try_from(v)
-            .map(|v| Source::Constant(v as i32))
-            .map_err(|_| out_of_range("H0 to HFFFFFFFF")),
+            .map_err(|range| out_of_range(&range)),
+        (Operand::Hex(v), _) => constant(i64::try_from(v).unwrap_or(i64::MAX), Some(v), width)
+            .map(Source::Constant)
+            .map_err(|range| out_of_range(&range)),
         (Operand::Device(Device::D(n)), _) => {
             Ok(Source::Register(register(mnemonic, index, n, width)?))
         }
@@ -781,20 +974,169 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
             g.digits
         )),
         (Operand::Group(g), _) => Ok(Source::Group(g)),
+        (Operand::Index(reg), _) => Ok(Source::Index(index_register(mnemonic, index, reg, width)?)),
+        (Operand::Indexed(base, by), _) => {
+            let by = modifier(mnemonic, index, op, by, width)?;
+            let base = match base {
+                Modified::Decimal(v) => constant(v, None, width)
+                    .map(IndexBase::Constant)
+                    .map_err(|range| out_of_range(&range))?,
+                Modified::Hex(v) => constant(i64::try_from(v).unwrap_or(i64::MAX), Some(v), width)
+                    .map(IndexBase::Constant)
+                    .map_err(|range| out_of_range(&range))?,
+                Modified::Device(Device::D(n)) => {
+                    IndexBase::Register(register(mnemonic, index, n, width)?)
+                }
+                Modified::Device(Device::C(n)) => IndexBase::Counter(n),
+                Modified::Timer(n) if width == Width::Word => IndexBase::Timer(n),
+                Modified::Group(g) if width == Width::Word && g.digits > 4 => {
+                    return Err(format!(
+                        "{mnemonic} operand {}: {g} has {} digits; a 16-bit instruction takes K1 to K4",
+                        index + 1,
+                        g.digits
+                    ));
+                }
+                Modified::Group(g) => IndexBase::Group(g),
+                _ => {
+                    return Err(wrong(
+                        mnemonic,
+                        index,
+                        op,
+                        "a K/H constant, D, C, (16 bit) T or a word group, index-modified",
+                    ));
+                }
+            };
+            Ok(Source::Indexed(Indexed { base, by }))
+        }
         _ => Err(wrong(
             mnemonic,
             index,
             op,
-            "a K/H constant, a D register, a counter C, a word group KnM/KnX/KnY or (16 bit) a timer T",
+            "a K/H constant, a D register, a counter C, a word group KnM/KnX/KnY, an index register V/Z or (16 bit) a timer T",
         )),
     }
 }
 
-fn word_dest(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<Device, String> {
+/// A K (`hex` = None) or H constant at the instruction's width: its value,
+/// or the allowed range for the message. H constants are bit patterns
+/// (HFFFF is −1 at 16 bit).
+fn constant(value: i64, hex: Option<u64>, width: Width) -> Result<i32, String> {
+    match (hex, width) {
+        (None, Width::Word) => i16::try_from(value)
+            .map(i32::from)
+            .map_err(|_| "K-32768 to K32767".to_string()),
+        (None, Width::Double) => {
+            i32::try_from(value).map_err(|_| "K-2147483648 to K2147483647".to_string())
+        }
+        (Some(v), Width::Word) => u16::try_from(v)
+            .map(|v| i32::from(v as i16))
+            .map_err(|_| "H0 to HFFFF".to_string()),
+        (Some(v), Width::Double) => u32::try_from(v)
+            .map(|v| v as i32)
+            .map_err(|_| "H0 to HFFFFFFFF".to_string()),
+    }
+}
+
+/// An index register as a whole operand: at 32 bit only Zn, which names
+/// the pair Vn:Zn (FX3U).
+fn index_register(
+    mnemonic: &str,
+    index: usize,
+    reg: IndexReg,
+    width: Width,
+) -> Result<IndexReg, String> {
+    match (reg, width) {
+        (IndexReg::V(n), Width::Double) => Err(format!(
+            "{mnemonic} operand {}: a 32-bit instruction names the pair V{n}:Z{n} by Z{n} (Z low word, V high word)",
+            index + 1
+        )),
+        _ => Ok(reg),
+    }
+}
+
+/// The modifier of an index-modified operand: at 32 bit only Zn (the
+/// offset is then the 32-bit pair Vn:Zn, FX3U rule).
+fn modifier(
+    mnemonic: &str,
+    index: usize,
+    op: &Operand,
+    by: IndexReg,
+    width: Width,
+) -> Result<IndexReg, String> {
+    match (by, width) {
+        (IndexReg::V(n), Width::Double) => Err(format!(
+            "{mnemonic} operand {}: {}: a 32-bit instruction is modified by Z{n} (the pair V{n}:Z{n}), not by V{n}",
+            index + 1,
+            op.describe()
+        )),
+        _ => Ok(by),
+    }
+}
+
+/// The destination of a word instruction: D, C, V/Z, a word group KnM/KnY
+/// (not KnX: inputs are driven from outside), each optionally
+/// index-modified.
+fn word_dest(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<Dest, String> {
+    let digits = if width == Width::Double { 8 } else { 4 };
+    result_dest(mnemonic, index, op, width, digits)
+}
+
+/// [`word_dest`] for a result up to `max_digits` × 4 bits wide (a 16-bit
+/// MUL's product fills K8).
+fn result_dest(
+    mnemonic: &str,
+    index: usize,
+    op: &Operand,
+    width: Width,
+    max_digits: u8,
+) -> Result<Dest, String> {
+    let group = |g: crate::il::WordGroup| -> Result<crate::il::WordGroup, String> {
+        if g.kind == crate::il::GroupKind::X {
+            return Err(format!(
+                "{mnemonic} operand {}: {} is an input group; inputs X are driven from outside, write KnM or KnY",
+                index + 1,
+                op.describe()
+            ));
+        }
+        if g.digits > max_digits {
+            return Err(format!(
+                "{mnemonic} operand {}: {g} has {} digits; this result takes K1 to K{max_digits}",
+                index + 1,
+                g.digits
+            ));
+        }
+        Ok(g)
+    };
     match *op {
-        Operand::Device(Device::D(n)) => Ok(Device::D(register(mnemonic, index, n, width)?)),
-        Operand::Device(c @ Device::C(_)) => Ok(c),
-        _ => Err(wrong(mnemonic, index, op, "a D register or a counter C")),
+        Operand::Device(Device::D(n)) => Ok(Dest::Register(register(mnemonic, index, n, width)?)),
+        Operand::Device(Device::C(n)) => Ok(Dest::Counter(n)),
+        Operand::Group(g) => Ok(Dest::Group(group(g)?)),
+        Operand::Index(reg) => Ok(Dest::Index(index_register(mnemonic, index, reg, width)?)),
+        Operand::Indexed(base, by) => {
+            let by = modifier(mnemonic, index, op, by, width)?;
+            let base = match base {
+                Modified::Device(Device::D(n)) => {
+                    IndexBase::Register(register(mnemonic, index, n, width)?)
+                }
+                Modified::Device(Device::C(n)) => IndexBase::Counter(n),
+                Modified::Group(g) => IndexBase::Group(group(g)?),
+                _ => {
+                    return Err(wrong(
+                        mnemonic,
+                        index,
+                        op,
+                        "D, C or a word group KnM/KnY, index-modified",
+                    ));
+                }
+            };
+            Ok(Dest::Indexed(Indexed { base, by }))
+        }
+        _ => Err(wrong(
+            mnemonic,
+            index,
+            op,
+            "a D register, a counter C, an index register V/Z or a word group KnM/KnY",
+        )),
     }
 }
 

@@ -1,11 +1,13 @@
 //! Coils and applied instructions (everything after the contacts).
 
-use super::operands::{device_error, read_source, write_bit_ref, write_word};
+use super::operands::{
+    dest_value, device_error, read_source, resolve_dest, write_bit_ref, write_group, write_word,
+};
 use super::{Machine, Memory, runs};
 use crate::devices::Device;
 use crate::devices::DeviceError;
 use crate::hardware::{OutputOwner, PulseTrain};
-use crate::il::{ArithOp, BitRef, FloatSource, Instruction, LogicOp, Source, Width, ZoneDevice};
+use crate::il::{ArithOp, BitRef, Dest, FloatSource, Instruction, LogicOp, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
 use crate::special::{M_BORROW, M_CARRY, M_EXECUTION_COMPLETE, M_ZERO};
 
@@ -33,7 +35,9 @@ pub(super) fn execute(
             .timers_mut()
             .reset(n)
             .map_err(|e| device_error(format!("T{n}"), e)),
-        Instruction::Reset(bit @ BitRef::WordBit(_)) if power => write_bit_ref(devices, bit, false),
+        Instruction::Reset(bit @ (BitRef::WordBit(_) | BitRef::Indexed(..))) if power => {
+            write_bit_ref(devices, bit, false)
+        }
         Instruction::Set(_) | Instruction::Reset(_) => Ok(()),
         Instruction::Pulse { rising, dest } => {
             let edge = if rising {
@@ -136,6 +140,10 @@ pub(super) fn execute(
             }
             let a = i64::from(read_source(devices, s1, width)?);
             let b = i64::from(read_source(devices, s2, width)?);
+            // An index-modified destination out of range fails before the
+            // flags move: the instruction is not executed at all.
+            let words = if width == Width::Double { 2 } else { 1 };
+            let dst = resolve_dest(devices, dst, width, words)?;
             let exact = match op {
                 ArithOp::Add => a + b,
                 ArithOp::Sub => a - b,
@@ -168,11 +176,16 @@ pub(super) fn execute(
             let b = i64::from(read_source(devices, s2, width)?);
             // |a·b| ≤ 2^62 for 32-bit operands: exact in i64, never wraps.
             let product = a.saturating_mul(b);
-            match width {
-                Width::Word => devices
-                    .set_dword(dst, product as i32)
-                    .map_err(|e| device_error(Device::D(dst), e)),
-                Width::Double => write_quad(devices, dst, product),
+            let words = if width == Width::Double { 4 } else { 2 };
+            match (resolve_dest(devices, dst, width, words)?, width) {
+                (Dest::Register(n), Width::Word) => devices
+                    .set_dword(n, product as i32)
+                    .map_err(|e| device_error(Device::D(n), e)),
+                (Dest::Register(n), Width::Double) => write_quad(devices, n, product),
+                // A group takes the product's low n × 4 bits (K8 at most:
+                // the low 32 bits of a DMUL product, as on the FX).
+                (Dest::Group(g), _) => write_group(devices, g, product as i32),
+                (other, _) => Err(device_error(other, DeviceError::WrongKind)),
             }
         }
         Instruction::Divide {
@@ -210,18 +223,23 @@ pub(super) fn execute(
                     ),
                 ));
             }
-            match width {
-                Width::Word => {
+            let words = if width == Width::Double { 4 } else { 2 };
+            // `resolve_dest` checked that all `words` registers exist.
+            match (resolve_dest(devices, dst, width, words)?, width) {
+                (Dest::Register(n), Width::Word) => {
                     let (a, b) = (a as i16, b as i16);
                     devices
-                        .set_word(dst, a.wrapping_div(b))
-                        .and_then(|()| devices.set_word(dst.saturating_add(1), a.wrapping_rem(b)))
-                        .map_err(|e| device_error(Device::D(dst), e))
+                        .set_word(n, a.wrapping_div(b))
+                        .and_then(|()| devices.set_word(n.saturating_add(1), a.wrapping_rem(b)))
+                        .map_err(|e| device_error(Device::D(n), e))
                 }
-                Width::Double => devices
-                    .set_dword(dst, a.wrapping_div(b))
-                    .and_then(|()| devices.set_dword(dst.saturating_add(2), a.wrapping_rem(b)))
-                    .map_err(|e| device_error(Device::D(dst), e)),
+                (Dest::Register(n), Width::Double) => devices
+                    .set_dword(n, a.wrapping_div(b))
+                    .and_then(|()| devices.set_dword(n.saturating_add(2), a.wrapping_rem(b)))
+                    .map_err(|e| device_error(Device::D(n), e)),
+                // FX: a bit-device destination gets the quotient, no remainder.
+                (Dest::Group(g), _) => write_group(devices, g, a.wrapping_div(b)),
+                (other, _) => Err(device_error(other, DeviceError::WrongKind)),
             }
         }
         Instruction::Logic {
@@ -248,14 +266,9 @@ pub(super) fn execute(
             if !runs(exec, power, memory) {
                 return Ok(());
             }
-            let source = match dst {
-                Device::C(n) => Source::Counter(n),
-                Device::D(n) => Source::Register(n),
-                other => {
-                    return Err(device_error(other, DeviceError::WrongKind));
-                }
-            };
-            let value = read_source(devices, source, width)?;
+            let words = if width == Width::Double { 2 } else { 1 };
+            let dst = resolve_dest(devices, dst, width, words)?;
+            let value = dest_value(devices, dst, width)?;
             let negated = match width {
                 Width::Word => i32::from((value as i16).wrapping_neg()),
                 Width::Double => value.wrapping_neg(),
@@ -271,12 +284,9 @@ pub(super) fn execute(
             if !runs(exec, power, memory) {
                 return Ok(());
             }
-            let source = match dst {
-                Device::C(n) => Source::Counter(n),
-                Device::D(n) => Source::Register(n),
-                other => return Err(device_error(other, DeviceError::WrongKind)),
-            };
-            let value = read_source(devices, source, width)?;
+            let words = if width == Width::Double { 2 } else { 1 };
+            let dst = resolve_dest(devices, dst, width, words)?;
+            let value = dest_value(devices, dst, width)?;
             let next = if up {
                 value.wrapping_add(1)
             } else {
@@ -300,13 +310,103 @@ pub(super) fn execute(
             }
             let a = read_source(devices, s1, width)?;
             let b = read_source(devices, s2, width)?;
-            let bit = |offset: u16| match dst {
-                Device::M(n) => Device::M(n.saturating_add(offset)),
-                Device::Y(n) => Device::Y(n.saturating_add(offset)),
-                other => other,
+            set_three(devices, dst, [a > b, a == b, a < b])
+        }
+        Instruction::ZoneCompare {
+            width,
+            exec,
+            low,
+            high,
+            value,
+            dst,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let low = read_source(devices, low, width)?;
+            // FX3U: a lower limit above the upper one counts as both.
+            let high = read_source(devices, high, width)?.max(low);
+            let value = read_source(devices, value, width)?;
+            set_three(
+                devices,
+                dst,
+                [value < low, (low..=high).contains(&value), value > high],
+            )
+        }
+        Instruction::BlockMove {
+            exec,
+            src,
+            dst,
+            count,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let n = block_len(devices, count)?;
+            let from = block_start(devices, src, n)?;
+            let to = block_start(devices, dst, n)?;
+            // Through a buffer: overlapping blocks copy as the FX3U does.
+            let words: Vec<i16> = (0..n)
+                .map(|i| devices.word(from + i))
+                .collect::<Result<_, _>>()
+                .map_err(|e| device_error(Device::D(from), e))?;
+            for (i, word) in (0..n).zip(words) {
+                devices
+                    .set_word(to + i, word)
+                    .map_err(|e| device_error(Device::D(to + i), e))?;
+            }
+            Ok(())
+        }
+        Instruction::Fill {
+            width,
+            exec,
+            src,
+            dst,
+            count,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            let value = read_source(devices, src, width)?;
+            let n = block_len(devices, count)?;
+            let stride = if width == Width::Double { 2 } else { 1 };
+            let to = block_start(devices, dst, n * stride)?;
+            for i in 0..n {
+                let at = to + i * stride;
+                match width {
+                    Width::Word => devices.set_word(at, value as i16),
+                    Width::Double => devices.set_dword(at, value),
+                }
+                .map_err(|e| device_error(Device::D(at), e))?;
+            }
+            Ok(())
+        }
+        Instruction::BitShift {
+            left,
+            exec,
+            src,
+            dst,
+            length,
+            places,
+        } => {
+            if !runs(exec, power, memory) {
+                return Ok(());
+            }
+            // Read everything first: S may overlap D.
+            let incoming = read_bits(devices, src, places)?;
+            let block = read_bits(devices, dst, length)?;
+            let kept = usize::from(length - places);
+            let shifted: Vec<bool> = if left {
+                incoming.iter().chain(&block[..kept]).copied().collect()
+            } else {
+                block[usize::from(places)..]
+                    .iter()
+                    .chain(&incoming)
+                    .copied()
+                    .collect()
             };
-            for (offset, on) in [(0u16, a > b), (1, a == b), (2, a < b)] {
-                let device = bit(offset);
+            for (i, on) in (0u16..).zip(shifted) {
+                let device = nth_bit(dst, i)?;
                 devices
                     .set_bit(device, on)
                     .map_err(|e| device_error(device, e))?;
@@ -377,6 +477,95 @@ fn write_quad(
         .map_err(|e| device_error(Device::D(n), e))
 }
 
+/// Writes the three result bits of CMP/ZCP from `dst` on (the parser
+/// checked that all three exist).
+fn set_three(
+    devices: &mut crate::devices::Devices,
+    dst: Device,
+    bits: [bool; 3],
+) -> Result<(), OperationError> {
+    for (offset, on) in (0u16..).zip(bits) {
+        let device = match dst {
+            Device::M(n) => Device::M(n.saturating_add(offset)),
+            Device::Y(n) => Device::Y(n.saturating_add(offset)),
+            other => other,
+        };
+        devices
+            .set_bit(device, on)
+            .map_err(|e| device_error(device, e))?;
+    }
+    Ok(())
+}
+
+/// The bit `i` places after `first` (X, Y or M).
+fn nth_bit(first: Device, i: u16) -> Result<Device, OperationError> {
+    let next = |n: u16| {
+        n.checked_add(i)
+            .ok_or_else(|| device_error(first, DeviceError::OutOfRange))
+    };
+    match first {
+        Device::X(n) => next(n).map(Device::X),
+        Device::Y(n) => next(n).map(Device::Y),
+        Device::M(n) => next(n).map(Device::M),
+        other => Err(device_error(other, DeviceError::WrongKind)),
+    }
+}
+
+/// `count` consecutive bits from `first`, lowest first.
+fn read_bits(
+    devices: &crate::devices::Devices,
+    first: Device,
+    count: u16,
+) -> Result<Vec<bool>, OperationError> {
+    (0..count)
+        .map(|i| {
+            let device = nth_bit(first, i)?;
+            devices.bit(device).map_err(|e| device_error(device, e))
+        })
+        .collect()
+}
+
+/// n of BMOV/FMOV: 1–512, else operation error 6705.
+fn block_len(
+    devices: &crate::devices::Devices,
+    count: crate::il::Source,
+) -> Result<u16, OperationError> {
+    let n = read_source(devices, count, Width::Word)?;
+    u16::try_from(n)
+        .ok()
+        .filter(|n| (1..=crate::il::BLOCK_MAX).contains(&i32::from(*n)))
+        .ok_or_else(|| {
+            OperationError::new(
+                CODE_OPERAND,
+                format!(
+                    "block length n = {n} is out of range (1 to {}); nothing was moved",
+                    crate::il::BLOCK_MAX
+                ),
+            )
+        })
+}
+
+/// The first register of a BMOV/FMOV block of `words` registers, index
+/// modification applied; 6706 when the block runs past D8511.
+fn block_start(
+    devices: &crate::devices::Devices,
+    start: Dest,
+    words: u16,
+) -> Result<u16, OperationError> {
+    match resolve_dest(devices, start, Width::Word, words)? {
+        Dest::Register(n)
+            if n.checked_add(words)
+                .is_some_and(|end| end <= crate::devices::D_COUNT) =>
+        {
+            Ok(n)
+        }
+        other => Err(OperationError::new(
+            crate::operation_error::CODE_DEVICE_RANGE,
+            format!("a block of {words} registers from {other} runs past D8511; nothing was moved"),
+        )),
+    }
+}
+
 fn set_flag(devices: &mut crate::devices::Devices, m: u16, on: bool) -> Result<(), OperationError> {
     devices
         .set_m(m, on)
@@ -388,7 +577,12 @@ fn reset(machine: &mut Machine<'_>, device: Device) -> Result<(), OperationError
     let devices = &mut *machine.devices;
     match device {
         Device::D(n) => devices.set_word(n, 0),
-        Device::C(n) => devices.set_counter(n, 0),
+        Device::C(n) => {
+            // The latched contact goes off with the value.
+            Device::C(n).check().map_err(|e| device_error(device, e))?;
+            machine.hardware.counters_mut().reset(devices, n);
+            Ok(())
+        }
         bit => devices.set_bit(bit, false),
     }
     .map_err(|e| device_error(device, e))

@@ -139,26 +139,26 @@ impl Interpreter {
             let instruction = &statement.instruction;
             let result = match instruction {
                 Instruction::Load(contact, device) => {
-                    let value = contact_value(*contact, *device, memory, machine);
+                    let (value, read) = contact_value(*contact, *device, memory, machine);
                     if after_output && self.pushed.is_empty() {
                         self.blocks.clear();
                     }
                     self.blocks.push(value);
-                    Ok(())
+                    read
                 }
                 Instruction::And(contact, device) => {
-                    let value = contact_value(*contact, *device, memory, machine);
+                    let (value, read) = contact_value(*contact, *device, memory, machine);
                     if let Some(top) = self.blocks.last_mut() {
                         *top = *top && value;
                     }
-                    Ok(())
+                    read
                 }
                 Instruction::Or(contact, device) => {
-                    let value = contact_value(*contact, *device, memory, machine);
+                    let (value, read) = contact_value(*contact, *device, memory, machine);
                     if let Some(top) = self.blocks.last_mut() {
                         *top = *top || value;
                     }
-                    Ok(())
+                    read
                 }
                 Instruction::CompareContact {
                     join,
@@ -320,22 +320,28 @@ fn power_of(blocks: &[bool]) -> bool {
     blocks.last().copied().unwrap_or(false)
 }
 
-/// Reads a contact, remembering the device state for the edge forms.
+/// Reads a contact, remembering the device state for the edge forms. An
+/// index-modified contact out of range reads as off and returns the
+/// operation error to report.
 fn contact_value(
     contact: Contact,
     device: BitRef,
     memory: &mut Memory,
     machine: &Machine<'_>,
-) -> bool {
-    let state = operands::read_bit_ref(machine.devices, machine.hardware, device);
+) -> (bool, Result<(), OperationError>) {
+    let (state, read) = match operands::read_bit_ref(machine.devices, machine.hardware, device) {
+        Ok(state) => (state, Ok(())),
+        Err(error) => (false, Err(error)),
+    };
     let previous = memory.previous;
     memory.previous = state;
-    match contact {
+    let value = match contact {
         Contact::Open => state,
-        Contact::Closed => !state,
+        Contact::Closed => !state && read.is_ok(),
         Contact::Rising => state && !previous,
-        Contact::Falling => !state && previous,
-    }
+        Contact::Falling => !state && previous && read.is_ok(),
+    };
+    (value, read)
 }
 
 /// Whether an applied instruction runs this scan: continuous forms while the

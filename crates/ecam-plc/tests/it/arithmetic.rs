@@ -158,13 +158,15 @@ fn bad_operands_are_refused_at_their_line() {
     assert!(error("LD X0\nDMUL K1 K2 D8509\n").contains("the result takes 4 registers from D8509"));
     assert!(parse("LD X0\nDDIV K1 K2 D8508\n", "t.il").is_ok());
     assert!(
-        error("LD X0\nDIV K1 K2 C0\n").contains("DIV operand 3: expected a D register, found C0")
+        error("LD X0\nDIV K1 K2 C0\n").contains(
+            "DIV operand 3: expected a D register or a word group KnM/KnY (optionally index-modified), found C0"
+        )
     );
     assert!(error("LD X0\nMUL K40000 K2 D0\n").contains("out of range (K-32768 to K32767)"));
-    assert!(error("LD X0\nWAND K1 K2 K3\n").contains("expected a D register or a counter C"));
-    assert!(
-        error("LD X0\nNEG K1\n").contains("NEG operand 1: expected a D register or a counter C")
-    );
+    assert!(error("LD X0\nWAND K1 K2 K3\n").contains(
+        "expected a D register, a counter C, an index register V/Z or a word group KnM/KnY"
+    ));
+    assert!(error("LD X0\nNEG K1\n").contains("NEG operand 1: expected a D register, a counter C"));
     assert!(error("LD X0\nDNEG D8511\n").contains("D8511 has no D8512"));
     assert!(error("LD X0\nWAND K1 D0\n").contains("WAND expects 3 operands (S1 S2 D), found 2"));
 }

@@ -167,7 +167,7 @@ fn bad_comparisons_are_refused_at_their_line() {
     );
     assert!(
         error("LD= D0 M0\nOUT Y0\n").contains(
-            "LD= operand 2: expected a K/H constant, a D register, a counter C, a word group KnM/KnX/KnY or (16 bit) a timer T, found M0"
+            "LD= operand 2: expected a K/H constant, a D register, a counter C, a word group KnM/KnX/KnY, an index register V/Z or (16 bit) a timer T, found M0"
         )
     );
     assert!(error("LD= K40000 D0\nOUT Y0\n").contains("out of range (K-32768 to K32767)"));

@@ -26,6 +26,16 @@ const IL_PROGRAM_TOKENS: &[&str] = &[
     "HFFFFFFFFF",
     "E1e39",
     "C235",
+    "Z0",
+    "V7",
+    "D8511Z0",
+    "K4M8500Z1",
+    "X377V0",
+    "K8Y0",
+    "BMOV ",
+    "DFMOV ",
+    "ZCP ",
+    "K512",
 ];
 
 #[test]

@@ -3,7 +3,7 @@
 
 use ecam_plc::Device;
 use ecam_plc::il::{
-    ArithOp, BitRef, Contact, Exec, FloatSource, Instruction, MasterSpec, Source, Width,
+    ArithOp, BitRef, Contact, Dest, Exec, FloatSource, Instruction, MasterSpec, Source, Width,
     ZoneDevice, parse,
 };
 
@@ -57,7 +57,7 @@ fn applied_instructions_and_their_forms() {
             width: Width::Word,
             exec: Exec::Continuous,
             src: Source::Constant(100),
-            dst: Device::D(0)
+            dst: Dest::Register(0)
         }
     );
     assert_eq!(
@@ -66,7 +66,7 @@ fn applied_instructions_and_their_forms() {
             width: Width::Double,
             exec: Exec::Pulse,
             src: Source::Constant(-1),
-            dst: Device::D(10)
+            dst: Dest::Register(10)
         }
     );
     assert_eq!(
@@ -85,7 +85,7 @@ fn applied_instructions_and_their_forms() {
             exec: Exec::Continuous,
             s1: Source::Counter(231),
             s2: Source::Register(0),
-            dst: Device::D(2)
+            dst: Dest::Register(2)
         }
     );
     assert_eq!(
@@ -173,11 +173,11 @@ fn errors_name_file_line_and_expectation() {
     ));
     assert!(
         error("LD X0\nOUT X1\n")
-            .contains("expected an output Y, a relay M or a bit of a register Dn.b, found X1")
+            .contains("expected an output Y, a relay M (optionally index-modified, M0Z1) or a bit of a register Dn.b, found X1")
     );
     assert!(error("LD X0\nMOV K40000 D0\n").contains("out of range (K-32768 to K32767)"));
     assert!(error("LD X0\nDMOV K1 D8511\n").contains("D8511 has no D8512"));
-    assert!(error("LD X0\nMOV D0 K1\n").contains("expected a D register or a counter C"));
+    assert!(error("LD X0\nMOV D0 K1\n").contains("expected a D register, a counter C, an index register V/Z or a word group KnM/KnY, found K1"));
     assert!(
         error("LD X0\nPLSY K100 K10 Y4\n").contains("expected a pulse output Y0, Y1, Y2 or Y3")
     );

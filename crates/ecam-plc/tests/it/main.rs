@@ -5,6 +5,7 @@
 mod decam_support;
 
 mod arithmetic;
+mod block_and_zone;
 mod compare_contacts;
 mod counters;
 mod decam_errors;
@@ -13,6 +14,7 @@ mod decam_registers;
 mod ecamtbx_generators;
 mod fuzz;
 mod il_parser;
+mod index_registers;
 mod instructions;
 mod parser_never_panics;
 mod program_flow;

@@ -166,3 +166,51 @@ fn an_external_start_edge_while_another_holds_the_output_is_ignored() {
     assert!(dword(&p, 2019) > 0);
     assert_eq!(dword(&p, 8140), dword(&p, 2019), "the cam drives Y0 now");
 }
+
+/// Handing Y0 over from one DECAM to a second one (docs/plc.md, "Two
+/// DECAMs on one output"): the first stops at the end of its cycle (offset
+/// 4 bit 1), the second, started noncyclic with endless repeats (start
+/// register 2, repeat count HFFFF) and waiting for Y0, takes it within a
+/// scan and moves relative to the pulse counter: no position step and no
+/// reversal, a standstill of at most one scan between the two.
+#[test]
+fn a_second_cam_takes_the_output_over_where_the_first_stopped() {
+    let mut p = plc(TWO_CAMS);
+    cyclic_cam(&mut p, 2000, 1000);
+    cyclic_cam(&mut p, 3000, 2000);
+    p.devices_mut().set_word(3000 + 14, -1).unwrap();
+    p.devices_mut().set_word(3000 + 5, 2).unwrap();
+    set(&mut p, "M0", true);
+    set(&mut p, "M1", true);
+    run_ms(&mut p, 500);
+    // Stop cam 1 at the end of its cycle (master 10000 = 1000 ms).
+    p.devices_mut().set_word(2000 + 4, 0b10).unwrap();
+    let mut last = dword(&p, 8140);
+    let mut still = 0;
+    let mut handed_over = None;
+    for ms in 500..2000 {
+        run_ms(&mut p, 1);
+        let now = dword(&p, 8140);
+        let step = now - last;
+        assert!(step >= 0, "ms {ms}: reversed by {step}");
+        // 10 master counts per ms: cam 1 moves 1 pulse a ms, cam 2 2.
+        assert!(step <= 3, "ms {ms}: a step of {step} pulses");
+        if step == 0 {
+            still += 1;
+        }
+        // Flag bit 7: noncyclic mode accepted (cam 2 has Y0).
+        if handed_over.is_none() && p.devices().word(3000 + 1).unwrap() & (1 << 7) != 0 {
+            handed_over = Some(ms);
+        }
+        last = now;
+    }
+    assert_eq!(dword(&p, 2019), 1000, "cam 1 stopped at its cycle end");
+    assert!(still <= 1, "standing still for {still} ms");
+    assert!(
+        handed_over.is_some_and(|ms| (999..=1001).contains(&ms)),
+        "{handed_over:?}"
+    );
+    // From then on Y0 carries cam 2 (relative to 1000, 2 pulses per ms).
+    assert_eq!(dword(&p, 8140), dword(&p, 3019));
+    assert!(dword(&p, 8140) >= 1000 + 2 * 990, "{}", dword(&p, 8140));
+}
