@@ -37,7 +37,7 @@ impl Progress {
     /// Reports that tick `done` has run.
     pub fn tick(&self, done: u64) {
         if let Some(bar) = &self.bar {
-            if done % self.step == 0 {
+            if done.is_multiple_of(self.step) {
                 bar.set_position(done);
             }
         }

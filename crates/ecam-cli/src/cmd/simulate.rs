@@ -113,7 +113,7 @@ impl PlotRows {
     }
 
     fn add(&mut self, row: &Row) {
-        if self.seen % self.step == 0 {
+        if self.seen.is_multiple_of(self.step) {
             self.kept.push(*row);
         } else if let Some(k) = self.kept.last_mut() {
             // A backlog spike between kept rows must still show.

@@ -110,7 +110,7 @@ fn run(axis: &mut CamAxis<PointTable>, source: Source, motion: &[(i64, u32)], re
             }
             (None, Source::Coarse { every }) => {
                 true_micro += speed * i64::from(TICK_US);
-                if tick % u64::from(every) == 0 {
+                if tick.is_multiple_of(u64::from(every)) {
                     held = true_micro.div_euclid(1_000_000);
                 }
                 (held, 0)

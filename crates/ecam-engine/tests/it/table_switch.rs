@@ -287,7 +287,7 @@ proptest! {
                 }
             }
             micro += speed * i64::from(TICK_US);
-            if i as u64 % u64::from(every) == 0 {
+            if (i as u64).is_multiple_of(u64::from(every)) {
                 held = micro.div_euclid(1_000_000);
             }
             let master = held;

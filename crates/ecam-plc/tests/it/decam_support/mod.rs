@@ -123,7 +123,7 @@ impl Rig {
     pub fn run_to(&mut self, target: i64, step: i64) {
         let mut ticks = 0u32;
         while self.master != target {
-            if ticks % 10 == 0 {
+            if ticks.is_multiple_of(10) {
                 self.scan();
             }
             ticks += 1;
