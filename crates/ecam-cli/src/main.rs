@@ -53,6 +53,9 @@ enum Command {
     Completions(cmd::install::CompletionsArgs),
     /// Print the man page (roff), e.g. `ecam man > ecam.1`.
     Man(cmd::install::ManArgs),
+    /// Cams on CiA 402 servo drives over EtherCAT (real or emulated).
+    #[command(subcommand)]
+    Ethercat(cmd::ethercat::Command),
 }
 
 fn main() -> std::process::ExitCode {
@@ -72,6 +75,7 @@ fn main() -> std::process::ExitCode {
         Command::Serve(args) => cmd::serve::run(args),
         Command::Completions(args) => cmd::install::completions(&args),
         Command::Man(args) => cmd::install::man(&args),
+        Command::Ethercat(command) => cmd::ethercat::run(command),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -492,9 +492,7 @@ impl<C: CamCurve> CamAxis<C> {
         let phase = core::mem::replace(&mut self.phase, Phase::Idle);
         let followed = match phase {
             Phase::Running(engaged) => self.follow(engaged, None, master, fraction),
-            Phase::Stopping(engaged, end) => {
-                self.follow(engaged, Some(end), master, fraction)
-            }
+            Phase::Stopping(engaged, end) => self.follow(engaged, Some(end), master, fraction),
             Phase::Velocity(mut coast) => {
                 let (at, rest) = coast.advance(dt_us);
                 self.commanded = at;

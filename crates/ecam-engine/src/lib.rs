@@ -48,6 +48,7 @@ mod blend;
 mod coast;
 mod config;
 mod coupling;
+pub mod drive;
 mod error;
 mod input;
 mod master;

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod ethercat;
 pub mod install;
 pub mod law;
 pub mod mc;

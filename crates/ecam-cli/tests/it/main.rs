@@ -5,6 +5,7 @@
 mod common;
 
 mod docs;
+mod ethercat;
 mod install;
 mod law;
 mod limits;

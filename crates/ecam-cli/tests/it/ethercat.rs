@@ -1,0 +1,87 @@
+//! `ecam ethercat run`: the shipped rotary-knife configuration on emulated
+//! drives, the summary line, and configuration errors.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+use crate::common::{ecam, fails, ok};
+
+fn example() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/ethercat/rotary-knife.toml")
+}
+
+#[test]
+fn rotary_knife_runs_on_emulated_drives() {
+    let config = example();
+    let out = ok(ecam(&[
+        "ethercat",
+        "run",
+        config.to_str().unwrap(),
+        "--emulated",
+        "2",
+        "--cycles",
+        "400",
+        "--status-ms",
+        "0",
+    ]));
+    assert!(
+        out.contains("segment: 2 drives in OP, SYNC0 every 1000 µs"),
+        "{out}"
+    );
+    let summary: Value = serde_json::from_str(out.lines().last().unwrap()).unwrap();
+    assert_eq!(summary["drives"], 2);
+    assert_eq!(summary["cycles"], 400);
+    assert_eq!(summary["faults"].as_array().unwrap().len(), 0);
+    assert_eq!(summary["working_counter_errors"], 0);
+    let master = summary["virtual_master"].as_i64().unwrap();
+    assert!(master > 7 * 380 && master <= 7 * 400, "{master}");
+    // The shaft trails the master by the drive lag; the knife turned.
+    let actual = summary["actual"].as_array().unwrap();
+    assert!(actual[0].as_i64().unwrap() > master - 100);
+    assert!(actual[1].as_i64().unwrap() > 0);
+    let histogram = summary["lateness"]["histogram_us"].as_array().unwrap();
+    let wakeups: u64 = histogram.iter().map(|b| b[1].as_u64().unwrap()).sum();
+    assert_eq!(wakeups, 400);
+}
+
+#[test]
+fn configuration_errors_are_clear() {
+    let dir = crate::common::scratch_dir("ethercat-config");
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "cycle_us = 5\n[[axis]]\ndrive = 0\n[axis.table]\npoints = [[0, 0], [10, 10]]\n",
+    )
+    .unwrap();
+    let err = fails(ecam(&[
+        "ethercat",
+        "run",
+        bad.to_str().unwrap(),
+        "--emulated",
+        "1",
+    ]));
+    assert!(err.contains("cycle_us = 5 is out of range"), "{err}");
+    let no_iface = dir.join("no-iface.toml");
+    std::fs::write(
+        &no_iface,
+        "cycle_us = 1000\n[[axis]]\ndrive = 0\n[axis.table]\npoints = [[0, 0], [10, 10]]\n",
+    )
+    .unwrap();
+    let err = fails(ecam(&["ethercat", "run", no_iface.to_str().unwrap()]));
+    assert!(err.contains("no interface"), "{err}");
+    // A drive the segment does not have.
+    let err = fails(ecam(&[
+        "ethercat",
+        "run",
+        example().to_str().unwrap(),
+        "--emulated",
+        "1",
+        "--cycles",
+        "1",
+    ]));
+    assert!(
+        err.contains("drive 1 does not exist (the segment has 1)"),
+        "{err}"
+    );
+}

@@ -1,0 +1,597 @@
+//! One emulated EtherCAT slave controller (ESC): register memory, the
+//! datagram commands, the AL state machine, the SII EEPROM interface,
+//! FMMUs for process data and the distributed-clock registers. Register
+//! addresses follow the ESC datasheets' map (ETG1000.4 section 6).
+
+use super::drive::{DriveBehaviour, DriveModel};
+use super::sii::{self, SM2_START, SM3_START};
+use crate::pdo::{CspInputs, CspOutputs, INPUTS_LEN, OUTPUTS_LEN};
+
+/// Size of the emulated ESC memory (registers and process RAM).
+const MEMORY: usize = 0x2000;
+
+const REG_TYPE: usize = 0x0000;
+const REG_FMMU_COUNT: usize = 0x0004;
+const REG_SM_COUNT: usize = 0x0005;
+const REG_RAM_SIZE: usize = 0x0006;
+const REG_SUPPORT: usize = 0x0008;
+const REG_STATION_ADDRESS: usize = 0x0010;
+const REG_DL_STATUS: usize = 0x0110;
+const REG_AL_CONTROL: usize = 0x0120;
+const REG_AL_STATUS: usize = 0x0130;
+const REG_AL_STATUS_CODE: usize = 0x0134;
+const REG_SII_CONTROL: usize = 0x0502;
+const REG_SII_ADDRESS: usize = 0x0504;
+const REG_SII_DATA: usize = 0x0508;
+const REG_FMMU: usize = 0x0600;
+const REG_SM: usize = 0x0800;
+const REG_DC_PORT_TIMES: usize = 0x0900;
+const REG_DC_SYSTEM_TIME: usize = 0x0910;
+const REG_DC_RECEIVE_TIME: usize = 0x0918;
+const REG_DC_OFFSET: usize = 0x0920;
+const REG_DC_SYNC_ACTIVE: usize = 0x0981;
+const REG_DC_SYNC0_CYCLE: usize = 0x09A0;
+
+/// SII control: read size 8 bytes (bit 6).
+const SII_READ_8: u16 = 1 << 6;
+/// SII control: read command (bit 8).
+const SII_READ: u16 = 1 << 8;
+/// SII control: write command (bit 9).
+const SII_WRITE: u16 = 1 << 9;
+/// SII control: command error (bit 13).
+const SII_COMMAND_ERROR: u16 = 1 << 13;
+
+/// AL status codes the emulated drive reports (ETG1000.6 table 11).
+const AL_INVALID_STATE_CHANGE: u16 = 0x0011;
+const AL_INVALID_OUTPUT_CONFIG: u16 = 0x001D;
+const AL_INVALID_INPUT_CONFIG: u16 = 0x001E;
+const AL_INVALID_DC_SYNC: u16 = 0x0030;
+
+/// Delay the emulation books for each ESC a frame passes, per direction.
+const HOP_NS: u32 = 100;
+
+/// The EtherCAT datagram commands (ETG1000.4 table 12).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Cmd {
+    Nop,
+    Aprd,
+    Apwr,
+    Aprw,
+    Fprd,
+    Fpwr,
+    Fprw,
+    Brd,
+    Bwr,
+    Brw,
+    Lrd,
+    Lwr,
+    Lrw,
+    Armw,
+    Frmw,
+}
+
+impl Cmd {
+    pub(crate) fn from_code(code: u8) -> Option<Self> {
+        Some(match code {
+            0 => Self::Nop,
+            1 => Self::Aprd,
+            2 => Self::Apwr,
+            3 => Self::Aprw,
+            4 => Self::Fprd,
+            5 => Self::Fpwr,
+            6 => Self::Fprw,
+            7 => Self::Brd,
+            8 => Self::Bwr,
+            9 => Self::Brw,
+            10 => Self::Lrd,
+            11 => Self::Lwr,
+            12 => Self::Lrw,
+            13 => Self::Armw,
+            14 => Self::Frmw,
+            _ => return None,
+        })
+    }
+}
+
+/// Where a datagram finds one ESC on its way.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Hop {
+    /// Position of this ESC in the line (0 = next to the master).
+    pub(crate) position: usize,
+    /// ESCs that answer (the line may be cut).
+    pub(crate) reachable: usize,
+    /// Local clock of this ESC when the frame arrived, ns.
+    pub(crate) now_ns: u64,
+}
+
+/// One emulated ESC with a CSP drive behind it.
+#[derive(Clone, Debug)]
+pub struct Esc {
+    memory: Vec<u8>,
+    eeprom: Vec<u8>,
+    drive: DriveModel,
+}
+
+impl Esc {
+    /// A powered-up ESC in INIT with drive `serial` behind it.
+    pub fn new(serial: u32, behaviour: DriveBehaviour) -> Self {
+        let mut memory = vec![0u8; MEMORY];
+        memory[REG_TYPE] = 0x11; // an ET1100-class ESC
+        memory[REG_FMMU_COUNT] = 8;
+        memory[REG_SM_COUNT] = 8;
+        memory[REG_RAM_SIZE] = 8;
+        // DC supported, 64-bit system time, enhanced DC sync activation.
+        put(&mut memory, REG_SUPPORT, &0x010Cu16.to_le_bytes());
+        put(&mut memory, REG_AL_STATUS, &1u16.to_le_bytes());
+        put(&mut memory, REG_SII_CONTROL, &SII_READ_8.to_le_bytes());
+        Self {
+            memory,
+            eeprom: sii::drive_eeprom(serial),
+            drive: DriveModel::new(behaviour, 0),
+        }
+    }
+
+    /// The drive behind this ESC.
+    pub fn drive(&self) -> &DriveModel {
+        &self.drive
+    }
+
+    /// The drive behind this ESC, to inject faults.
+    pub fn drive_mut(&mut self) -> &mut DriveModel {
+        &mut self.drive
+    }
+
+    /// AL state (1 INIT, 2 PRE-OP, 4 SAFE-OP, 8 OP).
+    pub fn al_state(&self) -> u8 {
+        self.memory[REG_AL_STATUS] & 0x0F
+    }
+
+    /// SYNC0 cycle time the master programmed, ns (0 = none).
+    pub fn sync0_cycle_ns(&self) -> u32 {
+        u32::from_le_bytes(word4(&self.memory, REG_DC_SYNC0_CYCLE))
+    }
+
+    /// SYNC0 is active (cyclic operation and SYNC0 enabled).
+    pub fn sync0_active(&self) -> bool {
+        self.memory[REG_DC_SYNC_ACTIVE] & 0x03 == 0x03
+    }
+
+    fn station_address(&self) -> u16 {
+        u16::from_le_bytes([
+            self.memory[REG_STATION_ADDRESS],
+            self.memory[REG_STATION_ADDRESS + 1],
+        ])
+    }
+
+    /// Sets the link bits of DL status for a line: port 0 towards the
+    /// master, port 1 open when another ESC follows.
+    pub(crate) fn set_links(&mut self, has_next: bool) {
+        // Bit 4..7 physical link on port 0..3; 9/11 communication on 0/1;
+        // bit 10 loop closed on port 1 when nothing follows.
+        let mut dl: u16 = (1 << 4) | (1 << 9);
+        if has_next {
+            dl |= (1 << 5) | (1 << 11);
+        } else {
+            dl |= 1 << 10;
+        }
+        put(&mut self.memory, REG_DL_STATUS, &dl.to_le_bytes());
+    }
+
+    /// Processes one datagram passing this ESC. `adp` is the address
+    /// field as it arrives (auto-increment ESCs add one to it).
+    pub(crate) fn datagram(
+        &mut self,
+        cmd: Cmd,
+        adp: &mut u16,
+        ado: u16,
+        data: &mut [u8],
+        wkc: &mut u16,
+        hop: Hop,
+    ) {
+        let logical = u32::from(ado) << 16 | u32::from(*adp);
+        match cmd {
+            Cmd::Nop => {}
+            Cmd::Aprd | Cmd::Apwr | Cmd::Aprw | Cmd::Armw => {
+                let addressed = *adp == 0;
+                *adp = adp.wrapping_add(1);
+                if cmd == Cmd::Armw {
+                    self.read_multiple_write(addressed, ado, data, wkc, hop);
+                } else if addressed {
+                    self.physical(cmd, ado, data, wkc, hop);
+                }
+            }
+            Cmd::Fprd | Cmd::Fpwr | Cmd::Fprw | Cmd::Frmw => {
+                let addressed = *adp == self.station_address();
+                if cmd == Cmd::Frmw {
+                    self.read_multiple_write(addressed, ado, data, wkc, hop);
+                } else if addressed {
+                    self.physical(cmd, ado, data, wkc, hop);
+                }
+            }
+            Cmd::Brd | Cmd::Bwr | Cmd::Brw => {
+                *adp = adp.wrapping_add(1);
+                self.physical(cmd, ado, data, wkc, hop);
+            }
+            Cmd::Lrd | Cmd::Lwr | Cmd::Lrw => self.logical(cmd, logical, data, wkc),
+        }
+    }
+
+    fn read_multiple_write(
+        &mut self,
+        addressed: bool,
+        ado: u16,
+        data: &mut [u8],
+        wkc: &mut u16,
+        hop: Hop,
+    ) {
+        if addressed {
+            self.physical(Cmd::Fprd, ado, data, wkc, hop);
+        } else {
+            self.physical(Cmd::Fpwr, ado, data, wkc, hop);
+        }
+    }
+
+    fn physical(&mut self, cmd: Cmd, ado: u16, data: &mut [u8], wkc: &mut u16, hop: Hop) {
+        let start = usize::from(ado);
+        let Some(end) = start.checked_add(data.len()).filter(|&end| end <= MEMORY) else {
+            return;
+        };
+        let (read, write) = match cmd {
+            Cmd::Aprd | Cmd::Fprd | Cmd::Brd => (true, false),
+            Cmd::Apwr | Cmd::Fpwr | Cmd::Bwr => (false, true),
+            _ => (true, true),
+        };
+        if read {
+            self.refresh_clock(hop.now_ns);
+            if cmd == Cmd::Brd {
+                // A broadcast read returns the OR of every ESC's memory.
+                for (d, m) in data.iter_mut().zip(&self.memory[start..end]) {
+                    *d |= m;
+                }
+            } else if !write {
+                data.copy_from_slice(&self.memory[start..end]);
+            }
+            *wkc = wkc.wrapping_add(1);
+        }
+        if write {
+            let old = if read {
+                Some(self.memory[start..end].to_vec())
+            } else {
+                None
+            };
+            for (offset, byte) in data.iter().enumerate() {
+                let address = start + offset;
+                if writable(address) {
+                    self.memory[address] = *byte;
+                }
+            }
+            self.after_write(start, end, hop);
+            if let Some(old) = old {
+                // Read-write commands return the memory as it was.
+                data.copy_from_slice(&old);
+            }
+            *wkc = wkc.wrapping_add(if read { 2 } else { 1 });
+        }
+    }
+
+    /// Process data through the FMMUs: inputs are copied out, outputs in,
+    /// then the drive runs one cycle on the new outputs.
+    fn logical(&mut self, cmd: Cmd, logical: u32, data: &mut [u8], wkc: &mut u16) {
+        let al = self.al_state();
+        if al != 4 && al != 8 {
+            return;
+        }
+        let mut read_hit = false;
+        let mut write_hit = false;
+        let mut outputs_complete = false;
+        let datagram_len = u32::try_from(data.len()).unwrap_or(u32::MAX);
+        for index in 0..8 {
+            let base = REG_FMMU + index * 16;
+            let mut f = [0u8; 16];
+            f.copy_from_slice(&self.memory[base..base + 16]);
+            if f[12] & 1 == 0 {
+                continue;
+            }
+            let log_start = u32::from_le_bytes([f[0], f[1], f[2], f[3]]);
+            let len = u32::from(u16::from_le_bytes([f[4], f[5]]));
+            let phys = usize::from(u16::from_le_bytes([f[8], f[9]]));
+            let (fmmu_read, fmmu_write) = (f[11] & 1 != 0, f[11] & 2 != 0);
+            // Overlap of [log_start, log_start+len) with the datagram.
+            let lo = log_start.max(logical);
+            let hi = log_start
+                .saturating_add(len)
+                .min(logical.saturating_add(datagram_len));
+            if lo >= hi {
+                continue;
+            }
+            let n = usize::try_from(hi - lo).unwrap_or(0);
+            let in_data = usize::try_from(lo - logical).unwrap_or(0);
+            let in_mem = phys + usize::try_from(lo - log_start).unwrap_or(0);
+            if in_mem + n > MEMORY {
+                continue;
+            }
+            if fmmu_read && matches!(cmd, Cmd::Lrd | Cmd::Lrw) {
+                data[in_data..in_data + n].copy_from_slice(&self.memory[in_mem..in_mem + n]);
+                read_hit = true;
+            }
+            if fmmu_write && matches!(cmd, Cmd::Lwr | Cmd::Lrw) {
+                self.memory[in_mem..in_mem + n].copy_from_slice(&data[in_data..in_data + n]);
+                write_hit = true;
+                // A buffered sync manager hands the outputs over when its
+                // last byte is written (the master may split them over
+                // two frames).
+                let last = usize::from(SM2_START) + OUTPUTS_LEN - 1;
+                outputs_complete |= (in_mem..in_mem + n).contains(&last);
+            }
+        }
+        if read_hit {
+            *wkc = wkc.wrapping_add(1);
+        }
+        if write_hit {
+            *wkc = wkc.wrapping_add(if cmd == Cmd::Lrw { 2 } else { 1 });
+        }
+        // The drive's application takes new outputs only in OP
+        // (SAFE-OP: inputs valid, outputs ignored), once per cycle.
+        if outputs_complete && al == 8 {
+            self.run_drive();
+        } else if read_hit {
+            self.publish_inputs();
+        }
+    }
+
+    fn run_drive(&mut self) {
+        let start = usize::from(SM2_START);
+        if let Ok(outputs) = CspOutputs::unpack(&self.memory[start..start + OUTPUTS_LEN]) {
+            self.drive.cycle(outputs);
+        }
+        self.publish_inputs();
+    }
+
+    fn publish_inputs(&mut self) {
+        let start = usize::from(SM3_START);
+        let inputs: CspInputs = self.drive.inputs();
+        // The slice has exactly the mapping's length, so this cannot fail.
+        let _ = inputs.pack(&mut self.memory[start..start + INPUTS_LEN]);
+    }
+
+    fn refresh_clock(&mut self, now_ns: u64) {
+        let offset = u64::from_le_bytes(word8(&self.memory, REG_DC_OFFSET));
+        put(
+            &mut self.memory,
+            REG_DC_SYSTEM_TIME,
+            &now_ns.wrapping_add(offset).to_le_bytes(),
+        );
+    }
+
+    fn after_write(&mut self, start: usize, end: usize, hop: Hop) {
+        let touches = |register: usize, len: usize| start < register + len && register < end;
+        if touches(REG_AL_CONTROL, 2) {
+            self.al_control();
+        }
+        if touches(REG_SII_CONTROL, 2) {
+            self.sii_command();
+        }
+        if touches(REG_DC_PORT_TIMES, 1) {
+            self.latch_receive_times(hop);
+        }
+    }
+
+    fn latch_receive_times(&mut self, hop: Hop) {
+        // Time at port 0 on the way out; port 1 on the way back from the
+        // rest of the line (two hops per ESC behind this one).
+        let position = u32::try_from(hop.position).unwrap_or(u32::MAX);
+        let behind = u32::try_from(hop.reachable.saturating_sub(hop.position + 1)).unwrap_or(0);
+        let local = hop
+            .now_ns
+            .wrapping_add(u64::from(position.saturating_mul(HOP_NS)));
+        let port0 = local as u32;
+        let port1 = if behind > 0 {
+            port0.wrapping_add(2 * behind * HOP_NS)
+        } else {
+            0
+        };
+        put(&mut self.memory, REG_DC_PORT_TIMES, &port0.to_le_bytes());
+        put(
+            &mut self.memory,
+            REG_DC_PORT_TIMES + 4,
+            &port1.to_le_bytes(),
+        );
+        put(&mut self.memory, REG_DC_PORT_TIMES + 8, &0u32.to_le_bytes());
+        put(
+            &mut self.memory,
+            REG_DC_PORT_TIMES + 12,
+            &0u32.to_le_bytes(),
+        );
+        put(&mut self.memory, REG_DC_RECEIVE_TIME, &local.to_le_bytes());
+    }
+
+    fn sii_command(&mut self) {
+        let control = u16::from_le_bytes([
+            self.memory[REG_SII_CONTROL],
+            self.memory[REG_SII_CONTROL + 1],
+        ]);
+        let status = if control & SII_READ != 0 {
+            let word = u32::from_le_bytes(word4(&self.memory, REG_SII_ADDRESS));
+            let at = usize::try_from(word)
+                .unwrap_or(usize::MAX)
+                .saturating_mul(2);
+            for i in 0..8 {
+                self.memory[REG_SII_DATA + i] = self
+                    .eeprom
+                    .get(at.saturating_add(i))
+                    .copied()
+                    .unwrap_or(0xFF);
+            }
+            SII_READ_8
+        } else if control & SII_WRITE != 0 {
+            // The emulated EEPROM is read-only.
+            SII_READ_8 | SII_COMMAND_ERROR
+        } else {
+            // Error reset or ownership: keep only the read size.
+            SII_READ_8
+        };
+        put(&mut self.memory, REG_SII_CONTROL, &status.to_le_bytes());
+    }
+
+    fn al_control(&mut self) {
+        let requested = self.memory[REG_AL_CONTROL] & 0x0F;
+        let current = self.al_state();
+        let result = match (current, requested) {
+            (_, 1) => Ok(1u8),
+            (1 | 2, 2) | (4 | 8, 2) => Ok(2),
+            (2 | 4 | 8, 4) => self.check_process_data().map(|()| 4),
+            (4 | 8, 8) => self.check_dc().map(|()| 8),
+            _ => Err(AL_INVALID_STATE_CHANGE),
+        };
+        let (status, code) = match result {
+            Ok(state) => (u16::from(state), 0),
+            Err(code) => (u16::from(current) | 0x10, code),
+        };
+        put(&mut self.memory, REG_AL_STATUS, &status.to_le_bytes());
+        put(&mut self.memory, REG_AL_STATUS_CODE, &code.to_le_bytes());
+        if status & 0x0F == 4 {
+            self.publish_inputs();
+        }
+    }
+
+    /// SAFE-OP needs SM2/SM3 configured for exactly the CSP mapping.
+    fn check_process_data(&self) -> Result<(), u16> {
+        let sm = |n: usize| {
+            let base = REG_SM + n * 8;
+            let start = u16::from_le_bytes([self.memory[base], self.memory[base + 1]]);
+            let len = usize::from(u16::from_le_bytes([
+                self.memory[base + 2],
+                self.memory[base + 3],
+            ]));
+            let enabled = self.memory[base + 6] & 1 != 0;
+            (start, len, enabled)
+        };
+        if sm(2) != (SM2_START, OUTPUTS_LEN, true) {
+            return Err(AL_INVALID_OUTPUT_CONFIG);
+        }
+        if sm(3) != (SM3_START, INPUTS_LEN, true) {
+            return Err(AL_INVALID_INPUT_CONFIG);
+        }
+        Ok(())
+    }
+
+    /// OP needs SYNC0 running (the drive is DC-synchronous only).
+    fn check_dc(&self) -> Result<(), u16> {
+        if self.sync0_active() && self.sync0_cycle_ns() > 0 {
+            Ok(())
+        } else {
+            Err(AL_INVALID_DC_SYNC)
+        }
+    }
+}
+
+/// Registers the master cannot write (identity, status, latched times).
+fn writable(address: usize) -> bool {
+    !matches!(address,
+        0x0000..=0x000F
+        | 0x0110..=0x0111
+        | 0x0130..=0x0135
+        | 0x0900..=0x091F
+        | 0x092C..=0x092F)
+}
+
+fn put(memory: &mut [u8], at: usize, bytes: &[u8]) {
+    memory[at..at + bytes.len()].copy_from_slice(bytes);
+}
+
+fn word4(memory: &[u8], at: usize) -> [u8; 4] {
+    [memory[at], memory[at + 1], memory[at + 2], memory[at + 3]]
+}
+
+fn word8(memory: &[u8], at: usize) -> [u8; 8] {
+    let mut out = [0u8; 8];
+    out.copy_from_slice(&memory[at..at + 8]);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HOP: Hop = Hop {
+        position: 0,
+        reachable: 1,
+        now_ns: 1_000,
+    };
+
+    fn write(esc: &mut Esc, register: u16, bytes: &[u8]) -> u16 {
+        let mut data = bytes.to_vec();
+        let mut wkc = 0;
+        let mut adp = 0;
+        esc.datagram(Cmd::Apwr, &mut adp, register, &mut data, &mut wkc, HOP);
+        wkc
+    }
+
+    fn read(esc: &mut Esc, register: u16, len: usize) -> Vec<u8> {
+        let mut data = vec![0; len];
+        let mut wkc = 0;
+        let mut adp = 0;
+        esc.datagram(Cmd::Aprd, &mut adp, register, &mut data, &mut wkc, HOP);
+        assert_eq!(wkc, 1);
+        assert_eq!(adp, 1, "auto-increment address counts up");
+        data
+    }
+
+    #[test]
+    fn al_state_machine_refuses_what_a_drive_refuses() {
+        let mut esc = Esc::new(1, DriveBehaviour::default());
+        assert_eq!(write(&mut esc, 0x0120, &[8, 0]), 1);
+        assert_eq!(
+            read(&mut esc, 0x0130, 2),
+            vec![0x11, 0],
+            "INIT → OP refused, error flag"
+        );
+        assert_eq!(read(&mut esc, 0x0134, 2), vec![0x11, 0]);
+        write(&mut esc, 0x0120, &[2, 0]);
+        assert_eq!(esc.al_state(), 2);
+        write(&mut esc, 0x0120, &[4, 0]);
+        assert_eq!(
+            read(&mut esc, 0x0134, 2),
+            vec![0x1D, 0],
+            "no output sync manager"
+        );
+        // SM2 at 0x1100, 7 bytes, enabled; SM3 at 0x1180, 12 bytes.
+        write(&mut esc, 0x0810, &[0x00, 0x11, 7, 0, 0x64, 0, 1, 0]);
+        write(&mut esc, 0x0818, &[0x80, 0x11, 12, 0, 0x20, 0, 1, 0]);
+        write(&mut esc, 0x0120, &[4, 0]);
+        assert_eq!(esc.al_state(), 4);
+        write(&mut esc, 0x0120, &[8, 0]);
+        assert_eq!(read(&mut esc, 0x0134, 2), vec![0x30, 0], "OP needs SYNC0");
+        write(&mut esc, 0x09A0, &1_000_000u32.to_le_bytes());
+        write(&mut esc, 0x0981, &[3]);
+        write(&mut esc, 0x0120, &[8, 0]);
+        assert_eq!(esc.al_state(), 8);
+    }
+
+    #[test]
+    fn sii_reads_eight_bytes_and_identity_registers_are_read_only() {
+        let mut esc = Esc::new(7, DriveBehaviour::default());
+        // Read word 0x0E: the serial number.
+        write(&mut esc, 0x0502, &[0x00, 0x01, 0x0E, 0x00, 0, 0]);
+        let control = read(&mut esc, 0x0502, 2);
+        assert_eq!(
+            u16::from_le_bytes([control[0], control[1]]) & 0x8000,
+            0,
+            "not busy"
+        );
+        assert_eq!(read(&mut esc, 0x0508, 4), 7u32.to_le_bytes().to_vec());
+        write(&mut esc, 0x0000, &[0xFF]);
+        assert_eq!(read(&mut esc, 0x0000, 1), vec![0x11]);
+    }
+
+    #[test]
+    fn read_write_commands_count_three() {
+        let mut esc = Esc::new(1, DriveBehaviour::default());
+        let mut data = vec![0x34, 0x12];
+        let (mut wkc, mut adp) = (0, 0);
+        esc.datagram(Cmd::Aprw, &mut adp, 0x0010, &mut data, &mut wkc, HOP);
+        assert_eq!(wkc, 3);
+        assert_eq!(data, vec![0, 0], "returns the old value");
+        assert_eq!(read(&mut esc, 0x0010, 2), vec![0x34, 0x12]);
+    }
+}

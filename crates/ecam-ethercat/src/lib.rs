@@ -1,0 +1,44 @@
+//! # ecam-ethercat: cam axes on CiA 402 servo drives over EtherCAT
+//!
+//! The fieldbus side of ecam. A [`ecam_engine::CamAxis`] computes each
+//! cycle's commanded position; this crate carries it to servo drives in
+//! cyclic synchronous position mode (CSP, CiA 402 mode 8) through the
+//! `ethercrab` EtherCAT master, and brings status back through the
+//! [`ecam_engine::drive::AxisDrive`] interface.
+//!
+//! - [`cia402`]: the drive state machine (statusword → state,
+//!   request → controlword), both the master's and the drive's side.
+//! - [`pdo`]: the CSP process data and its packing.
+//! - [`drive`]: [`Cia402Drive`], a servo drive as an
+//!   [`ecam_engine::drive::AxisDrive`].
+//! - [`segment`]: bring-up to OP with distributed clocks (SYNC0 = the
+//!   cycle) and one exchange per cycle.
+//! - [`line`](mod@line): cams on drives, masters from the bus, the fault reaction.
+//! - [`rt`]: the real-time cycle (absolute deadlines, `SCHED_FIFO`,
+//!   pinning, lateness histogram).
+//! - [`config`]: the TOML line configuration.
+//! - [`emulation`] and [`link`]: emulated CSP drives, reachable by
+//!   ethercrab in-process or over a network interface, for tests and for
+//!   trying without hardware.
+//!
+//! The user guide is docs/ethercat.md; it says what was tested against
+//! the emulation only.
+//!
+//! Use something else when you need a full PLC runtime with its own
+//! motion kernel: this crate only runs cams on drives.
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
+
+pub mod cia402;
+pub mod config;
+pub mod drive;
+pub mod emulation;
+mod error;
+pub mod line;
+pub mod link;
+pub mod pdo;
+pub mod rt;
+pub mod segment;
+
+pub use drive::Cia402Drive;
+pub use error::EthercatError;
+pub use segment::{CycleReport, Segment, SegmentConfig, Transport};

@@ -1,0 +1,33 @@
+//! Integration tests of ecam-ethercat: the whole path from ethercrab to the
+//! emulated drives and back.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod bring_up;
+mod bus_master;
+mod faults;
+mod rotary_knife;
+mod veth;
+
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use ecam_ethercat::emulation::{DriveBehaviour, EmulatedSegment};
+use ecam_ethercat::{Segment, SegmentConfig, Transport};
+
+/// A segment of `drives` emulated drives brought to OP, and the handle
+/// to the emulation.
+fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
+    let emulation = Arc::new(Mutex::new(EmulatedSegment::new(drives, behaviour)));
+    let config = SegmentConfig {
+        cycle: Duration::from_millis(1),
+        // Generous: a loaded CI host must not turn a slow reply into a
+        // lost frame (only the cable tests lose frames, on purpose).
+        frame_timeout: Duration::from_millis(250),
+        state_timeout: Duration::from_secs(5),
+        dc_static_sync_iterations: 50,
+        link_fifo_priority: None,
+    };
+    let segment =
+        Segment::bring_up(Transport::Emulated(Arc::clone(&emulation)), config).expect("bring-up");
+    (segment, emulation)
+}
