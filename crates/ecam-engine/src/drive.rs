@@ -23,6 +23,10 @@ pub enum DriveFault {
     /// The drive cannot be reached or its data did not arrive this cycle
     /// (a fieldbus working-counter error, a cable pulled).
     Communication,
+    /// The drive was asked to enable and did not reach "operation
+    /// enabled" in time (a fault that a reset did not clear, a power stage
+    /// without mains, a safe-torque-off input open).
+    EnableTimeout,
 }
 
 impl core::fmt::Display for DriveFault {
@@ -30,6 +34,7 @@ impl core::fmt::Display for DriveFault {
         match self {
             Self::Drive { code } => write!(f, "drive fault, error code {code:#06x}"),
             Self::Communication => f.write_str("drive not reachable (communication lost)"),
+            Self::EnableTimeout => f.write_str("drive did not enable in time"),
         }
     }
 }

@@ -29,6 +29,7 @@ use std::time::Duration;
 use ecam_engine::{AxisConfig, Coupling, SlaveAlign};
 use serde::Deserialize;
 
+use crate::follow::{Follower, Scale, ScaleError};
 use crate::line::Master;
 use crate::rt::RtConfig;
 use crate::segment::MAX_DRIVES;
@@ -124,8 +125,14 @@ pub enum ConfigError {
     NoAxes,
     /// A drive position beyond what a segment carries.
     Drive(usize),
-    /// Two axes on one drive.
+    /// Two entries on one drive.
     DriveTwice(usize),
+    /// No `[[output]]`.
+    NoOutputs,
+    /// A pulse output other than Y0–Y3.
+    Output(String),
+    /// A scale that cannot be.
+    Scale(ScaleError),
 }
 
 impl core::fmt::Display for ConfigError {
@@ -144,25 +151,45 @@ impl core::fmt::Display for ConfigError {
                 f,
                 "drive {d} is beyond the {MAX_DRIVES} drives a segment carries"
             ),
-            Self::DriveTwice(d) => write!(f, "two [[axis]] entries command drive {d}"),
+            Self::DriveTwice(d) => write!(f, "two entries command drive {d}"),
+            Self::NoOutputs => {
+                f.write_str("no [[output]]: map at least one pulse output to a drive")
+            }
+            Self::Output(y) => write!(
+                f,
+                "pulse = \"{y}\": the pulse outputs are Y0, Y1, Y2 and Y3"
+            ),
+            Self::Scale(e) => e.fmt(f),
         }
     }
 }
 
 impl std::error::Error for ConfigError {}
 
+/// Checks the cycle and the priority both file kinds carry.
+fn check_timing(cycle_us: u32, fifo_priority: Option<u8>) -> Result<(), ConfigError> {
+    if !(MIN_CYCLE_US..=MAX_CYCLE_US).contains(&cycle_us) {
+        return Err(ConfigError::Cycle(cycle_us));
+    }
+    match fifo_priority {
+        Some(p) if !(1..=99).contains(&p) => Err(ConfigError::Priority(p)),
+        _ => Ok(()),
+    }
+}
+
+fn rt_config(cycle_us: u32, fifo_priority: Option<u8>, cpu: Option<usize>) -> RtConfig {
+    RtConfig {
+        period: Duration::from_micros(u64::from(cycle_us)),
+        fifo_priority,
+        cpu,
+    }
+}
+
 impl LineConfig {
     /// Parses and checks a configuration.
     pub fn parse(text: &str) -> Result<Self, ConfigError> {
         let config: Self = toml::from_str(text).map_err(|e| ConfigError::Syntax(e.to_string()))?;
-        if !(MIN_CYCLE_US..=MAX_CYCLE_US).contains(&config.cycle_us) {
-            return Err(ConfigError::Cycle(config.cycle_us));
-        }
-        if let Some(p) = config.fifo_priority {
-            if !(1..=99).contains(&p) {
-                return Err(ConfigError::Priority(p));
-            }
-        }
+        check_timing(config.cycle_us, config.fifo_priority)?;
         if config.axes.is_empty() {
             return Err(ConfigError::NoAxes);
         }
@@ -188,11 +215,132 @@ impl LineConfig {
 
     /// The real-time settings.
     pub fn rt(&self) -> RtConfig {
-        RtConfig {
-            period: self.cycle(),
-            fifo_priority: self.fifo_priority,
-            cpu: self.cpu,
+        rt_config(self.cycle_us, self.fifo_priority, self.cpu)
+    }
+}
+
+/// One `[[output]]` of an `ecam serve --ethercat` file: a PLC pulse
+/// output and the drive that follows it.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// The pulse output, `"Y0"` … `"Y3"`.
+    pub pulse: String,
+    /// Drive position that follows it.
+    pub drive: usize,
+    /// Drive counts per pulse as `[num, den]` (omit: `[1, 1]`).
+    pub scale: Option<[i64; 2]>,
+}
+
+impl OutputSpec {
+    /// The follower this entry describes.
+    ///
+    /// # Errors
+    /// [`ConfigError::Output`] or [`ConfigError::Scale`].
+    pub fn follower(&self) -> Result<Follower, ConfigError> {
+        let output = match self.pulse.trim() {
+            "Y0" | "y0" => 0,
+            "Y1" | "y1" => 1,
+            "Y2" | "y2" => 2,
+            "Y3" | "y3" => 3,
+            other => return Err(ConfigError::Output(other.to_string())),
+        };
+        let scale = match self.scale {
+            Some([num, den]) => Scale::new(num, den).map_err(ConfigError::Scale)?,
+            None => Scale::ONE,
+        };
+        Ok(Follower {
+            output,
+            drive: self.drive,
+            scale,
+        })
+    }
+}
+
+/// An `ecam serve --ethercat` file: the segment, and which drive follows
+/// which of the PLC's pulse outputs.
+///
+/// ```toml
+/// interface = "enp3s0"
+/// cycle_us = 1000
+/// fault_relay = "M100"     # on while a drive fault holds the line
+/// running_relay = "M101"   # on while every drive follows its output
+///
+/// [[output]]
+/// pulse = "Y0"
+/// drive = 0
+/// scale = [25, 9]          # drive counts per pulse
+/// ```
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FollowConfig {
+    /// Network interface (omit when the command line emulates drives).
+    pub interface: Option<String>,
+    /// Cycle time, µs: also the PLC's step (a whole number of scans).
+    pub cycle_us: u32,
+    /// `SCHED_FIFO` priority 1–99.
+    pub fifo_priority: Option<u8>,
+    /// CPU to pin the cycle thread to.
+    pub cpu: Option<usize>,
+    /// Enable the drives when the server starts (default); with `false`
+    /// they wait for the enable coil or `POST /api/ethercat/enable`.
+    #[serde(default = "yes")]
+    pub enable_at_start: bool,
+    /// An M relay the server holds on while the line is faulted, so the
+    /// program can react (stop its cams, raise an alarm).
+    pub fault_relay: Option<String>,
+    /// An M relay the server holds on while every drive follows.
+    pub running_relay: Option<String>,
+    /// The outputs and their drives.
+    #[serde(rename = "output", default)]
+    pub outputs: Vec<OutputSpec>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+impl FollowConfig {
+    /// Parses and checks a configuration.
+    ///
+    /// # Errors
+    /// [`ConfigError`] for bad syntax, timing, outputs, scales or drives.
+    pub fn parse(text: &str) -> Result<Self, ConfigError> {
+        let config: Self = toml::from_str(text).map_err(|e| ConfigError::Syntax(e.to_string()))?;
+        check_timing(config.cycle_us, config.fifo_priority)?;
+        if config.outputs.is_empty() {
+            return Err(ConfigError::NoOutputs);
         }
+        let mut used = Vec::new();
+        for o in &config.outputs {
+            let follower = o.follower()?;
+            if follower.drive >= MAX_DRIVES {
+                return Err(ConfigError::Drive(follower.drive));
+            }
+            if used.contains(&follower.drive) {
+                return Err(ConfigError::DriveTwice(follower.drive));
+            }
+            used.push(follower.drive);
+        }
+        Ok(config)
+    }
+
+    /// The followers, in file order (each checked by [`FollowConfig::parse`]).
+    ///
+    /// # Errors
+    /// As [`OutputSpec::follower`].
+    pub fn followers(&self) -> Result<Vec<Follower>, ConfigError> {
+        self.outputs.iter().map(OutputSpec::follower).collect()
+    }
+
+    /// The cycle time.
+    pub fn cycle(&self) -> Duration {
+        Duration::from_micros(u64::from(self.cycle_us))
+    }
+
+    /// The real-time settings.
+    pub fn rt(&self) -> RtConfig {
+        rt_config(self.cycle_us, self.fifo_priority, self.cpu)
     }
 }
 
@@ -226,6 +374,62 @@ points = [[0, 0], [1000, 4000]]
         assert_eq!(c.axes[1].master(), Master::DriveActual { position: 0 });
         assert_eq!(c.axes[1].axis_config().coupling, Coupling::Periodic);
         assert_eq!(c.rt().fifo_priority, None);
+    }
+
+    const FOLLOW: &str = r#"
+cycle_us = 500
+fault_relay = "M100"
+[[output]]
+pulse = "Y0"
+drive = 1
+scale = [25, 9]
+[[output]]
+pulse = "Y0"
+drive = 0
+"#;
+
+    #[test]
+    fn parses_a_following_line() {
+        let c = FollowConfig::parse(FOLLOW).unwrap();
+        assert!(c.enable_at_start);
+        assert_eq!(c.fault_relay.as_deref(), Some("M100"));
+        let f = c.followers().unwrap();
+        assert_eq!(f[0].drive, 1);
+        assert_eq!(f[0].scale, Scale::new(25, 9).unwrap());
+        assert_eq!(f[1].output, 0);
+        assert_eq!(f[1].scale, Scale::ONE);
+        assert_eq!(c.rt().period, Duration::from_micros(500));
+    }
+
+    #[test]
+    fn refuses_a_bad_following_line() {
+        let bad =
+            |from: &str, to: &str| FollowConfig::parse(&FOLLOW.replace(from, to)).unwrap_err();
+        assert_eq!(
+            bad("\"Y0\"\ndrive = 1", "\"Y4\"\ndrive = 1"),
+            ConfigError::Output("Y4".into())
+        );
+        assert_eq!(
+            bad("[25, 9]", "[25, 0]"),
+            ConfigError::Scale(ScaleError::Denominator(0))
+        );
+        assert_eq!(
+            bad("[25, 9]", "[0, 9]"),
+            ConfigError::Scale(ScaleError::Zero)
+        );
+        assert_eq!(bad("drive = 1", "drive = 0"), ConfigError::DriveTwice(0));
+        assert_eq!(bad("drive = 1", "drive = 99"), ConfigError::Drive(99));
+        assert_eq!(bad("cycle_us = 500", "cycle_us = 1"), ConfigError::Cycle(1));
+        assert!(matches!(bad("scale", "scales"), ConfigError::Syntax(_)));
+        assert_eq!(
+            FollowConfig::parse("cycle_us = 1000").unwrap_err(),
+            ConfigError::NoOutputs
+        );
+        assert!(
+            ConfigError::Output("Y7".into())
+                .to_string()
+                .contains("Y0, Y1, Y2 and Y3")
+        );
     }
 
     #[test]

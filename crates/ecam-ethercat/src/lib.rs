@@ -13,10 +13,14 @@
 //!   [`ecam_engine::drive::AxisDrive`].
 //! - [`segment`]: bring-up to OP with distributed clocks (SYNC0 = the
 //!   cycle) and one exchange per cycle.
-//! - [`line`](mod@line): cams on drives, masters from the bus, the fault reaction.
+//! - [`line`](mod@line): cams on drives, masters from the bus.
+//! - [`follow`]: drives following a PLC's pulse outputs (`ecam serve
+//!   --ethercat`).
+//! - [`supervisor`]: enabling, the fault reaction and the fault reset,
+//!   shared by both kinds of line.
 //! - [`rt`]: the real-time cycle (absolute deadlines, `SCHED_FIFO`,
 //!   pinning, lateness histogram).
-//! - [`config`]: the TOML line configuration.
+//! - [`config`]: the TOML configurations (cams on drives; outputs to drives).
 //! - [`emulation`] and [`link`]: emulated CSP drives, reachable by
 //!   ethercrab in-process or over a network interface, for tests and for
 //!   trying without hardware.
@@ -33,11 +37,13 @@ pub mod config;
 pub mod drive;
 pub mod emulation;
 mod error;
+pub mod follow;
 pub mod line;
 pub mod link;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
+pub mod supervisor;
 
 pub use drive::Cia402Drive;
 pub use error::EthercatError;

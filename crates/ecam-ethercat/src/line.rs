@@ -4,12 +4,13 @@
 //! exchanged. A drive fault or a lost drive stops the whole line.
 
 use ecam_core::CamCurve;
-use ecam_engine::drive::{AxisDrive, DriveFault};
+use ecam_engine::drive::AxisDrive;
 use ecam_engine::{CamAxis, EngineError, StopKind, TickInput, TickOutput};
 
-use crate::cia402::{DriveState, Request};
 use crate::error::EthercatError;
 use crate::segment::{CycleReport, Segment};
+pub use crate::supervisor::{LineFault, LineState};
+use crate::supervisor::{Supervisor, check_positions};
 
 /// Where an axis takes its master position from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,38 +34,6 @@ pub struct CamDrive<C> {
     pub drive: usize,
     /// Its master.
     pub master: Master,
-}
-
-/// Where the line is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LineState {
-    /// Drives disabled, cams idle.
-    Stopped,
-    /// Drives being enabled; the cams arm once all are enabled.
-    Enabling,
-    /// Cams running.
-    Running,
-    /// A fault stopped the line; [`CamLine::reset`] clears it.
-    Faulted,
-}
-
-/// A fault that stopped the line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LineFault {
-    /// Drive position in the line; `None` when the working counter was
-    /// short but every cam drive answered (a drive no cam uses is gone).
-    pub drive: Option<usize>,
-    /// What it reported.
-    pub fault: DriveFault,
-}
-
-impl core::fmt::Display for LineFault {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self.drive {
-            Some(drive) => write!(f, "drive {drive}: {}", self.fault),
-            None => write!(f, "working counter short: {}", self.fault),
-        }
-    }
 }
 
 /// What one cycle of the line did.
@@ -127,11 +96,10 @@ impl From<EthercatError> for LineError {
 pub struct CamLine<C> {
     segment: Segment,
     axes: Vec<CamDrive<C>>,
-    state: LineState,
+    supervisor: Supervisor,
     virtual_master: i64,
     /// Virtual master counts per cycle while running.
     pub virtual_speed: i64,
-    faults: Vec<LineFault>,
     dt_us: u32,
 }
 
@@ -140,19 +108,14 @@ impl<C: CamCurve> CamLine<C> {
     /// a master drive must exist too.
     pub fn new(segment: Segment, axes: Vec<CamDrive<C>>) -> Result<Self, LineError> {
         let drives = segment.len();
+        let masters = axes.iter().filter_map(|a| match a.master {
+            Master::DriveActual { position } => Some(position),
+            Master::Virtual => None,
+        });
+        check_positions(axes.iter().map(|a| a.drive).chain(masters), drives)
+            .map_err(|drive| LineError::NoSuchDrive { drive, drives })?;
         let mut used = vec![false; drives];
         for a in &axes {
-            let check = |drive: usize| {
-                if drive < drives {
-                    Ok(())
-                } else {
-                    Err(LineError::NoSuchDrive { drive, drives })
-                }
-            };
-            check(a.drive)?;
-            if let Master::DriveActual { position } = a.master {
-                check(position)?;
-            }
             if used[a.drive] {
                 return Err(LineError::DriveTwice(a.drive));
             }
@@ -160,12 +123,14 @@ impl<C: CamCurve> CamLine<C> {
         }
         let dt_us = u32::try_from(segment.config().cycle.as_micros()).unwrap_or(u32::MAX);
         Ok(Self {
+            supervisor: Supervisor::new(
+                axes.iter().map(|a| a.drive).collect(),
+                segment.config().cycle,
+            ),
             segment,
             axes,
-            state: LineState::Stopped,
             virtual_master: 0,
             virtual_speed: 0,
-            faults: Vec::new(),
             dt_us,
         })
     }
@@ -188,12 +153,12 @@ impl<C: CamCurve> CamLine<C> {
 
     /// Where the line is.
     pub fn state(&self) -> LineState {
-        self.state
+        self.supervisor.state()
     }
 
     /// The faults that stopped the line (until [`CamLine::reset`]).
     pub fn faults(&self) -> &[LineFault] {
-        &self.faults
+        self.supervisor.faults()
     }
 
     /// Virtual master position.
@@ -205,18 +170,9 @@ impl<C: CamCurve> CamLine<C> {
     /// cam takes its drive's actual position as its slave position and
     /// arms.
     pub fn start(&mut self) -> Result<(), LineError> {
-        match self.state {
-            LineState::Stopped => {
-                for a in &self.axes {
-                    if let Some(d) = self.segment.drives_mut().get_mut(a.drive) {
-                        d.set_request(Request::Operate);
-                    }
-                }
-                self.state = LineState::Enabling;
-                Ok(())
-            }
-            state => Err(LineError::State(state)),
-        }
+        self.supervisor
+            .start(&mut self.segment)
+            .map_err(LineError::State)
     }
 
     /// Stops the cams at once and disables the drives.
@@ -224,38 +180,23 @@ impl<C: CamCurve> CamLine<C> {
         for a in &mut self.axes {
             a.axis.stop(StopKind::Immediate);
         }
-        for d in self.segment.drives_mut() {
-            d.set_request(Request::Disabled);
-        }
-        if self.state != LineState::Faulted {
-            self.state = LineState::Stopped;
-        }
+        self.supervisor.stop(&mut self.segment);
     }
 
     /// Clears the faults: a fault reset to each faulted drive; the line is
     /// stopped afterwards ([`CamLine::start`] to run again).
     pub fn reset(&mut self) -> Result<(), LineError> {
-        if self.state != LineState::Faulted {
-            return Err(LineError::State(self.state));
-        }
-        for d in self.segment.drives_mut() {
-            d.set_request(if d.state() == DriveState::Fault {
-                Request::ResetFault
-            } else {
-                Request::Disabled
-            });
-        }
-        self.faults.clear();
-        self.state = LineState::Stopped;
-        Ok(())
+        self.supervisor
+            .reset(&mut self.segment)
+            .map_err(LineError::State)
     }
 
     /// One cycle: master, cams, outputs, exchange, inputs, fault check.
     pub fn cycle(&mut self) -> Result<LineReport, LineError> {
-        if self.state == LineState::Running {
+        let running = self.state() == LineState::Running;
+        if running {
             self.virtual_master = self.virtual_master.saturating_add(self.virtual_speed);
         }
-        let running = self.state == LineState::Running;
         let mut outputs = Vec::with_capacity(self.axes.len());
         for a in &mut self.axes {
             let drives = self.segment.drives();
@@ -276,46 +217,20 @@ impl<C: CamCurve> CamLine<C> {
             outputs.push(out);
         }
         let bus = self.segment.exchange()?;
-        let mut new_faults = Vec::new();
-        if matches!(self.state, LineState::Running | LineState::Enabling) {
-            for a in &self.axes {
-                let status = self.segment.drives().get(a.drive).map(|d| d.status());
-                if let Some(fault) = status.and_then(|s| s.fault) {
-                    new_faults.push(LineFault {
-                        drive: Some(a.drive),
-                        fault,
-                    });
-                }
+        let seen = self.supervisor.after_exchange(&mut self.segment, &bus);
+        if !seen.new_faults.is_empty() {
+            // Every cam stops where it is; the drives brake on their own.
+            for a in &mut self.axes {
+                a.axis.stop(StopKind::Immediate);
             }
-            if bus.working_counter_error() && new_faults.is_empty() {
-                // Short working counter but every cam drive answered: a
-                // drive no cam uses is gone; still a stop.
-                new_faults.push(LineFault {
-                    drive: None,
-                    fault: DriveFault::Communication,
-                });
-            }
-        }
-        if !new_faults.is_empty() {
-            self.fault_stop(&new_faults);
-        } else if self.state == LineState::Enabling && self.all_enabled() {
+        } else if seen.now_running {
             self.arm_all()?;
-            self.state = LineState::Running;
         }
         Ok(LineReport {
             bus,
             virtual_master: self.virtual_master,
             axes: outputs,
-            new_faults,
-        })
-    }
-
-    fn all_enabled(&self) -> bool {
-        self.axes.iter().all(|a| {
-            self.segment
-                .drives()
-                .get(a.drive)
-                .is_some_and(|d| d.status().enabled)
+            new_faults: seen.new_faults,
         })
     }
 
@@ -328,19 +243,6 @@ impl<C: CamCurve> CamLine<C> {
             a.axis.arm().map_err(LineError::Engine)?;
         }
         Ok(())
-    }
-
-    /// The reaction to a fault: every cam stops where it is, drives that
-    /// still run brake on their quick-stop ramp, and the line reports.
-    fn fault_stop(&mut self, faults: &[LineFault]) {
-        for a in &mut self.axes {
-            a.axis.stop(StopKind::Immediate);
-        }
-        for d in self.segment.drives_mut() {
-            d.set_request(Request::QuickStop);
-        }
-        self.faults.extend_from_slice(faults);
-        self.state = LineState::Faulted;
     }
 }
 

@@ -2,6 +2,7 @@
 //! through the address map (`docs/modbus.md` has the whole map and the
 //! exceptions).
 
+use crate::bus::BusFace;
 use crate::map;
 use crate::pdu::{Exception, Request, Response};
 use crate::state::{Event, Shared};
@@ -26,6 +27,11 @@ fn commit(shared: &Shared, batch: &WriteBatch) -> Result<(), Exception> {
 /// 02 for addresses outside the map or writes to Y, 03 for quantity 0,
 /// 04 when a write cannot be made durable.
 pub fn answer_request(shared: &Shared, request: &Request) -> Result<Response, Exception> {
+    if let Some(bus) = shared.bus.get() {
+        if let Some(reply) = answer_bus(bus, request) {
+            return reply;
+        }
+    }
     match *request {
         Request::ReadCoils { address, quantity }
         | Request::ReadDiscreteInputs { address, quantity } => {
@@ -88,6 +94,36 @@ pub fn answer_request(shared: &Shared, request: &Request) -> Result<Response, Ex
             Ok(Response::Written { address, quantity })
         }
     }
+}
+
+/// Answers a request for the fieldbus areas (coils 14000–14001, input
+/// registers from 20000); `None` for every other address.
+fn answer_bus(bus: &BusFace, request: &Request) -> Option<Result<Response, Exception>> {
+    Some(match *request {
+        Request::ReadCoils { address, quantity }
+        | Request::ReadDiscreteInputs { address, quantity }
+            if BusFace::owns_coils(address) =>
+        {
+            bus.read_coils(address, quantity).map(Response::Bits)
+        }
+        Request::ReadInputRegisters { address, quantity } if BusFace::owns_registers(address) => {
+            bus.read_registers(address, quantity)
+                .map(Response::Registers)
+        }
+        Request::WriteSingleCoil { address, on } if BusFace::owns_coils(address) => {
+            bus.write_coils(address, &[on]).map(|()| Response::Echo {
+                address,
+                value: if on { 0xFF00 } else { 0x0000 },
+            })
+        }
+        Request::WriteMultipleCoils { address, ref coils } if BusFace::owns_coils(address) => {
+            bus.write_coils(address, coils).map(|()| Response::Written {
+                address,
+                quantity: u16::try_from(coils.len()).unwrap_or(u16::MAX),
+            })
+        }
+        _ => return None,
+    })
 }
 
 #[cfg(test)]

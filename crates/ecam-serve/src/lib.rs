@@ -56,6 +56,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
 mod answer;
+mod bus;
 mod clock;
 mod device_json;
 #[doc(hidden)]
@@ -72,6 +73,10 @@ mod table_load;
 mod write;
 
 pub use answer::answer_request;
+pub use bus::{
+    BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, DRIVE_WORDS, DriveView,
+    ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
+};
 pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{

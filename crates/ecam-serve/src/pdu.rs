@@ -33,6 +33,9 @@ pub enum Exception {
     IllegalDataValue,
     /// 04: the write could not be made durable (the state directory failed).
     ServerDeviceFailure,
+    /// 06: the fieldbus cycle has not taken the commands queued before
+    /// (`--ethercat` only).
+    ServerDeviceBusy,
 }
 
 impl Exception {
@@ -43,6 +46,7 @@ impl Exception {
             Self::IllegalDataAddress => 0x02,
             Self::IllegalDataValue => 0x03,
             Self::ServerDeviceFailure => 0x04,
+            Self::ServerDeviceBusy => 0x06,
         }
     }
 }
@@ -56,6 +60,7 @@ impl fmt::Display for Exception {
             Self::IllegalDataAddress => "illegal data address (02)",
             Self::IllegalDataValue => "illegal data value (03)",
             Self::ServerDeviceFailure => "server device failure (04)",
+            Self::ServerDeviceBusy => "server device busy (06)",
         })
     }
 }

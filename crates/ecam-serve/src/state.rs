@@ -113,6 +113,9 @@ pub struct Shared {
     pub info: ServeInfo,
     /// Counters.
     pub stats: Stats,
+    /// The drives on a fieldbus, when the server runs them (`--ethercat`);
+    /// set once at start.
+    pub bus: std::sync::OnceLock<crate::bus::BusFace>,
     events: Box<dyn Fn(Event) + Send + Sync>,
 }
 
@@ -130,6 +133,7 @@ impl Shared {
             journal: Mutex::new(journal),
             info,
             stats: Stats::default(),
+            bus: std::sync::OnceLock::new(),
             events: Box::new(events),
         }
     }
@@ -233,6 +237,10 @@ impl Shared {
                 "closed_malformed": load(&s.modbus_garbage),
             },
             "http": self.info.http.to_string(),
+            "ethercat": self.bus.get().map(|b| {
+                let s = b.snapshot();
+                json!({"state": s.state, "drives": s.drives.len(), "cycles": s.cycles})
+            }),
             "state": {
                 "dir": self.info.state_dir.as_ref().map(|d| d.display().to_string()),
                 "kept_values": kept,

@@ -3,7 +3,8 @@
 //! - `ecam ethercat run CONFIG [--emulated N]`: brings the segment of the
 //!   configuration file to OP, enables the drives, runs the cams in the
 //!   real-time cycle and prints status; at the end one JSON summary line
-//!   (drives, cycles, faults, lateness histogram).
+//!   (drives, cycles, faults, lateness histogram). Ctrl-C or SIGTERM ends
+//!   the run the same way: the drives are disabled first.
 //! - `ecam ethercat emulate IFACE`: answers EtherCAT frames on an
 //!   interface as a line of emulated CSP drives (to try the raw-socket
 //!   path without hardware, e.g. on one end of a veth pair).
@@ -12,6 +13,7 @@
 //! docs/ethercat.md; the work is ecam-ethercat's.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -89,19 +91,73 @@ fn load(path: &Path) -> anyhow::Result<(LineConfig, Vec<Box<dyn CamCurve>>)> {
     Ok((config, tables))
 }
 
-fn run_line(args: RunArgs) -> anyhow::Result<()> {
-    let (config, tables) = load(&args.config)?;
-    let transport = match (args.emulated, &config.interface) {
-        (Some(n), _) => Transport::Emulated(Arc::new(Mutex::new(EmulatedSegment::new(
-            usize::from(n),
-            DriveBehaviour::default(),
-        )))),
-        (None, Some(interface)) => Transport::Interface(interface.clone()),
+/// The frames' way: `emulated` drives in this process, or the
+/// configuration's interface; the emulated segment is handed back too, for
+/// fault injection.
+///
+/// # Errors
+/// Neither is given.
+pub(crate) fn open_transport(
+    emulated: Option<u16>,
+    interface: Option<&str>,
+    config: &Path,
+) -> anyhow::Result<(Transport, Option<Arc<Mutex<EmulatedSegment>>>)> {
+    match (emulated, interface) {
+        (Some(n), _) => {
+            let segment = Arc::new(Mutex::new(EmulatedSegment::new(
+                usize::from(n),
+                DriveBehaviour::default(),
+            )));
+            Ok((Transport::Emulated(Arc::clone(&segment)), Some(segment)))
+        }
+        (None, Some(interface)) => Ok((Transport::Interface(interface.to_string()), None)),
         (None, None) => bail!(
             "{}: no interface; set interface = \"...\" or pass --emulated N",
-            args.config.display()
+            config.display()
         ),
-    };
+    }
+}
+
+/// The lateness part of a summary line: mean, worst, overruns and the
+/// histogram as `[upper bound µs (null: open), count]` pairs.
+pub(crate) fn lateness_json(lateness: &LatenessHistogram) -> serde_json::Value {
+    let histogram: Vec<serde_json::Value> = lateness
+        .counts
+        .iter()
+        .enumerate()
+        .map(|(i, n)| json!([BUCKETS_US.get(i), n]))
+        .collect();
+    json!({
+        "mean_us": lateness.mean().as_secs_f64() * 1e6,
+        "max_us": lateness.max.as_secs_f64() * 1e6,
+        "overruns": lateness.overruns,
+        "histogram_us": histogram,
+    })
+}
+
+/// A flag that Ctrl-C or SIGTERM sets, so a cycle loop can leave the
+/// drives disabled before the process ends.
+pub(crate) fn stop_on_signal() -> anyhow::Result<Arc<AtomicBool>> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .context("cannot start the signal watcher")?;
+    let set = Arc::clone(&flag);
+    std::thread::Builder::new()
+        .name("ecam-signals".into())
+        .spawn(move || {
+            runtime.block_on(crate::cmd::serve::shutdown_signal());
+            set.store(true, Ordering::Relaxed);
+        })
+        .context("cannot start the signal watcher")?;
+    Ok(flag)
+}
+
+fn run_line(args: RunArgs) -> anyhow::Result<()> {
+    let (config, tables) = load(&args.config)?;
+    let (transport, _) = open_transport(args.emulated, config.interface.as_deref(), &args.config)?;
+    let interrupted = stop_on_signal()?;
     let mut axes = Vec::with_capacity(tables.len());
     for (spec, table) in config.axes.iter().zip(tables) {
         let axis = CamAxis::new(table, spec.axis_config())
@@ -146,7 +202,7 @@ fn run_line(args: RunArgs) -> anyhow::Result<()> {
     let mut faults = Vec::new();
     let mut wkc_errors = 0u64;
     let mut cycles = 0u64;
-    while args.cycles.is_none_or(|n| cycles < n) {
+    while args.cycles.is_none_or(|n| cycles < n) && !interrupted.load(Ordering::Relaxed) {
         clock.wait(&mut lateness).context("clock_nanosleep")?;
         let report = line.cycle()?;
         cycles += 1;
@@ -171,29 +227,17 @@ fn run_line(args: RunArgs) -> anyhow::Result<()> {
             .context("clock_nanosleep")?;
         line.cycle()?;
     }
-    // Buckets in order: [upper bound µs (null: open), count].
-    let histogram: Vec<serde_json::Value> = lateness
-        .counts
-        .iter()
-        .enumerate()
-        .map(|(i, n)| json!([BUCKETS_US.get(i), n]))
-        .collect();
     let summary = json!({
         "drives": line.segment().len(),
         "cycles": cycles,
         "cycle_us": config.cycle_us,
         "virtual_master": line.virtual_master(),
-        "state": format!("{:?}", line.state()).to_lowercase(),
+        "state": line.state().name(),
         "faults": faults,
         "working_counter_errors": wkc_errors,
         "actual": line.segment().drives().iter().map(|d| d.actual()).collect::<Vec<_>>(),
         "scheduling": setup.to_string(),
-        "lateness": {
-            "mean_us": lateness.mean().as_secs_f64() * 1e6,
-            "max_us": lateness.max.as_secs_f64() * 1e6,
-            "overruns": lateness.overruns,
-            "histogram_us": histogram,
-        },
+        "lateness": lateness_json(&lateness),
     });
     println!("{summary}");
     Ok(())

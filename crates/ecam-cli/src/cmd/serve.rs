@@ -2,7 +2,8 @@
 //!
 //! The first two lines on stdout are the bound addresses, `modbus ADDR` and
 //! `http ADDR` (so `--modbus 127.0.0.1:0` can be used and the port read
-//! back); everything else goes to stderr. See `docs/modbus.md`.
+//! back); with `--ethercat`, one JSON summary line follows at exit;
+//! everything else goes to stderr. See `docs/modbus.md`.
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -20,7 +21,7 @@ use ecam_serve::{
 use tokio::net::TcpListener;
 
 use crate::serve::limits::ConnectionLimits;
-use crate::serve::{http, modbus};
+use crate::serve::{ethercat, http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
 pub const DEFAULT_MODBUS: &str = "127.0.0.1:5020";
@@ -89,6 +90,16 @@ pub struct Args {
     /// (`Authorization: Bearer TOKEN`): use it when listening beyond loopback.
     #[arg(long, value_name = "FILE")]
     pub token_file: Option<PathBuf>,
+    /// Put the pulse outputs on CiA 402 drives over EtherCAT, as the
+    /// configuration file maps them (see docs/ethercat.md); the bus cycle
+    /// then paces the PLC instead of the wall-clock scan loop.
+    #[arg(long, value_name = "CONFIG.toml")]
+    pub ethercat: Option<PathBuf>,
+    /// With --ethercat: N emulated drives in this process instead of the
+    /// configuration's interface.
+    #[arg(long, value_name = "N", requires = "ethercat",
+          value_parser = clap::value_parser!(u16).range(1..=64))]
+    pub emulated: Option<u16>,
 }
 
 /// Runs `ecam serve` until Ctrl-C or SIGTERM.
@@ -159,6 +170,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scan_us: args.scan_us,
         tick_us: args.tick_us,
     };
+    let bus = match &args.ethercat {
+        Some(config) => Some(ethercat::bring_up(config, args.emulated, args.scan_us)?),
+        None => None,
+    };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
@@ -194,12 +209,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             report_restore(&shared, dir, recovery, restored);
         }
         let stop = Arc::new(AtomicBool::new(false));
-        let scan_loop = {
-            let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
-            std::thread::Builder::new()
-                .name("plc-scan".into())
-                .spawn(move || ecam_serve::scan_loop(&shared, &stop))
-                .context("cannot start the scan loop")?
+        let scan_loop = match bus {
+            // The bus cycle paces the PLC.
+            Some(bus) => Pacer::Bus(bus.spawn(Arc::clone(&shared), Arc::clone(&stop))?),
+            None => {
+                let (shared, stop) = (Arc::clone(&shared), Arc::clone(&stop));
+                Pacer::Clock(
+                    std::thread::Builder::new()
+                        .name("plc-scan".into())
+                        .spawn(move || ecam_serve::scan_loop(&shared, &stop))
+                        .context("cannot start the scan loop")?,
+                )
+            }
         };
         let saver = match &restored {
             Some(_) => {
@@ -227,7 +248,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             () = shutdown_signal() => Ok(()),
         };
         stop.store(true, Ordering::Relaxed);
-        let _ = scan_loop.join();
+        match scan_loop {
+            Pacer::Clock(thread) => {
+                let _ = thread.join();
+            }
+            Pacer::Bus(thread) => {
+                // The drives are disabled; the summary is for scripts.
+                if let Ok(summary) = thread.join() {
+                    println!("{summary}");
+                }
+            }
+        }
         if let Some(saver) = saver {
             let _ = saver.join();
             // The scan loop has stopped: this image is the PLC's last state.
@@ -238,6 +269,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         served
     })
+}
+
+/// What paces the PLC: the wall clock, or the fieldbus cycle (whose
+/// thread ends with the bus summary line).
+enum Pacer {
+    Clock(std::thread::JoinHandle<()>),
+    Bus(std::thread::JoinHandle<serde_json::Value>),
 }
 
 /// The tracing target of the server's own messages (start, state, stop).
@@ -373,7 +411,7 @@ fn report_restore(
 
 /// Ctrl-C, or SIGTERM on Unix. Nothing needs flushing: every acknowledged
 /// write is already on disk.
-async fn shutdown_signal() {
+pub(crate) async fn shutdown_signal() {
     #[cfg(unix)]
     {
         use tokio::signal::unix::{SignalKind, signal};

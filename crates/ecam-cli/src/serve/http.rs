@@ -15,6 +15,9 @@
 //! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
 //! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block, one durable write (409 while its cam runs, unless `at-seam`) |
 //! | `GET /api/live?block=2000&rate=20` (WebSocket) | the cam's master, slave, speeds and sync output, [`super::live`] |
+//! | `GET /api/ethercat` | `--ethercat`: the line and every drive (state, positions, faults, lateness) |
+//! | `POST /api/ethercat/enable`, `/disable`, `/reset` `{}` | `--ethercat`: enable or disable the drives, clear the faults (202: done at the next cycle) |
+//! | `POST /api/ethercat/fault` `{"drive": 1, "code": 29456}` | `--emulated`: make an emulated drive fault |
 //!
 //! Errors answer `{"error": "message"}` with status 400 (bad request), 404
 //! (unknown route) or 500 (the write could not be made durable).
@@ -30,7 +33,7 @@ use axum::http::{StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
-use ecam_serve::{Shared, devices_to_json, parse_device_names, parse_device_sets};
+use ecam_serve::{BusCommand, Shared, devices_to_json, parse_device_names, parse_device_sets};
 use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
 use tokio::net::TcpListener;
@@ -199,6 +202,8 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/keypoints", post(key_points))
         .route("/api/table/load", post(table_load))
         .route("/api/live", get(super::live::live))
+        .route("/api/ethercat", get(ethercat_status))
+        .route("/api/ethercat/{command}", post(ethercat_command))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
         .with_state(shared)
         .layer(middleware::from_fn_with_state(Arc::new(access), guard))
@@ -223,6 +228,82 @@ pub(super) fn error(status: StatusCode, message: &str) -> Response {
 
 async fn status(State(shared): State<Arc<Shared>>) -> Response {
     json_value(StatusCode::OK, &shared.status())
+}
+
+fn no_bus() -> Response {
+    error(
+        StatusCode::NOT_FOUND,
+        "no drives: start the server with --ethercat CONFIG",
+    )
+}
+
+async fn ethercat_status(State(shared): State<Arc<Shared>>) -> Response {
+    match shared.bus.get() {
+        Some(bus) => match serde_json::to_value(bus.snapshot()) {
+            Ok(value) => json_value(StatusCode::OK, &value),
+            Err(e) => error(StatusCode::INTERNAL_SERVER_ERROR, &e.to_string()),
+        },
+        None => no_bus(),
+    }
+}
+
+async fn ethercat_command(
+    State(shared): State<Arc<Shared>>,
+    Path(command): Path<String>,
+    body: Bytes,
+) -> Response {
+    let Some(bus) = shared.bus.get() else {
+        return no_bus();
+    };
+    let body: Value = match serde_json::from_slice(&body) {
+        Ok(value) => value,
+        Err(e) => {
+            return error(
+                StatusCode::BAD_REQUEST,
+                &format!("the body is not JSON: {e}"),
+            );
+        }
+    };
+    let command = match command.as_str() {
+        "enable" => BusCommand::Enable,
+        "disable" => BusCommand::Disable,
+        "reset" => BusCommand::Reset,
+        "fault" => {
+            if !bus.snapshot().transport.starts_with("emulated") {
+                return error(
+                    StatusCode::CONFLICT,
+                    "faults can only be injected into emulated drives (--emulated N)",
+                );
+            }
+            let drive = body.get("drive").and_then(Value::as_u64);
+            let code = body.get("code").and_then(Value::as_u64).unwrap_or(0x7500);
+            match (
+                drive.and_then(|d| usize::try_from(d).ok()),
+                u16::try_from(code),
+            ) {
+                (Some(drive), Ok(code)) => BusCommand::EmulateFault { drive, code },
+                _ => {
+                    return error(
+                        StatusCode::BAD_REQUEST,
+                        "give {\"drive\": N} and optionally {\"code\": 0..65535}",
+                    );
+                }
+            }
+        }
+        other => {
+            return error(
+                StatusCode::NOT_FOUND,
+                &format!("no command `{other}`: enable, disable, reset or fault"),
+            );
+        }
+    };
+    match bus.command(command) {
+        Ok(()) => json_value(StatusCode::ACCEPTED, &json!({ "queued": command })),
+        Err(e) => error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            &format!("the bus cycle is not taking commands: {e}"),
+        ),
+    }
 }
 
 async fn get_devices(

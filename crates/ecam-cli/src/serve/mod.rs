@@ -5,10 +5,13 @@
 //! - [`http`]: the HTTP API and the designer page (whose JSON answers are
 //!   [`ecam_design`]'s),
 //! - [`assets`]: the designer page's files, compiled in,
+//! - [`ethercat`]: the fieldbus cycle of `--ethercat` (the PLC's pulse
+//!   outputs on CiA 402 drives),
 //! - [`live`]: the live view's WebSocket,
 //! - [`limits`]: connection caps and timeouts both listeners keep.
 
 pub mod assets;
+pub mod ethercat;
 pub mod http;
 pub mod limits;
 pub mod live;

@@ -17,6 +17,7 @@ mod plc_run;
 mod pmd_run;
 mod safe_motion;
 mod serve;
+mod serve_ethercat;
 mod serve_live;
 mod serve_safety;
 mod serve_soak;

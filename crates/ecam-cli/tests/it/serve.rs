@@ -152,7 +152,12 @@ fn program(name: &str, source: &str) -> PathBuf {
 }
 
 /// One HTTP/1.1 request over a plain socket; returns status and body.
-fn http(addr: SocketAddr, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
+pub(crate) fn http(
+    addr: SocketAddr,
+    method: &str,
+    path: &str,
+    body: Option<&str>,
+) -> (u16, String) {
     let mut stream = TcpStream::connect_timeout(&addr, STEP).unwrap();
     stream.set_read_timeout(Some(STEP)).unwrap();
     stream.set_write_timeout(Some(STEP)).unwrap();

@@ -5,6 +5,7 @@
 mod bring_up;
 mod bus_master;
 mod faults;
+mod follow;
 mod rotary_knife;
 mod veth;
 

@@ -36,6 +36,10 @@ pub struct Hardware {
     owners: [Option<OutputOwner>; PULSE_OUTPUTS],
     /// Pulses were emitted on the output during the current tick.
     pulsed: [bool; PULSE_OUTPUTS],
+    /// Signed pulses each output has emitted since power-up: the motor's
+    /// position as a drive following the output sees it. Unlike D8140…
+    /// it never wraps and a program cannot write it.
+    emitted: [i64; PULSE_OUTPUTS],
     /// The running PLSY/DPLSY pulse train of each output; only ever there
     /// while its PLSY owns the output.
     trains: [Option<PulseTrain>; PULSE_OUTPUTS],
@@ -104,6 +108,15 @@ impl Hardware {
         M_STOP
             .get(usize::from(output))
             .is_none_or(|&m| devices.m(m).unwrap_or(true))
+    }
+
+    /// Signed pulses `output` (0..=3) has emitted since power-up (0 for
+    /// any other output). A drive that follows the output (`ecam serve
+    /// --ethercat`) takes its position from here rather than from D8140…,
+    /// which wrap at 32 bits and which a program may overwrite (`DMOV K0
+    /// D8140`) without the motor moving.
+    pub fn emitted(&self, output: u8) -> i64 {
+        self.emitted.get(usize::from(output)).copied().unwrap_or(0)
     }
 
     /// Counters (set values, coils, high-speed counter inputs).

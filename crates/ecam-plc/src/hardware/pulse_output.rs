@@ -25,6 +25,7 @@ use crate::special::{D_PULSE_COUNT, M_BUSY};
 /// assert!(hardware.claim_output(1, cam));
 /// assert_eq!(record_pulses(&mut devices, &mut hardware, cam, 1, -3), -3);
 /// assert_eq!(devices.dword(8142), Ok(-3));
+/// assert_eq!(hardware.emitted(1), -3);
 /// assert_eq!(devices.m(8148), Ok(true));
 /// // Y1 is the cam's: another instruction can neither take it nor pulse it.
 /// assert!(!hardware.claim_output(1, plsy));
@@ -57,6 +58,9 @@ pub fn record_pulses(
     let _ = devices.set_bit(Device::M(busy), true);
     if let Some(flag) = hardware.pulsed.get_mut(index) {
         *flag = true;
+    }
+    if let Some(total) = hardware.emitted.get_mut(index) {
+        *total = total.saturating_add(i64::from(pulses));
     }
     let magnitude = pulses.unsigned_abs();
     let Hardware {
