@@ -13,7 +13,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use ecam_core::{CamCurve, Cursor, PointTable};
-use ecam_engine::{CamAxis, TickInput};
+use ecam_engine::TickInput;
+use ecam_engine::plcopen::{CamIn, McCamAxis};
+use ecam_engine::plcopen_blocks::CamInBlock;
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -55,7 +57,6 @@ fn main() -> Result<(), String> {
         }
     }
     let table = common::stroke_table().ok_or("benchmark table")?;
-    let periodic = common::periodic_table().ok_or("benchmark table")?;
     let span = table.master_span() as f64;
     let sequential: Vec<f64> = (0..QUERIES)
         .map(|i| (i as f64 + 0.5) * span / QUERIES as f64)
@@ -109,9 +110,54 @@ fn main() -> Result<(), String> {
         worst,
         Some(("mean of the same 1e6 ticks", mean)),
     );
-    let peer = time_engine(&mut common::axes(&periodic, 1), 2048, blocks);
-    line("tick-peer", peer, None);
+    line("tick-peer", time_peer_case(blocks)?, None);
     Ok(())
+}
+
+/// The peer driver's `cam513` (scripts/plcopen-peer/driver.cpp): 512 steps
+/// of 100 master counts, a 2000-count stroke plus a 300-count sine.
+fn peer_table() -> Result<PointTable, String> {
+    let pairs: Vec<(i64, i64)> = (0..=512i64)
+        .map(|i| {
+            let u = i as f64 / 512.0;
+            let s = 2000.0 * u + 300.0 * (std::f64::consts::TAU * u).sin();
+            (100 * i, s.round() as i64)
+        })
+        .collect();
+    PointTable::from_pairs(&pairs).map_err(|e| format!("peer table: {e}"))
+}
+
+/// Median ns per cycle of what the peer's bench times: a periodic,
+/// absolute `MC_CamIn` on `cam513`, one facade tick and one `MC_CamIn`
+/// block call per cycle, the master advancing 7.3 thousandths of the
+/// table's span each cycle (374 counts; the peer's master is a float).
+fn time_peer_case(blocks: usize) -> Result<f64, String> {
+    let mut axis = McCamAxis::new(peer_table()?).map_err(|e| format!("peer axis: {e}"))?;
+    // The new axis' selection is the peer's: periodic, master and slave
+    // absolute.
+    let params = CamIn::default();
+    let mut block = CamInBlock::default();
+    let mut status = axis.tick(0, common::DT_US);
+    block.call(&mut axis, true, &params, &status);
+    let mut master = 0i64;
+    let mut times = Vec::with_capacity(blocks);
+    for _ in 0..blocks.max(3) {
+        let start = Instant::now();
+        for _ in 0..TICKS_PER_BLOCK {
+            master += 374;
+            status = axis.tick(black_box(master), common::DT_US);
+            black_box(block.call(&mut axis, true, &params, &status));
+        }
+        times.push(start.elapsed().as_nanos() as f64 / TICKS_PER_BLOCK as f64);
+    }
+    // Not `in_sync`: with an absolute slave the table's 2000-count jump
+    // back at every seam is paid out by the pulse limiter over the
+    // following cycles (the float peer jumps at once), so ecam may be
+    // owing pulses at any given cycle.
+    if !block.call(&mut axis, true, &params, &status).active {
+        return Err("tick-peer: the cam is not active".to_string());
+    }
+    Ok(median(&mut times))
 }
 
 /// One lookup per query through the cursor, as the engine does.
@@ -167,24 +213,6 @@ fn ticks_side_by_side(table: &PointTable, n: usize, blocks: usize) -> (f64, f64)
         times_m.push(start.elapsed().as_nanos() as f64 / (cycles * n) as f64);
     }
     (median(&mut times_e), median(&mut times_m))
-}
-
-/// Median ns per axis-tick of `blocks` runs of `ticks` cycles of all `axes`.
-fn time_engine(axes: &mut [CamAxis<PointTable>], ticks: usize, blocks: usize) -> f64 {
-    let mut master = 0i64;
-    let mut times = Vec::with_capacity(blocks);
-    for _ in 0..blocks.max(3) {
-        let start = Instant::now();
-        for _ in 0..ticks {
-            master += common::MASTER_PER_TICK;
-            let input = TickInput::at(master, common::DT_US);
-            for axis in axes.iter_mut() {
-                black_box(axis.tick_in_place(black_box(&input)));
-            }
-        }
-        times.push(start.elapsed().as_nanos() as f64 / (ticks * axes.len()) as f64);
-    }
-    median(&mut times)
 }
 
 /// Mean and worst of 10^6 single ticks of one axis, each timed alone
