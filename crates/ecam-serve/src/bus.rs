@@ -190,7 +190,7 @@ impl BusFace {
     ///
     /// # Errors
     /// [`Exception::ServerDeviceBusy`] when the cycle has not taken the
-    /// last [`MAX_QUEUED`] commands (it has stopped).
+    /// last 64 commands (it has stopped).
     pub fn command(&self, command: BusCommand) -> Result<(), Exception> {
         let mut queue = lock(&self.commands);
         if queue.len() >= MAX_QUEUED {

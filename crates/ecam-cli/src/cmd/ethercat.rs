@@ -157,7 +157,6 @@ pub(crate) fn stop_on_signal() -> anyhow::Result<Arc<AtomicBool>> {
 fn run_line(args: RunArgs) -> anyhow::Result<()> {
     let (config, tables) = load(&args.config)?;
     let (transport, _) = open_transport(args.emulated, config.interface.as_deref(), &args.config)?;
-    let interrupted = stop_on_signal()?;
     let mut axes = Vec::with_capacity(tables.len());
     for (spec, table) in config.axes.iter().zip(tables) {
         let axis = CamAxis::new(table, spec.axis_config())
@@ -190,6 +189,9 @@ fn run_line(args: RunArgs) -> anyhow::Result<()> {
     }
     let mut line = CamLine::new(segment, axes)?;
     line.virtual_speed = config.master_speed;
+    // From here on a signal must not end the process with drives enabled
+    // (during bring-up it may: nothing is enabled yet).
+    let interrupted = stop_on_signal()?;
     line.start()?;
     let setup = configure_current_thread(&config.rt());
     println!("cycle: {setup}");

@@ -85,3 +85,60 @@ fn configuration_errors_are_clear() {
         "{err}"
     );
 }
+
+#[cfg(unix)]
+#[test]
+fn sigterm_ends_a_run_with_the_drives_disabled_and_the_summary() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+
+    let config = example();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(["ethercat", "run", config.to_str().unwrap()])
+        .args(["--emulated", "2", "--status-ms", "0"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let (tx, rx) = std::sync::mpsc::channel();
+    let reader = std::thread::spawn(move || {
+        let mut lines = Vec::new();
+        for line in std::io::BufRead::lines(std::io::BufReader::new(stdout)) {
+            let Ok(line) = line else { break };
+            let _ = tx.send(line.clone());
+            lines.push(line);
+        }
+        lines
+    });
+    // The `cycle:` line comes once the drives are being enabled (and the
+    // signal is watched); then let it run a little.
+    loop {
+        let line = rx.recv_timeout(Duration::from_secs(20)).unwrap();
+        if line.starts_with("cycle:") {
+            break;
+        }
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    let pid = child.id().to_string();
+    assert!(
+        Command::new("kill")
+            .args(["-TERM", &pid])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        assert!(start.elapsed() < Duration::from_secs(20), "did not stop");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(status.success(), "{status}");
+    let out = reader.join().unwrap();
+    let summary: Value = serde_json::from_str(out.last().unwrap()).unwrap();
+    assert_eq!(summary["state"], "stopped");
+    assert!(summary["cycles"].as_u64().unwrap() > 0);
+}
