@@ -674,9 +674,12 @@ impl<C: CamCurve> CamAxis<C> {
                 stop_at.as_ref(),
                 next_master,
             );
-            // A table queued for the seam takes over there, so the old cam
-            // past the seam is not where the slave goes: aim at the seam.
-            let aim = if engaged.queued.is_some() && ahead.place.k != place.k {
+            // Across a seam, aim at the seam: a table may be queued for it
+            // (now, or by a call before the next tick), and then the old
+            // cam past the seam is not where the slave goes. Aiming beyond
+            // it would command a slave the switch then takes back, a
+            // reversal the master never made.
+            let aim = if ahead.place.k != place.k {
                 if ahead.place.k > place.k {
                     self.geometry.cycle_end(place.k)
                 } else {

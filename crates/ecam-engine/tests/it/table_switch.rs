@@ -248,6 +248,7 @@ proptest! {
             master_filter: if every == 1 { MasterFilter::Direct } else { MasterFilter::INTERPOLATE },
             ..AxisConfig::default()
         };
+        let old_cycle = old.master_span();
         let mut axis = CamAxis::new(old, config).unwrap();
         axis.arm().unwrap();
         // Mode 2 changes the master scaling instead of the table.
@@ -316,7 +317,12 @@ proptest! {
 
         // Zero drift: past any blend, the cam is a pure function of the master.
         let end = *readings.last().unwrap();
-        let far = readings.iter().copied().max().unwrap_or(end) + 4_000;
+        // Far enough for a seam switch waiting up to one old cycle, then
+        // its blend, to be over.
+        let far = readings.iter().copied().max().unwrap_or(end)
+            + old_cycle
+            + distance as i64
+            + 1_000;
         for m in end..=far {
             let _ = axis.tick(&TickInput::at(m, TICK_US));
         }
@@ -340,5 +346,45 @@ proptest! {
             back = axis.tick(&TickInput::at(far, TICK_US));
         }
         prop_assert_eq!(back.emitted, back.slave);
+    }
+}
+
+/// A coarse master spread by the tracker: between two counts that straddle
+/// a seam, the command must not run past the seam, or a table switched
+/// there (requested after that tick) would take the slave back. Found by
+/// `switches_keep_the_slave_continuous_and_safe`: a steep 7-count table
+/// under master zoom 4 (several seams per tick), then a flat one.
+#[test]
+fn an_interpolated_master_never_overshoots_a_seam_switch() {
+    let old = PointTable::from_pairs(&[(0, 0), (7, 328)]).unwrap();
+    let new = PointTable::from_pairs(&[(0, 0), (348, 1)]).unwrap();
+    let config = AxisConfig {
+        coupling: Coupling::Repeat { min_stroke: 1 },
+        master_zoom: Zoom::new(4, 1).unwrap(),
+        max_frequency_hz: 200_000,
+        master_filter: MasterFilter::INTERPOLATE,
+        ..AxisConfig::default()
+    };
+    let mut axis = CamAxis::new(old, config).unwrap();
+    axis.arm().unwrap();
+    let (mut micro, mut held) = (0i64, 0i64);
+    let mut slaves = Vec::new();
+    for i in 0..120usize {
+        if i == 41 {
+            axis.switch_curve(new.clone(), SwitchAt::NextSeam { blend: None })
+                .unwrap();
+        }
+        if i < 43 {
+            micro += 26_512 * i64::from(TICK_US);
+        }
+        if i % 3 == 0 {
+            held = micro.div_euclid(1_000_000);
+        }
+        let out = axis.tick(&TickInput::at(held, TICK_US));
+        assert_eq!(out.events.table_switched, i == 41, "tick {i}");
+        slaves.push(out.slave);
+    }
+    for (i, w) in slaves.windows(2).enumerate() {
+        assert!(w[1] >= w[0], "tick {}: slave {} after {}", i + 1, w[1], w[0]);
     }
 }
