@@ -385,6 +385,12 @@ fn an_interpolated_master_never_overshoots_a_seam_switch() {
         slaves.push(out.slave);
     }
     for (i, w) in slaves.windows(2).enumerate() {
-        assert!(w[1] >= w[0], "tick {}: slave {} after {}", i + 1, w[1], w[0]);
+        assert!(
+            w[1] >= w[0],
+            "tick {}: slave {} after {}",
+            i + 1,
+            w[1],
+            w[0]
+        );
     }
 }
