@@ -379,11 +379,10 @@ impl<C: CamCurve> CamAxis<C> {
         if steady_allowed
             && estimate.fraction == 0
             && let Phase::Running(engaged) = &mut self.phase
-            && engaged.ramp.is_none()
-            && !engaged.changing()
             && let Some(constants) = engaged.steady.as_ref()
             && let Some(cam) = constants.sample(master, &self.curve, &mut self.cursor)
         {
+            debug_assert!(engaged.ramp.is_none() && !engaged.changing());
             engaged.followed = i128::from(master) << 32;
             let k = i128::from(cam.k);
             if engaged.place.k != k {
@@ -406,25 +405,27 @@ impl<C: CamCurve> CamAxis<C> {
                 slave: cam.slave,
             });
         }
+        let hz = effective_frequency(self.config.max_frequency_hz);
         if let Some(followed) = settled {
             self.commanded = followed.slave;
-            sample = Some(followed);
-        } else {
-            self.follow_general(
-                &mut events,
-                &mut fault,
-                &mut sample,
-                master,
-                estimate.fraction,
-                input.dt_us,
-            );
+            let pulses = self
+                .pulse
+                .step(self.commanded, input.output_enabled, hz, input.dt_us);
+            // Still running: the report's state is known.
+            return self.report::<true>(master, Some(followed), pulses, events, fault);
         }
-
-        let hz = effective_frequency(self.config.max_frequency_hz);
+        self.follow_general(
+            &mut events,
+            &mut fault,
+            &mut sample,
+            master,
+            estimate.fraction,
+            input.dt_us,
+        );
         let pulses = self
             .pulse
             .step(self.commanded, input.output_enabled, hz, input.dt_us);
-        self.report(master, sample, pulses, events, fault)
+        self.report::<false>(master, sample, pulses, events, fault)
     }
 
     /// The checks before following: output inhibit, the master-step
@@ -741,9 +742,11 @@ impl<C: CamCurve> CamAxis<C> {
         Ok((phase, Some(followed), events))
     }
 
-    /// Fills the output record in place.
-    #[inline]
-    fn report(
+    /// Fills the output record in place. `RUNNING`: the steady tick's
+    /// report, where the axis is known to be running (the state and what
+    /// follows from it fold away).
+    #[inline(always)]
+    fn report<const RUNNING: bool>(
         &mut self,
         master: i64,
         sample: Option<FollowSample>,
@@ -751,7 +754,12 @@ impl<C: CamCurve> CamAxis<C> {
         events: Events,
         fault: Option<EngineError>,
     ) -> &TickOutput {
-        let state = self.state();
+        let state = if RUNNING {
+            AxisState::Running
+        } else {
+            self.state()
+        };
+        debug_assert_eq!(state, self.state());
         if events.engaged || events.table_switched {
             self.missed = false;
         }

@@ -271,6 +271,23 @@ pub(crate) fn round_half_away(v: f64) -> f64 {
     }
 }
 
+/// [`round_half_away`] as an `i64`, `None` when the result is not finite
+/// or leaves ±9.2·10^18. Below 2^52 the truncation is already the integer,
+/// so the common case needs no conversion back to a float.
+#[inline(always)]
+pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64;
+        // Exact, as in `round_half_away`; the adjustments are selects.
+        let fraction = v - whole as f64;
+        Some(whole + i64::from(fraction >= 0.5) - i64::from(fraction <= -0.5))
+    } else {
+        let r = libm::round(v);
+        // Strictly inside ±2^63, so the conversion is exact.
+        (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+    }
+}
+
 /// A whole float (already rounded, finite) as an integer.
 #[inline]
 fn whole_to_i128(v: f64) -> i128 {
@@ -656,6 +673,48 @@ mod tests {
             let v = f64::from_bits(x);
             let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e6 - 5e5;
             assert!(same(v) && same(scaled), "{v} {scaled}");
+        }
+    }
+
+    #[test]
+    fn round_to_i64_is_the_rounded_float_converted() {
+        let reference = |v: f64| {
+            let r = round_half_away(v);
+            (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+        };
+        for v in [
+            0.5,
+            -0.5,
+            2.5,
+            -2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4.5e15 - 0.5,
+            -4.5e15 + 0.5,
+            4.5e15 + 0.5,
+            -4.5e15 - 0.5,
+            9.2e18,
+            -9.2e18,
+            9.1e18,
+            1e300,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert_eq!(round_to_i64(v), reference(v), "{v}");
+        }
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e7 - 5e6;
+            let near = 4.5e15 + ((x % 4096) as f64 - 2048.0) * 0.5;
+            for w in [v, scaled, near, -near] {
+                assert_eq!(round_to_i64(w), reference(w), "{w}");
+            }
         }
     }
 

@@ -14,9 +14,11 @@ const _: () = assert!(WINDOW.is_power_of_two());
 /// The followed master of the last ticks.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct MasterSpeed {
-    /// Followed positions (fixed point, 32 fraction bits) and the tick
+    /// Followed positions (whole counts and the fraction, kept apart so
+    /// the tick stores two words, not a 128-bit shift) and the tick
     /// lengths that led to them, oldest first once full.
-    positions: [i128; WINDOW],
+    counts: [i64; WINDOW],
+    fractions: [u32; WINDOW],
     dts: [u32; WINDOW],
     filled: usize,
     next: usize,
@@ -25,7 +27,8 @@ pub(crate) struct MasterSpeed {
 impl MasterSpeed {
     pub(crate) const fn new() -> Self {
         Self {
-            positions: [0; WINDOW],
+            counts: [0; WINDOW],
+            fractions: [0; WINDOW],
             dts: [0; WINDOW],
             filled: 0,
             next: 0,
@@ -38,10 +41,18 @@ impl MasterSpeed {
         // WINDOW is a power of two: masking keeps the index in range
         // without a division or a bounds check.
         let slot = self.next & (WINDOW - 1);
-        self.positions[slot] = (i128::from(at.counts) << 32) | i128::from(at.fraction);
+        self.counts[slot] = at.counts;
+        self.fractions[slot] = at.fraction;
         self.dts[slot] = dt_us;
         self.next = (slot + 1) & (WINDOW - 1);
         self.filled += usize::from(self.filled < WINDOW);
+    }
+
+    /// The position in `slot`, fixed point with 32 fraction bits.
+    fn position(&self, slot: usize) -> i128 {
+        let counts = self.counts.get(slot).copied().unwrap_or(0);
+        let fraction = self.fractions.get(slot).copied().unwrap_or(0);
+        (i128::from(counts) << 32) | i128::from(fraction)
     }
 
     /// The master's mean velocity over the window (counts/s, signed), 0
@@ -59,8 +70,7 @@ impl MasterSpeed {
         if us == 0 {
             return 0.0;
         }
-        let travel = self.positions.get(newest).copied().unwrap_or(0)
-            - self.positions.get(oldest).copied().unwrap_or(0);
+        let travel = self.position(newest) - self.position(oldest);
         travel as f64 / 4_294_967_296.0 * 1.0e6 / us as f64
     }
 
@@ -80,8 +90,7 @@ impl MasterSpeed {
         if us == 0 {
             return 0.0;
         }
-        let travel = self.positions.get(newest).copied().unwrap_or(0)
-            - self.positions.get(oldest).copied().unwrap_or(0);
+        let travel = self.position(newest) - self.position(oldest);
         let counts = (travel as f64 / 4_294_967_296.0).abs();
         if counts == 0.0 {
             return 0.0;

@@ -14,7 +14,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::coupling::round_half_away;
+use crate::coupling::{round_half_away, round_to_i64};
 
 /// The constants of one settled engagement (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,29 +94,25 @@ impl Steady {
         let accumulated = strokes.checked_mul(self.stroke_snum)?;
         let whole = accumulated.div_euclid(self.sden);
         let rem = accumulated.rem_euclid(self.sden);
-        let fraction = round_half_away((rem as f64 + kin.s * self.snum_f) / self.sden_f);
+        let fraction = round_to_i64((rem as f64 + kin.s * self.snum_f) / self.sden_f)?;
         let slave = whole
-            .checked_add(whole_i64(fraction)?)?
+            .checked_add(fraction)?
             .checked_add(self.output_offset)?;
         let unzoomed = strokes
             .checked_mul(self.stroke)?
-            .checked_add(whole_i64(round_half_away(kin.s))?)?;
+            .checked_add(round_to_i64(kin.s)?)?;
+        let in_cycle = kin.s * self.snum_f / self.sden_f;
         Some(SteadySample {
             k,
             r_num,
             slave,
             unzoomed,
-            in_cycle_zoomed: round_half_away(kin.s * self.snum_f / self.sden_f) as i64,
+            // Saturating, as the general path reports it.
+            in_cycle_zoomed: round_to_i64(in_cycle)
+                .unwrap_or_else(|| round_half_away(in_cycle) as i64),
             velocity_ratio: kin.v * self.zoom_factor,
             master_in_cycle: self.origin.checked_add(r_num / self.mden)?,
             master_in_cycle_raw: r_num / self.mnum,
         })
     }
-}
-
-/// A rounded float as an `i64`, `None` when out of range.
-#[inline]
-fn whole_i64(v: f64) -> Option<i64> {
-    // Strictly inside ±2^63, so the conversion is exact.
-    (v > -9.2e18 && v < 9.2e18).then_some(v as i64)
 }

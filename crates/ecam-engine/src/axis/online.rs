@@ -62,6 +62,7 @@ impl<C: CamCurve> CamAxis<C> {
                 engaged.pending = None;
                 engaged.seam_blend = None;
                 engaged.queued = Some((curve, then));
+                engaged.steady = None;
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.geometry = geometry;
@@ -111,6 +112,7 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Running(engaged) => {
                 engaged.queued = None;
                 engaged.pending = Some(Pending::new(Takeover::Table(curve), trigger, blend));
+                engaged.steady = None;
                 Ok(())
             }
             Phase::Stopping(..) => Err(EngineError::Busy),
@@ -148,6 +150,7 @@ impl<C: CamCurve> CamAxis<C> {
                 }
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 engaged.offsets = Some(OffsetRamp::new(change, from, mden));
+                engaged.steady = None;
                 Ok(())
             }
             _ => Err(EngineError::NotRunning),
@@ -177,6 +180,7 @@ impl<C: CamCurve> CamAxis<C> {
                 }
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 engaged.scaling = Some(ScalingRamp::new(target, from, distance));
+                engaged.steady = None;
                 self.config.slave_zoom = zoom;
                 Ok(())
             }
@@ -217,6 +221,7 @@ impl<C: CamCurve> CamAxis<C> {
                     Trigger::Now,
                     blend,
                 ));
+                engaged.steady = None;
                 Ok(())
             }
             _ => Err(EngineError::NotRunning),

@@ -72,7 +72,9 @@ pub(super) struct Engaged<C> {
     pub(super) followed: i128,
     /// The engagement's 64-bit constants once the cam has settled (no
     /// ramp-in, no change under way); the general tick clears and refills
-    /// them, so they never outlive what they were taken from.
+    /// them, and every change request clears them (`online.rs`), so they
+    /// never outlive what they were taken from and the steady tick needs
+    /// no other check.
     pub(super) steady: Option<Steady>,
 }
 

@@ -73,8 +73,16 @@ fn moves() -> impl Strategy<Value = Vec<Move>> {
     )
 }
 
+/// 64 cases, or `PROPTEST_CASES` for a longer hunt.
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(64)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
     #[test]
     fn steady_tick_equals_general_tick(
         slaves in proptest::collection::vec(-20_000i64..20_000, 2..20),
