@@ -618,14 +618,22 @@ impl<C: CamCurve> CamAxis<C> {
     ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
         engaged.steady = None;
+        // Ramps and blends end where the position itself reaches their
+        // end, not its whole count (below the position when the master
+        // runs backwards), so the straight line between counts never
+        // jumps from a ramp's value to the final cam's mid-count.
+        let at = MasterPosition {
+            counts: master,
+            fraction,
+        };
         if let Some(ramp) = engaged.offsets
-            && ramp.finished(master)
+            && ramp.finished_at(at)
         {
             engaged.engagement = ramp.apply(&engaged.engagement, master)?;
             engaged.offsets = None;
         }
         if let Some(ramp) = engaged.scaling
-            && ramp.finished(master)
+            && ramp.finished_at(at)
         {
             self.geometry = ramp.target;
             engaged.scaling = None;
@@ -638,7 +646,7 @@ impl<C: CamCurve> CamAxis<C> {
             // Cycle indices restart with the new table.
             engaged.place = here.place;
         }
-        if let Some(shift) = engaged.blend.as_ref().and_then(|b| b.finished(master)) {
+        if let Some(shift) = engaged.blend.as_ref().and_then(|b| b.finished_at(at)) {
             engaged.engagement.shift_output(shift)?;
             engaged.blend = None;
         }
@@ -695,7 +703,7 @@ impl<C: CamCurve> CamAxis<C> {
             slave =
                 i64::try_from(i128::from(slave) + step).map_err(|_| EngineError::SlaveOverflow)?;
         }
-        if !ramping {
+        if engaged.ramp.is_some_and(|ramp| ramp.finished_at(at)) {
             engaged.ramp = None;
         }
         let blending = engaged.blend.is_some();
@@ -719,7 +727,7 @@ impl<C: CamCurve> CamAxis<C> {
             input_offset: engaged.engagement.input_offset(&self.geometry),
             slave,
         };
-        if !ramping && stop_at.is_none() && !engaged.changing() {
+        if engaged.ramp.is_none() && stop_at.is_none() && !engaged.changing() {
             // Settled: the next ticks can take the steady path.
             engaged.steady = engaged.engagement.steady(&self.geometry);
         }

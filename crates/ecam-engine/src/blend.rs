@@ -25,7 +25,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::EngineError;
+use crate::{EngineError, MasterPosition};
 
 /// One way out of the blend (the master may leave it forwards or backwards).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,6 +121,11 @@ impl Blend {
             v0,
             sides,
         })
+    }
+
+    /// [`Self::finished`] for the position itself, fraction included.
+    pub(crate) fn finished_at(&self, at: MasterPosition) -> Option<i128> {
+        self.finished(at.count_toward(self.from))
     }
 
     /// The whole pulses to move the new cam's output by, once `master`

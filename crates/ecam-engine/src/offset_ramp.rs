@@ -13,8 +13,8 @@
 
 use core::num::NonZeroU64;
 
-use crate::EngineError;
 use crate::coupling::Engagement;
+use crate::{EngineError, MasterPosition};
 
 /// A change of offsets for [`crate::CamAxis::change_offsets`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,6 +68,11 @@ impl OffsetRamp {
     /// The whole change has been ramped in at `master`.
     pub(crate) fn finished(&self, master: i64) -> bool {
         self.travelled(master) >= u128::from(self.distance)
+    }
+
+    /// [`Self::finished`] for the position itself, fraction included.
+    pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
+        self.finished(at.count_toward(self.from))
     }
 
     /// The engagement with the part of the change ramped in at `master`.

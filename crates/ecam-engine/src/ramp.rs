@@ -9,7 +9,7 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
-use crate::RampIn;
+use crate::{MasterPosition, RampIn};
 
 /// A ramp in progress.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,6 +44,14 @@ impl Ramp {
     }
 
     /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
+    /// The ramp is over at `at` (its whole distance travelled by the
+    /// position itself, fraction included).
+    pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
+        let probe = at.count_toward(self.from_master);
+        (i128::from(probe) - i128::from(self.from_master)).unsigned_abs()
+            >= u128::from(self.distance)
+    }
+
     pub(crate) fn weight(&self, master: i64) -> f64 {
         let travelled = (i128::from(master) - i128::from(self.from_master)).unsigned_abs();
         let u = (travelled as f64 / self.distance as f64).min(1.0);

@@ -13,6 +13,7 @@
 
 use core::num::NonZeroU64;
 
+use crate::MasterPosition;
 use crate::coupling::Geometry;
 
 /// A slave-scaling change being ramped in.
@@ -49,6 +50,11 @@ impl ScalingRamp {
     /// The whole change has been ramped in at `master`.
     pub(crate) fn finished(&self, master: i64) -> bool {
         self.travelled(master) >= u128::from(self.distance)
+    }
+
+    /// [`Self::finished`] for the position itself, fraction included.
+    pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
+        self.finished(at.count_toward(self.from))
     }
 
     /// The command and velocity ratio at `master` from the two cams'

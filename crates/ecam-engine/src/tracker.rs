@@ -83,6 +83,20 @@ impl MasterPosition {
     fn fixed(counts: i64, fraction: u32) -> i128 {
         (i128::from(counts) << 32) | i128::from(fraction)
     }
+
+    /// The whole count next to this position on the side of `from`: the
+    /// farthest count from `from` that the position has fully reached.
+    /// Below `from` with a fraction, that is the count above (`counts` is
+    /// the floor, which the position has not reached yet). A ramp or
+    /// blend that started at `from` is over only once this count is past
+    /// its end, so it never ends early while the master runs backwards.
+    pub(crate) fn count_toward(&self, from: i64) -> i64 {
+        if self.fraction != 0 && self.counts < from {
+            self.counts.saturating_add(1)
+        } else {
+            self.counts
+        }
+    }
 }
 
 /// The master-velocity tracker of one axis (see the module docs).

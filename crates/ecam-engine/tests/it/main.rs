@@ -28,3 +28,12 @@ fn cases(default: u32) -> u32 {
         .and_then(|v| v.parse().ok())
         .unwrap_or(default)
 }
+
+/// Ticks of `tick_us` a pulse output at `hz` needs to send `backlog`
+/// pulses, and a margin: a drain loop's bound that any backlog fits.
+fn ticks_to_drain(backlog: i64, hz: i64, tick_us: u32) -> u64 {
+    let per_second = u128::from(hz.unsigned_abs().max(1));
+    let ticks =
+        u128::from(backlog.unsigned_abs()) * 1_000_000 / (per_second * u128::from(tick_us.max(1)));
+    u64::try_from(ticks).unwrap_or(u64::MAX).saturating_add(100)
+}

@@ -238,7 +238,7 @@ proptest! {
         let mut last = *r.outputs.last().unwrap();
         let mut drained = 0i64;
         // A low ceiling may still owe pulses: drain them at rest.
-        for _ in 0..2_000_000 {
+        for _ in 0..crate::ticks_to_drain(last.backlog, hz, TICK_US) {
             if last.backlog == 0 {
                 break;
             }

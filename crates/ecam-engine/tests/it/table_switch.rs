@@ -339,7 +339,7 @@ proptest! {
         if !waiting {
             prop_assert_eq!(back.slave, there);
         }
-        for _ in 0..2_000_000 {
+        for _ in 0..crate::ticks_to_drain(back.backlog, hz, TICK_US) {
             if back.backlog == 0 {
                 break;
             }
@@ -387,6 +387,53 @@ fn an_interpolated_master_never_overshoots_a_seam_switch() {
     for (i, w) in slaves.windows(2).enumerate() {
         assert!(
             w[1] >= w[0],
+            "tick {}: slave {} after {}",
+            i + 1,
+            w[1],
+            w[0]
+        );
+    }
+}
+
+/// A blend ends where the position itself reaches its end. Running
+/// backwards with a coarse master, the whole count (the floor) reaches
+/// the end a count early; ending there put the command on the new cam's
+/// line mid-count and took the slave back one pulse. Found by
+/// `switches_keep_the_slave_continuous_and_safe` at 40,000 cases.
+#[test]
+fn a_blend_run_backwards_ends_without_a_reversal() {
+    let old = PointTable::from_pairs(&[(0, 0), (109, 1)]).unwrap();
+    let new = PointTable::from_pairs(&[(0, 0), (227, 667)]).unwrap();
+    let config = AxisConfig {
+        coupling: Coupling::Repeat { min_stroke: 1 },
+        master_zoom: Zoom::new(3, 1).unwrap(),
+        slave_zoom: Zoom::new(1, 4).unwrap(),
+        master_filter: MasterFilter::INTERPOLATE,
+        ..AxisConfig::default()
+    };
+    let mut axis = CamAxis::new(old, config).unwrap();
+    axis.arm().unwrap();
+    let (mut micro, mut held) = (0i64, 0i64);
+    let mut slaves = Vec::new();
+    let mut blended = false;
+    for i in 0..200usize {
+        if i == 30 {
+            axis.switch_curve(new.clone(), SwitchAt::Now { blend: blend(25) })
+                .unwrap();
+        }
+        if i < 107 {
+            micro -= 2901 * i64::from(TICK_US);
+        }
+        if i % 9 == 0 {
+            held = micro.div_euclid(1_000_000);
+        }
+        slaves.push(axis.tick(&TickInput::at(held, TICK_US)).slave);
+        blended |= axis.is_blending();
+    }
+    assert!(blended && !axis.is_blending());
+    for (i, w) in slaves.windows(2).enumerate() {
+        assert!(
+            w[1] <= w[0],
             "tick {}: slave {} after {}",
             i + 1,
             w[1],
