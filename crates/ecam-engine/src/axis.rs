@@ -646,10 +646,7 @@ impl<C: CamCurve> CamAxis<C> {
             // Cycle indices restart with the new table.
             engaged.place = here.place;
         }
-        if let Some(shift) = engaged.blend.as_ref().and_then(|b| b.finished_at(at)) {
-            engaged.engagement.shift_output(shift)?;
-            engaged.blend = None;
-        }
+        engaged.end_blend(at)?;
         if here.stopped.is_none() && stop_at.is_none() {
             let blending = engaged.blend.is_some();
             let previous = engaged.followed;
@@ -661,11 +658,14 @@ impl<C: CamCurve> CamAxis<C> {
                 .as_mut()
                 .map(|p| p.fires(previous, now, blending, policy, turn));
             events.activation_missed |= fired.is_some_and(|f| f.missed);
-            if let Some(at) = fired.and_then(|f| f.at) {
-                self.switch_at(&mut engaged, at)?;
+            if let Some(switch) = fired.and_then(|f| f.at) {
+                self.switch_at(&mut engaged, switch)?;
                 events.table_switched = true;
                 here = self.resolve(&engaged.engagement, None, master);
                 engaged.place = here.place;
+                // A master that moved past the whole blend in this very
+                // tick is on the new cam already, not at the blend's end.
+                engaged.end_blend(at)?;
             }
         }
         engaged.followed = (i128::from(master) << 32) | i128::from(fraction);

@@ -12,7 +12,7 @@ use crate::start::StartWatch;
 use crate::steady::Steady;
 use crate::stop::CycleEnd;
 use crate::switch::Pending;
-use crate::{AxisState, EngineError};
+use crate::{AxisState, EngineError, MasterPosition};
 
 use super::AfterPass;
 
@@ -86,6 +86,17 @@ impl<C> Engaged<C> {
             || self.blend.is_some()
             || self.pending.is_some()
             || self.queued.is_some()
+    }
+
+    /// Drops a blend the position `at` has completed, moving the new
+    /// cam's output by the blend's whole shift so that the cam goes on
+    /// where the blend ended.
+    pub(super) fn end_blend(&mut self, at: MasterPosition) -> Result<(), EngineError> {
+        if let Some(shift) = self.blend.as_ref().and_then(|b| b.finished_at(at)) {
+            self.engagement.shift_output(shift)?;
+            self.blend = None;
+        }
+        Ok(())
     }
 
     /// The engagement in effect at `master`, an offset ramp included.

@@ -441,3 +441,39 @@ fn a_blend_run_backwards_ends_without_a_reversal() {
         );
     }
 }
+
+/// A blend shorter than one tick's master travel is over within the tick
+/// of the switch: the command is on the new cam there, not held at the
+/// blend's end for a tick and then caught up in a burst. Found by
+/// `switches_keep_the_slave_continuous_and_safe` at 100,000 cases.
+#[test]
+fn a_blend_passed_within_the_switch_tick_is_not_held() {
+    let old = PointTable::from_pairs(&[(0, 0), (19, 1)]).unwrap();
+    let new = PointTable::from_pairs(&[(0, 0), (1, 1)]).unwrap();
+    let config = AxisConfig {
+        master_zoom: Zoom::new(2, 1).unwrap(),
+        ..repeat()
+    };
+    let mut axis = CamAxis::new(old, config).unwrap();
+    axis.arm().unwrap();
+    let mut last: Option<(i64, i64)> = None;
+    for i in 0..30i64 {
+        if i == 11 {
+            axis.switch_curve(new.clone(), SwitchAt::Now { blend: blend(1) })
+                .unwrap();
+        }
+        // 2.33 counts a tick, then rest.
+        let master = (i.min(14) + 1) * 23_334 * i64::from(TICK_US) / 1_000_000;
+        let out = axis.tick(&TickInput::at(master, TICK_US));
+        if let Some((m0, s0)) = last {
+            // The new cam's 2 pulses a count is the steepest.
+            assert!(
+                out.slave - s0 <= 2 * (master - m0),
+                "tick {i}: {s0} -> {}",
+                out.slave
+            );
+        }
+        last = Some((master, out.slave));
+    }
+    assert!(!axis.is_blending());
+}
