@@ -273,9 +273,12 @@ pub enum BitRef {
     WordBit(WordBit),
     /// Timer Tn: its contact, or (RST) the whole timer.
     Timer(u16),
-    /// An X, Y or M bit modified by an index register (`X0Z0`, `M0Z1`):
-    /// the bit number is offset at run time (X/Y in octal numbering).
+    /// An X, Y or M bit, or (contacts only) a counter's contact, modified
+    /// by an index register (`X0Z0`, `M0Z1`, `C5Z0`): the number is offset
+    /// at run time (X/Y in octal numbering).
     Indexed(Device, IndexReg),
+    /// A timer's contact modified by an index register (`T0Z1`; contacts only).
+    IndexedTimer(u16, IndexReg),
 }
 
 /// A bit device that instructions may drive: Y or M.

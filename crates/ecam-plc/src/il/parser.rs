@@ -827,14 +827,15 @@ fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, Stri
         Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
         Operand::Timer(n) => Ok(BitRef::Timer(*n)),
         Operand::Indexed(
-            Modified::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_))),
+            Modified::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))),
             by,
         ) => Ok(BitRef::Indexed(*d, *by)),
+        Operand::Indexed(Modified::Timer(n), by) => Ok(BitRef::IndexedTimer(*n, *by)),
         other => Err(wrong(
             mnemonic,
             index,
             other,
-            "a bit device X, Y, M, a counter contact C, a timer contact T or a bit of a register Dn.b",
+            "a bit device X, Y, M, a counter contact C, a timer contact T (each optionally index-modified, C5Z0) or a bit of a register Dn.b",
         )),
     }
 }

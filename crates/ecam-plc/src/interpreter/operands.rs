@@ -38,6 +38,10 @@ pub(crate) fn read_bit_ref(
             let device = indexed_bit(devices, device, by)?;
             read_bit(devices, hardware, device)
         }
+        BitRef::IndexedTimer(n, by) => {
+            let n = indexed_timer(devices, n, by)?;
+            devices.timers().contact(n).unwrap_or(false)
+        }
     })
 }
 
@@ -85,20 +89,28 @@ pub(crate) fn indexed_bit(
     by: IndexReg,
 ) -> Result<Device, OperationError> {
     let offset = offset(devices, by, Width::Word)?;
-    let (n, count, make): (u16, u16, fn(u16) -> Device) = match device {
-        Device::X(n) => (n, XY_COUNT, Device::X),
-        Device::Y(n) => (n, XY_COUNT, Device::Y),
-        Device::M(n) => (n, M_COUNT, Device::M),
+    let (n, count, make, range): (u16, u16, fn(u16) -> Device, &str) = match device {
+        Device::X(n) => (n, XY_COUNT, Device::X, "X0-X377 octal"),
+        Device::Y(n) => (n, XY_COUNT, Device::Y, "Y0-Y377 octal"),
+        Device::M(n) => (n, M_COUNT, Device::M, "M0-M8511"),
+        // A counter's contact (`LD C0Z0`); the parser allows C only in contacts.
+        Device::C(n) => (n, C_COUNT, Device::C, "C0-C255"),
         other => return Err(device_error(other, DeviceError::WrongKind)),
     };
-    shifted(n, offset, 1, count).map(make).ok_or_else(|| {
-        past_range(
-            format_args!("{device}{by}"),
-            by,
-            offset,
-            "X/Y 0-377 octal, M0-M8511",
-        )
-    })
+    shifted(n, offset, 1, count)
+        .map(make)
+        .ok_or_else(|| past_range(format_args!("{device}{by}"), by, offset, range))
+}
+
+/// The timer an index-modified timer contact names now (`LD T0Z1`).
+pub(crate) fn indexed_timer(
+    devices: &Devices,
+    n: u16,
+    by: IndexReg,
+) -> Result<u16, OperationError> {
+    let offset = offset(devices, by, Width::Word)?;
+    shifted(n, offset, 1, crate::timers::T_COUNT)
+        .ok_or_else(|| past_range(format_args!("T{n}{by}"), by, offset, "T0-T255"))
 }
 
 /// A word group moved by `offset` bits.
@@ -203,7 +215,9 @@ pub(crate) fn write_bit_ref(
             .set_word_bit(b.register, b.bit, on)
             .map_err(|e| device_error(b, e)),
         // The parser lets no OUT/SET name a timer without its set value.
-        BitRef::Timer(n) => Err(device_error(format!("T{n}"), DeviceError::WrongKind)),
+        BitRef::Timer(n) | BitRef::IndexedTimer(n, _) => {
+            Err(device_error(format!("T{n}"), DeviceError::WrongKind))
+        }
         BitRef::Indexed(device, by) => {
             let device = indexed_bit(devices, device, by)?;
             devices

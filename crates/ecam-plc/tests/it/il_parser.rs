@@ -169,7 +169,7 @@ fn errors_name_file_line_and_expectation() {
     assert!(error("LD X0\nFOO D0\n").starts_with("prog.il:2: unknown instruction `FOO`"));
     assert!(error("LD X0\nMOV K1\n").contains("MOV expects 2 operands (S D), found 1"));
     assert!(error("LD D0\n").contains(
-        "expected a bit device X, Y, M, a counter contact C, a timer contact T or a bit of a register Dn.b, found D0"
+        "expected a bit device X, Y, M, a counter contact C, a timer contact T (each optionally index-modified, C5Z0) or a bit of a register Dn.b, found D0"
     ));
     assert!(
         error("LD X0\nOUT X1\n")

@@ -98,6 +98,56 @@ fn bits_are_offset_in_the_octal_numbering_of_x_and_y() {
 }
 
 #[test]
+fn timer_and_counter_contacts_are_offset_by_the_register() {
+    // Two timers and two counters; Z0 picks which pair the contacts read.
+    let mut plc = plc(concat!(
+        "LD M8000\n",
+        "OUT T3 K0\n", // preset 0: on at once
+        "OUT T4 K30000\n",
+        "LD M10\n",
+        "OUT C3 K1\n",
+        "LD M11\n",
+        "OUT C4 K1\n",
+        "LD T0Z0\n",
+        "OUT M100\n",
+        "LDI T1Z0\n",
+        "OUT M101\n",
+        "LD C0Z0\n",
+        "ANI C1Z0\n",
+        "OUT M102\n",
+        "LD M8000\n",
+        "AND T0V0\n",
+        "OUT M103\n",
+        "END\n",
+    ));
+    let d = plc.devices_mut();
+    d.set_index_register(IndexReg::Z(0), 3).unwrap();
+    d.set_index_register(IndexReg::V(0), 4).unwrap();
+    d.set_m(10, true).unwrap();
+    assert!(plc.scan().is_empty());
+    assert!(plc.devices().m(100).unwrap(), "T0Z0 = T3, preset 0");
+    assert!(plc.devices().m(101).unwrap(), "LDI T1Z0 = not T4");
+    assert!(
+        plc.devices().m(102).unwrap(),
+        "C0Z0 = C3 counted, C1Z0 = C4 not"
+    );
+    assert!(!plc.devices().m(103).unwrap(), "T0V0 = T4, still timing");
+    // Out of range: the contact reads off and the scan reports 6706.
+    plc.devices_mut()
+        .set_index_register(IndexReg::Z(0), 300)
+        .unwrap();
+    let errors = plc.scan();
+    let lines: Vec<usize> = errors.iter().map(|e| e.line).collect();
+    assert_eq!(lines, vec![8, 10, 12, 13], "{errors:?}");
+    assert!(errors.iter().all(|e| e.error.code == 6706), "{errors:?}");
+    assert!(
+        errors[0].error.message.contains("T0Z0: Z0 = 300"),
+        "{errors:?}"
+    );
+    assert!(!plc.devices().m(100).unwrap());
+}
+
+#[test]
 fn modified_word_groups_read_and_write_later_bits() {
     let mut plc = plc("LD M8000\nMOV K4M0Z1 D0\nMOV K255 K2M100Z1\nEND\n");
     let d = plc.devices_mut();
