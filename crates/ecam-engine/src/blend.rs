@@ -25,6 +25,7 @@
 
 use core::num::NonZeroU64;
 
+use crate::ramp::quintic;
 use crate::{EngineError, MasterPosition};
 
 /// One way out of the blend (the master may leave it forwards or backwards).
@@ -54,11 +55,6 @@ pub(crate) struct Blend {
 pub(crate) struct BlendEnd {
     pub(crate) slave: i64,
     pub(crate) velocity_ratio: f64,
-}
-
-/// The quintic that spreads the end's fraction of a pulse.
-fn quintic(u: f64) -> f64 {
-    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
 }
 
 /// `∫₀ᵘ (3t² − 2t³) dt`.

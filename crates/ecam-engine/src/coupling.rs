@@ -641,6 +641,16 @@ mod tests {
         PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)]).unwrap()
     }
 
+    /// Pseudo-random words (xorshift64) from a non-zero seed.
+    fn xorshift(seed: u64) -> impl Iterator<Item = u64> {
+        core::iter::successors(Some(seed), |&x| {
+            let x = x ^ (x << 13);
+            let x = x ^ (x >> 7);
+            Some(x ^ (x << 17))
+        })
+        .skip(1)
+    }
+
     #[test]
     fn round_half_away_is_libm_round() {
         let same = |v: f64| {
@@ -665,11 +675,7 @@ mod tests {
         ] {
             assert!(same(v), "{v}");
         }
-        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        for _ in 0..100_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+        for x in xorshift(0x9E37_79B9_7F4A_7C15).take(100_000) {
             let v = f64::from_bits(x);
             let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e6 - 5e5;
             assert!(same(v) && same(scaled), "{v} {scaled}");
@@ -704,11 +710,7 @@ mod tests {
         ] {
             assert_eq!(round_to_i64(v), reference(v), "{v}");
         }
-        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-        for _ in 0..100_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+        for x in xorshift(0x2545_F491_4F6C_DD1D).take(100_000) {
             let v = f64::from_bits(x);
             let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e7 - 5e6;
             let near = 4.5e15 + ((x % 4096) as f64 - 2048.0) * 0.5;

@@ -14,6 +14,7 @@
 use core::num::NonZeroU64;
 
 use crate::coupling::Engagement;
+use crate::ramp::quintic;
 use crate::{EngineError, MasterPosition};
 
 /// A change of offsets for [`crate::CamAxis::change_offsets`].
@@ -43,10 +44,6 @@ pub(crate) struct OffsetRamp {
     /// Table-input change in × master-zoom-denominator units.
     input_num: i128,
     output: i128,
-}
-
-fn quintic(u: f64) -> f64 {
-    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
 }
 
 impl OffsetRamp {

@@ -11,6 +11,13 @@
 
 use crate::{MasterPosition, RampIn};
 
+/// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
+/// the ends with zero slope and curvature there. The ramp-in, the offset
+/// and scaling ramps and a blend's end fraction all move along it.
+pub(crate) fn quintic(u: f64) -> f64 {
+    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
+}
+
 /// A ramp in progress.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Ramp {
@@ -29,33 +36,33 @@ impl Ramp {
         }
     }
 
+    /// Master counts from the ramp's start to `master`, either way.
+    fn travelled(&self, master: i64) -> u128 {
+        (i128::from(master) - i128::from(self.from_master)).unsigned_abs()
+    }
+
     /// The blended position for `cam` at `master`, or `None` once the ramp
-    /// is complete (the caller then follows the cam and drops the ramp).
+    /// is complete (the caller then follows the cam).
     pub(crate) fn blend(&self, master: i64, cam: i64) -> Option<i64> {
-        let travelled = (i128::from(master) - i128::from(self.from_master)).unsigned_abs();
+        let travelled = self.travelled(master);
         if travelled >= u128::from(self.distance) {
             return None;
         }
-        let u = travelled as f64 / self.distance as f64;
-        let w = u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+        let w = quintic(travelled as f64 / self.distance as f64);
         let gap = (i128::from(self.hold) - i128::from(cam)) as f64;
         let offset = libm::round((1.0 - w) * gap) as i128;
         i64::try_from(i128::from(cam) + offset).ok()
     }
 
-    /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
     /// The ramp is over at `at` (its whole distance travelled by the
-    /// position itself, fraction included).
+    /// position itself, fraction included): the axis drops it then.
     pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
-        let probe = at.count_toward(self.from_master);
-        (i128::from(probe) - i128::from(self.from_master)).unsigned_abs()
-            >= u128::from(self.distance)
+        self.travelled(at.count_toward(self.from_master)) >= u128::from(self.distance)
     }
 
+    /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
     pub(crate) fn weight(&self, master: i64) -> f64 {
-        let travelled = (i128::from(master) - i128::from(self.from_master)).unsigned_abs();
-        let u = (travelled as f64 / self.distance as f64).min(1.0);
-        u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
+        quintic((self.travelled(master) as f64 / self.distance as f64).min(1.0))
     }
 }
 

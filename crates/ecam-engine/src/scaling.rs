@@ -15,6 +15,7 @@ use core::num::NonZeroU64;
 
 use crate::MasterPosition;
 use crate::coupling::Geometry;
+use crate::ramp::quintic;
 
 /// A slave-scaling change being ramped in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,10 +24,6 @@ pub(crate) struct ScalingRamp {
     distance: u64,
     /// The geometry with the new slave scaling.
     pub(crate) target: Geometry,
-}
-
-fn quintic(u: f64) -> f64 {
-    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
 }
 
 fn quintic_slope(u: f64) -> f64 {

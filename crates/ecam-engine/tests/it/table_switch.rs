@@ -367,32 +367,17 @@ fn an_interpolated_master_never_overshoots_a_seam_switch() {
     };
     let mut axis = CamAxis::new(old, config).unwrap();
     axis.arm().unwrap();
-    let (mut micro, mut held) = (0i64, 0i64);
     let mut slaves = Vec::new();
-    for i in 0..120usize {
+    for (i, master) in coarse_master(26_512, 43, 3, 120).into_iter().enumerate() {
         if i == 41 {
             axis.switch_curve(new.clone(), SwitchAt::NextSeam { blend: None })
                 .unwrap();
         }
-        if i < 43 {
-            micro += 26_512 * i64::from(TICK_US);
-        }
-        if i % 3 == 0 {
-            held = micro.div_euclid(1_000_000);
-        }
-        let out = axis.tick(&TickInput::at(held, TICK_US));
+        let out = axis.tick(&TickInput::at(master, TICK_US));
         assert_eq!(out.events.table_switched, i == 41, "tick {i}");
         slaves.push(out.slave);
     }
-    for (i, w) in slaves.windows(2).enumerate() {
-        assert!(
-            w[1] >= w[0],
-            "tick {}: slave {} after {}",
-            i + 1,
-            w[1],
-            w[0]
-        );
-    }
+    assert_one_way(&slaves, 1);
 }
 
 /// A blend ends where the position itself reaches its end. Running
@@ -413,27 +398,43 @@ fn a_blend_run_backwards_ends_without_a_reversal() {
     };
     let mut axis = CamAxis::new(old, config).unwrap();
     axis.arm().unwrap();
-    let (mut micro, mut held) = (0i64, 0i64);
     let mut slaves = Vec::new();
     let mut blended = false;
-    for i in 0..200usize {
+    for (i, master) in coarse_master(-2901, 107, 9, 200).into_iter().enumerate() {
         if i == 30 {
             axis.switch_curve(new.clone(), SwitchAt::Now { blend: blend(25) })
                 .unwrap();
         }
-        if i < 107 {
-            micro -= 2901 * i64::from(TICK_US);
-        }
-        if i % 9 == 0 {
-            held = micro.div_euclid(1_000_000);
-        }
-        slaves.push(axis.tick(&TickInput::at(held, TICK_US)).slave);
+        slaves.push(axis.tick(&TickInput::at(master, TICK_US)).slave);
         blended |= axis.is_blending();
     }
     assert!(blended && !axis.is_blending());
+    assert_one_way(&slaves, -1);
+}
+
+/// A master moving at `speed` counts/s for the first `moving` ticks and
+/// then standing, read only every `every` ticks (a coarse counter the
+/// tracker spreads): its reading at each of `ticks` ticks.
+fn coarse_master(speed: i64, moving: usize, every: usize, ticks: usize) -> Vec<i64> {
+    let (mut micro, mut held) = (0i64, 0i64);
+    (0..ticks)
+        .map(|i| {
+            if i < moving {
+                micro += speed * i64::from(TICK_US);
+            }
+            if i % every == 0 {
+                held = micro.div_euclid(1_000_000);
+            }
+            held
+        })
+        .collect()
+}
+
+/// Fails at the first tick where the slave moves against `direction` (±1).
+fn assert_one_way(slaves: &[i64], direction: i64) {
     for (i, w) in slaves.windows(2).enumerate() {
         assert!(
-            w[1] <= w[0],
+            (w[1] - w[0]) * direction >= 0,
             "tick {}: slave {} after {}",
             i + 1,
             w[1],
