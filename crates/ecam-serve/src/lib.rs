@@ -71,6 +71,7 @@ mod state;
 mod state_file;
 mod table_load;
 mod write;
+mod write_error;
 
 pub use answer::answer_request;
 pub use bus::{
@@ -98,5 +99,6 @@ pub use retain::{
 };
 pub use state::{Event, ServeInfo, Shared, Stats};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
-pub use table_load::{TableLoad, WhileRunning, parse_table_load};
+pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use write::{LineError, Slot, WriteBatch};
+pub use write_error::WriteError;

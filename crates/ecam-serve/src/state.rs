@@ -25,6 +25,7 @@ use crate::journal::{Journal, JournalError};
 use crate::pdu::{Exception, Response};
 use crate::retain::LatchedImage;
 use crate::write::WriteBatch;
+use crate::write_error::WriteError;
 
 /// How the server was started (for `GET /api/status`).
 #[derive(Clone, Debug)]
@@ -162,14 +163,22 @@ impl Shared {
         f(lock(&self.plc).devices())
     }
 
-    /// Makes `batch` durable (when there is a state directory), then applies
-    /// it to device memory. Once this returns `Ok` the write may be
+    /// Checks `batch` against the program's running cams, makes it
+    /// durable (when there is a state directory), then applies it to
+    /// device memory. Once this returns `Ok` the write may be
     /// acknowledged.
     ///
     /// # Errors
-    /// The journal could not be written; nothing was applied.
-    pub fn write(&self, batch: &WriteBatch) -> Result<(), JournalError> {
+    /// [`WriteError::Refused`] when it would leave a running cam's table
+    /// invalid ([`Plc::check_register_writes`]); [`WriteError::Journal`]
+    /// when the journal could not be written. Either way nothing was
+    /// applied.
+    pub fn write(&self, batch: &WriteBatch) -> Result<(), WriteError> {
         let mut journal = lock(&self.journal);
+        let words: Vec<(u16, i16)> = batch.words().collect();
+        if !words.is_empty() {
+            lock(&self.plc).check_register_writes(&words)?;
+        }
         if let Some(journal) = journal.as_mut() {
             self.append(journal, batch)?;
         }

@@ -6,13 +6,21 @@
 //! "while_running": "refuse" | "at-seam"}`. While the block's cam runs the
 //! load is refused (409) unless `"at-seam"` asks for the running cam to
 //! take the new table at its next seam (docs/plc.md, "Changing the table
-//! while the cam runs").
+//! while the cam runs"). A table goes only into a block the program's
+//! DECAM names or into one clear of them all, never into D8000–D8511
+//! ([`ecam_plc::Plc::check_table_load`]; docs/modbus.md, "Writes into cam
+//! blocks").
+
+use core::fmt;
 
 use ecam_core::PointTable;
+use ecam_plc::decam::offsets;
 use ecam_plc::{Device, Devices};
 use serde_json::Value;
 
 use crate::WriteBatch;
+use crate::state::Shared;
+use crate::write_error::WriteError;
 
 /// What to do when the block's cam is running.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -98,10 +106,11 @@ pub fn parse_table_load(body: &[u8]) -> Result<TableLoad, String> {
     let points =
         ecam_plc::decam::load_table(&mut scratch, block, &table).map_err(|e| e.to_string())?;
     let mut batch = WriteBatch::new();
-    let first = block.saturating_add(ecam_plc::decam::offsets::SECTIONS);
-    let words = 2 + usize::from(ecam_plc::decam::offsets::WORDS_PER_SECTION) * points;
-    for i in 0..words {
-        let n = first.saturating_add(i as u16);
+    // The image: offset 38 up to the block's end with this table (2..=512
+    // points, checked above, so the count fits).
+    let end = u32::from(block) + offsets::block_words(points as u16);
+    for n in u32::from(block) + u32::from(offsets::SECTIONS)..end {
+        let n = n as u16; // below D8512: the load checked it fits
         batch.word(n, scratch.word(n).unwrap_or(0) as u16);
     }
     Ok(TableLoad {
@@ -110,6 +119,98 @@ pub fn parse_table_load(body: &[u8]) -> Result<TableLoad, String> {
         while_running,
         batch,
     })
+}
+
+/// How a loaded table takes over.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableSwitch {
+    /// No cam runs at the block: the table is in place for the next start.
+    Now,
+    /// The block's cam runs: it takes the table at its next seam.
+    AtSeam,
+}
+
+impl TableSwitch {
+    /// The answer's `"switch"` value.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Now => "now",
+            Self::AtSeam => "at-seam",
+        }
+    }
+}
+
+/// Why a checked table load was not written; nothing changed.
+#[derive(Debug)]
+pub enum TableLoadError {
+    /// The block's cam runs and the request did not ask for `"at-seam"`.
+    Running {
+        /// The block.
+        block: u16,
+    },
+    /// The target or the write was refused, or could not be made durable.
+    Write(WriteError),
+}
+
+impl TableLoadError {
+    /// The HTTP status: 409 while the cam runs, else as [`WriteError`].
+    pub fn http_status(&self) -> u16 {
+        match self {
+            Self::Running { .. } => 409,
+            Self::Write(err) => err.http_status(),
+        }
+    }
+
+    /// The PLC error code behind the refusal, if any.
+    pub fn code(&self) -> Option<u16> {
+        match self {
+            Self::Running { .. } => None,
+            Self::Write(err) => err.code(),
+        }
+    }
+}
+
+impl fmt::Display for TableLoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Running { block } => write!(
+                f,
+                "the cam of the block at D{block} is running: send \"while_running\": \"at-seam\" to switch tables at its next seam"
+            ),
+            Self::Write(err) => write!(f, "{err}"),
+        }
+    }
+}
+
+impl std::error::Error for TableLoadError {}
+
+impl Shared {
+    /// Writes a checked table load as one durable write, if the program
+    /// allows it: the block must be one the program names or clear of them
+    /// (and below D8000), and a running cam takes a table only when
+    /// `"at-seam"` was asked. Blocks the calling thread for the journal's
+    /// sync to disk.
+    ///
+    /// # Errors
+    /// [`TableLoadError`]; nothing was written.
+    pub fn load_table(&self, load: &TableLoad) -> Result<TableSwitch, TableLoadError> {
+        // 2..=512 points: parse_table_load checked.
+        let points = u16::try_from(load.points).unwrap_or(u16::MAX);
+        let running = self.with_plc(|plc| {
+            plc.check_table_load(load.block, points)
+                .map(|()| plc.cam_running(load.block))
+        });
+        let running = running.map_err(|e| TableLoadError::Write(e.into()))?;
+        if running && load.while_running == WhileRunning::Refuse {
+            return Err(TableLoadError::Running { block: load.block });
+        }
+        self.write(&load.batch).map_err(TableLoadError::Write)?;
+        Ok(if running {
+            TableSwitch::AtSeam
+        } else {
+            TableSwitch::Now
+        })
+    }
 }
 
 #[cfg(test)]
