@@ -76,7 +76,7 @@ proptest! {
         let mut ticks = 0u32;
         for &speed in &speeds {
             for _ in 0..400 {
-                if ticks % 10 == 0 {
+                if ticks.is_multiple_of(10) {
                     rig.scan();
                 }
                 ticks += 1;

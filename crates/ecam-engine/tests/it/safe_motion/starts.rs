@@ -135,8 +135,8 @@ impl Start {
 
 /// One axis driven as a face drives it.
 enum Driven {
-    Engine(CamAxis<PointTable>, Start),
-    PlcOpen(McCamAxis<PointTable>, CamIn),
+    Engine(Box<CamAxis<PointTable>>, Start),
+    PlcOpen(Box<McCamAxis<PointTable>>, CamIn),
 }
 
 impl Driven {
@@ -207,10 +207,13 @@ impl Driven {
                     activation,
                     ..CamIn::default()
                 };
-                return Self::PlcOpen(axis, cam_in);
+                return Self::PlcOpen(Box::new(axis), cam_in);
             }
         };
-        Self::Engine(CamAxis::new(table.clone(), config).unwrap(), start)
+        Self::Engine(
+            Box::new(CamAxis::new(table.clone(), config).unwrap()),
+            start,
+        )
     }
 
     fn set_slave(&mut self, slave: i64) {
