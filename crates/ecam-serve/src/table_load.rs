@@ -217,6 +217,81 @@ impl Shared {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+    use crate::pdu::{Exception, Request};
+    use crate::state::ServeInfo;
+
+    /// A server whose program runs a cyclic cam from the block at D2000
+    /// (a 2-point table, D2000..D2047) on a K1 time base.
+    fn running_cam() -> Shared {
+        let program =
+            ecam_plc::il::parse("LD M8000\nMOV K1 D2005\nDECAM K1 D2000 X0 Y0 Y4\n", "t.il")
+                .unwrap();
+        let mut plc = ecam_plc::Plc::new(program).unwrap();
+        let table = PointTable::from_pairs(&[(0, 0), (1000, 100)]).unwrap();
+        ecam_plc::decam::load_table(plc.devices_mut(), 2000, &table).unwrap();
+        plc.scan();
+        plc.hardware_tick(100);
+        assert!(plc.cam_running(2000));
+        let addr = "127.0.0.1:0".parse().unwrap();
+        let info = ServeInfo {
+            program: None,
+            timing: ecam_plc::sim::Timing::default(),
+            modbus: addr,
+            http: addr,
+            state_dir: None,
+        };
+        Shared::new(plc, None, info, |_| {})
+    }
+
+    fn load(block: u16, at_seam: bool) -> TableLoad {
+        let body = format!(
+            r#"{{"block": {block}, "points": [[0, 0], [500, 100]], "while_running": "{}"}}"#,
+            if at_seam { "at-seam" } else { "refuse" }
+        );
+        parse_table_load(body.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn table_loads_go_to_the_programs_blocks_or_clear_of_them() {
+        let shared = running_cam();
+        let words = |s: &Shared| s.read(|d| (2038..2048).map(|n| d.word(n)).collect::<Vec<_>>());
+        let before = words(&shared);
+        let err = shared.load_table(&load(2000, false)).unwrap_err();
+        assert_eq!(err.http_status(), 409);
+        let err = shared.load_table(&load(2001, true)).unwrap_err();
+        assert_eq!((err.http_status(), err.code()), (409, None));
+        assert!(err.to_string().contains("D2000"), "{err}");
+        let err = shared.load_table(&load(8000, true)).unwrap_err();
+        assert_eq!(err.http_status(), 400);
+        assert_eq!(words(&shared), before, "nothing written");
+        assert_eq!(
+            shared.load_table(&load(2000, true)).unwrap(),
+            TableSwitch::AtSeam
+        );
+        assert_eq!(
+            shared.load_table(&load(2048, false)).unwrap(),
+            TableSwitch::Now
+        );
+    }
+
+    #[test]
+    fn a_modbus_write_that_breaks_the_running_table_is_exception_03() {
+        let shared = running_cam();
+        // Point 1's master (D2044) to 0: not above point 0's.
+        let request = Request::WriteMultipleRegisters {
+            address: 2044,
+            values: vec![0, 0],
+        };
+        assert_eq!(
+            crate::answer_request(&shared, &request),
+            Err(Exception::IllegalDataValue)
+        );
+        assert_eq!(shared.read(|d| d.dword(2044)), Ok(1000));
+        let mut batch = WriteBatch::new();
+        batch.word(2044, 0);
+        let err = shared.write(&batch).unwrap_err();
+        assert_eq!((err.http_status(), err.code()), (409, Some(6782)));
+    }
 
     #[test]
     fn a_table_becomes_one_batch_of_its_image() {

@@ -276,6 +276,29 @@ fn a_rising_repeat_table_started_mid_way_moves_less_than_a_stroke_forwards() {
         start(&mut mc, CamType::Repeat, rising.clone());
         assert_eq!(mc.position(SLAVE).unwrap(), expected, "{master}, {slave}");
     }
+    // The start rule's cases (docs/mc.md): a table in its third cycle, and
+    // one started before its origin, which used to move 100 backwards.
+    for (pairs, master, expected) in [
+        ([(0, 0), (1000, 100)], 2500, 50),
+        ([(1000, 0), (2000, 100)], 0, 0),
+    ] {
+        let mut mc = MotionController::new(2);
+        mc.set_position(MASTER, master).unwrap();
+        start(
+            &mut mc,
+            CamType::Repeat,
+            PointTable::from_pairs(&pairs).unwrap(),
+        );
+        assert_eq!(
+            mc.position(SLAVE).unwrap(),
+            expected,
+            "{pairs:?} at {master}"
+        );
+        assert_eq!(
+            mc.drive(MASTER, master + 500, SLAVE).unwrap(),
+            expected + 50
+        );
+    }
 }
 
 #[test]
