@@ -214,8 +214,9 @@ impl<'a> Block<'a> {
         if !(2..=offsets::MAX_SECTIONS as i16).contains(&count) || !fits {
             return Err(BlockError::SectionCount { count });
         }
-        let words: Vec<i16> = (0..offsets::WORDS_PER_SECTION * count as u16)
-            .map(|i| self.word(offsets::TABLE + i) as i16)
+        // Offsets 40 up to the block's end: below D8512, checked above.
+        let words: Vec<i16> = (offsets::block_words(0)..offsets::block_words(count as u16))
+            .map(|offset| self.word(offset as u16) as i16)
             .collect();
         register_image::table_from_sections(&words).map_err(|e| match e {
             TableError::MasterNotIncreasing { section }
