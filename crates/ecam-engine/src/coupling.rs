@@ -53,7 +53,7 @@ pub(crate) struct Geometry {
     pub(crate) extent: Extent,
     /// The table moves the slave both ways inside a cycle (for the start
     /// rule, `start_rule.rs`).
-    pub(crate) turns_back: bool,
+    turns_back: bool,
 }
 
 /// Largest single-turn range accepted (keeps every product far from overflow).
@@ -127,11 +127,16 @@ impl Geometry {
         to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
     }
 
-    /// Which way the slave goes while the master moves forward, for a
-    /// table that never turns back: the sign of stroke × both zooms (0
-    /// for a cam without a stroke).
-    pub(crate) fn forward_direction(&self) -> i128 {
-        self.stroke.signum() * self.snum.signum() * self.mnum.signum()
+    /// What the start rule needs of the cycle: a stroke in pulses, which
+    /// way the slave goes while the master moves forward on a table that
+    /// never turns back (the sign of stroke × both zooms, 0 without a
+    /// stroke), and whether the table turns back.
+    pub(crate) fn strokes(&self) -> start_rule::StrokeGeometry {
+        start_rule::StrokeGeometry {
+            per_stroke: self.stroke_pulses(),
+            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
+            turns_back: self.turns_back,
+        }
     }
 
     /// The master zoom's denominator (the unit of table-input offsets).
@@ -375,7 +380,10 @@ impl Engagement {
         let place = geo.locate(t_engage);
         let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
-        let strokes = start_rule::strokes_at_start(geo, config.slave_align, table, target)?;
+        let strokes =
+            start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
+                geo.zoomed(n, table)
+            })?;
         // The stroke count of the cycle the master is in is `strokes`:
         // cycles count from there, not from the table's origin.
         let shift = strokes.saturating_sub(place.k);

@@ -20,54 +20,64 @@
 //! table's first value, whenever that lies within one stroke ahead of 0:
 //! the documents' own examples start exactly as before.
 
-use crate::coupling::Geometry;
 use crate::{EngineError, SlaveAlign};
 
+/// What the start rule needs to know of a cam's cycle (the coupling works
+/// it out; kept to plain numbers so the rule depends on nothing else).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StrokeGeometry {
+    /// One stroke in output pulses after the slave zoom (signed; 0 for a
+    /// cam that does not accumulate one).
+    pub(crate) per_stroke: f64,
+    /// The sign of the slave's motion while the master moves forward on a
+    /// table that never turns back: stroke × slave zoom × master zoom.
+    pub(crate) forward: i128,
+    /// The table moves the slave both ways inside a cycle.
+    pub(crate) turns_back: bool,
+}
+
 /// The strokes to add to the table value at the start: the stroke count
-/// the cycle the master is in takes. `table` is the table value at the
-/// engage place, `slave` where the slave stands. Only an absolute slave
+/// the cycle the master is in takes. `value(n)` is the zoomed table value
+/// at the engage place plus `n` strokes (exact, rounded once), `slave`
+/// where the slave stands. Only an absolute slave
 /// ([`SlaveAlign::Absolute`], [`SlaveAlign::NearestEquivalent`]) on a cam
 /// with a stroke looks for the equivalent position; every other start
 /// counts the engage cycle as cycle 0.
 pub(crate) fn strokes_at_start(
-    geo: &Geometry,
+    geo: StrokeGeometry,
     align: SlaveAlign,
-    table: f64,
     slave: i128,
+    value: impl Fn(i128) -> Result<i128, EngineError>,
 ) -> Result<i128, EngineError> {
-    let direction = geo.forward_direction();
     match align {
-        SlaveAlign::Absolute | SlaveAlign::NearestEquivalent if direction != 0 => {
-            equivalent(geo, table, slave, direction)
+        SlaveAlign::Absolute | SlaveAlign::NearestEquivalent
+            if geo.forward != 0 && geo.per_stroke != 0.0 =>
+        {
+            equivalent(geo, slave, value)
         }
         _ => Ok(0),
     }
 }
 
-/// The strokes that put `table + n × stroke` (zoomed) first at or ahead
-/// of `slave` in `direction` (±1), or nearest either way on a table that
-/// turns back.
+/// The strokes that put `value(n)` first at or ahead of `slave` in the
+/// cam's forward direction, or nearest either way on a table that turns
+/// back.
 fn equivalent(
-    geo: &Geometry,
-    table: f64,
+    geo: StrokeGeometry,
     slave: i128,
-    direction: i128,
+    value: impl Fn(i128) -> Result<i128, EngineError>,
 ) -> Result<i128, EngineError> {
+    let direction = geo.forward;
     // Travel to the position of `m` steps, each step one stroke in
     // `direction`: it grows with `m`.
-    let step = direction * geo.stroke_pulses().signum() as i128;
+    let step = direction * geo.per_stroke.signum() as i128;
     let travel = |m: i128| -> Result<i128, EngineError> {
-        let value = geo.zoomed(
-            m.checked_mul(step).ok_or(EngineError::SlaveOverflow)?,
-            table,
-        )?;
-        value
+        value(m.checked_mul(step).ok_or(EngineError::SlaveOverflow)?)?
             .checked_sub(slave)
             .map(|t| t * direction)
             .ok_or(EngineError::SlaveOverflow)
     };
-    let per_stroke = geo.stroke_pulses().abs();
-    let estimate = -(travel(0)? as f64) / per_stroke;
+    let estimate = -(travel(0)? as f64) / geo.per_stroke.abs();
     if !estimate.is_finite() || estimate.abs() > 1e30 {
         return Err(EngineError::SlaveOverflow);
     }
@@ -104,6 +114,7 @@ fn equivalent(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::coupling::Geometry;
     use crate::{AxisConfig, Coupling, Zoom};
     use ecam_core::{CamCurve, Cursor, PointTable};
 
@@ -120,7 +131,10 @@ mod tests {
     fn start(table: &PointTable, at: f64, slave: i128, zoom: Zoom) -> i128 {
         let geo = geometry(table, zoom, Zoom::ONE);
         let value = table.position(at, &mut Cursor::new());
-        let n = strokes_at_start(&geo, SlaveAlign::Absolute, value, slave).unwrap();
+        let n = strokes_at_start(geo.strokes(), SlaveAlign::Absolute, slave, |n| {
+            geo.zoomed(n, value)
+        })
+        .unwrap();
         geo.zoomed(n, value).unwrap()
     }
 

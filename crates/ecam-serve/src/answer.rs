@@ -5,9 +5,9 @@
 use crate::bus::BusFace;
 use crate::map;
 use crate::pdu::{Exception, Request, Response};
+use crate::state::WriteError;
 use crate::state::{Event, Shared};
 use crate::write::WriteBatch;
-use crate::write_error::WriteError;
 
 /// Makes `batch` durable and applies it, or answers the exception: 03
 /// when the running cams refuse it, 04 when the journal failed (reported).

@@ -71,7 +71,6 @@ mod state;
 mod state_file;
 mod table_load;
 mod write;
-mod write_error;
 
 pub use answer::answer_request;
 pub use bus::{
@@ -97,8 +96,7 @@ pub use pdu::{
 pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
-pub use state::{Event, ServeInfo, Shared, Stats};
+pub use state::{Event, ServeInfo, Shared, Stats, WriteError};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use write::{LineError, Slot, WriteBatch};
-pub use write_error::WriteError;

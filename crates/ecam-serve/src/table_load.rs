@@ -19,8 +19,7 @@ use ecam_plc::{Device, Devices};
 use serde_json::Value;
 
 use crate::WriteBatch;
-use crate::state::Shared;
-use crate::write_error::WriteError;
+use crate::state::{Shared, WriteError};
 
 /// What to do when the block's cam is running.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
