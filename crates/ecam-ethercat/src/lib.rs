@@ -34,12 +34,15 @@
 
 pub mod cia402;
 pub mod config;
+pub mod dc;
 pub mod drive;
+pub mod driver;
 pub mod emulation;
 mod error;
 pub mod follow;
 pub mod line;
 pub mod link;
+pub mod monitor;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
@@ -48,3 +51,4 @@ pub mod supervisor;
 pub use drive::Cia402Drive;
 pub use error::EthercatError;
 pub use segment::{CycleReport, Segment, SegmentConfig, Transport};
+pub use link::LinkStats;
