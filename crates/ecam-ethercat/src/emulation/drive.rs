@@ -88,7 +88,8 @@ impl DriveModel {
     }
 
     /// The ESC's process-data watchdog ran out: a drive with its power
-    /// stage on faults with [`ERROR_WATCHDOG`].
+    /// stage on faults with [`ERROR_WATCHDOG`] at once (its own
+    /// application reacts; it does not wait for the next frame).
     pub fn communication_lost(&mut self) {
         if matches!(
             self.state,
@@ -97,7 +98,9 @@ impl DriveModel {
                 | DriveState::OperationEnabled
                 | DriveState::QuickStopActive
         ) {
-            self.pending_fault = Some(ERROR_WATCHDOG);
+            self.state = DriveState::Fault;
+            self.error_code = ERROR_WATCHDOG;
+            self.delay_line.clear();
         }
     }
 

@@ -50,7 +50,7 @@ const AL_SYNC_MANAGER_WATCHDOG: u16 = 0x001B;
 
 /// The process-data watchdog an ESC starts with (ETG1000.4: divider 2498
 /// of 25 MHz = 100 µs ticks, 1000 ticks).
-const WATCHDOG_NS: u64 = 100_000_000;
+pub(crate) const DEFAULT_WATCHDOG: std::time::Duration = std::time::Duration::from_millis(100);
 
 /// Delay the emulation books for each ESC a frame passes, per direction.
 const HOP_NS: u32 = 100;
@@ -107,6 +107,8 @@ pub(crate) struct Hop {
     pub(crate) reachable: usize,
     /// Local clock of this ESC when the frame arrived, ns.
     pub(crate) now_ns: u64,
+    /// The process-data watchdog, ns (`None`: off).
+    pub(crate) watchdog_ns: Option<u64>,
 }
 
 /// One emulated ESC with a CSP drive behind it.
@@ -152,6 +154,7 @@ impl Esc {
             );
             self.last_outputs_ns = None;
             self.drive.communication_lost();
+            self.publish_inputs();
         }
     }
 
@@ -213,8 +216,8 @@ impl Esc {
         hop: Hop,
     ) {
         let logical = u32::from(ado) << 16 | u32::from(*adp);
-        if let Some(last) = self.last_outputs_ns {
-            if hop.now_ns.saturating_sub(last) > WATCHDOG_NS {
+        if let (Some(last), Some(limit)) = (self.last_outputs_ns, hop.watchdog_ns) {
+            if hop.now_ns.saturating_sub(last) > limit {
                 self.watchdog_expired();
             }
         }
@@ -543,6 +546,7 @@ mod tests {
         position: 0,
         reachable: 1,
         now_ns: 1_000,
+        watchdog_ns: None,
     };
 
     fn write(esc: &mut Esc, register: u16, bytes: &[u8]) -> u16 {

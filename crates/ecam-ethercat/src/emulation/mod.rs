@@ -57,6 +57,7 @@ pub struct EmulatedSegment {
     started: Instant,
     frames: u64,
     impairment: Impairment,
+    watchdog: Option<Duration>,
 }
 
 impl EmulatedSegment {
@@ -75,7 +76,15 @@ impl EmulatedSegment {
             started: Instant::now(),
             frames: 0,
             impairment: Impairment::default(),
+            watchdog: Some(esc::DEFAULT_WATCHDOG),
         }
+    }
+
+    /// Sets the ESCs' process-data watchdog (`None`: off). It starts at
+    /// the ESC's default, 100 ms; tests that cycle without a real-time
+    /// clock switch it off, since a loaded host may pause them longer.
+    pub fn set_watchdog(&mut self, watchdog: Option<Duration>) {
+        self.watchdog = watchdog;
     }
 
     /// Sets what the wire does to the replies from now on.
@@ -153,6 +162,9 @@ impl EmulatedSegment {
                 position,
                 reachable,
                 now_ns,
+                watchdog_ns: self
+                    .watchdog
+                    .map(|w| u64::try_from(w.as_nanos()).unwrap_or(u64::MAX)),
             };
             let mut walk = Datagrams::new();
             while let Some(d) = walk.next_in(&out[start..end]) {

@@ -33,8 +33,20 @@ fn test_config() -> SegmentConfig {
 /// A segment of `drives` emulated drives brought to OP, and the handle
 /// to the emulation.
 fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
-    let emulation = Arc::new(Mutex::new(EmulatedSegment::new(drives, behaviour)));
-    let config = test_config();
+    emulated_with(drives, behaviour, test_config())
+}
+
+/// As [`emulated`], with this timing. The ESCs' watchdog is off: these
+/// tests cycle without a real-time clock, and a loaded host may pause
+/// them for longer than it.
+fn emulated_with(
+    drives: usize,
+    behaviour: DriveBehaviour,
+    config: SegmentConfig,
+) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
+    let mut segment = EmulatedSegment::new(drives, behaviour);
+    segment.set_watchdog(None);
+    let emulation = Arc::new(Mutex::new(segment));
     let segment =
         Segment::bring_up(Transport::Emulated(Arc::clone(&emulation)), config).expect("bring-up");
     (segment, emulation)
