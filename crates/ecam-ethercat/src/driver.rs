@@ -49,7 +49,7 @@ const RECOVER_AFTER: Duration = Duration::from_millis(100);
 const STEP_MARGIN: Duration = Duration::from_micros(100);
 
 /// A line the driver cycles.
-pub trait Line: Send {
+pub trait Line {
     /// Where the line is.
     fn state(&self) -> LineState;
     /// The segment.
@@ -82,7 +82,7 @@ pub trait Line: Send {
     }
 }
 
-impl<C: CamCurve + Send> Line for CamLine<C> {
+impl<C: CamCurve> Line for CamLine<C> {
     fn state(&self) -> LineState {
         CamLine::state(self)
     }
@@ -294,7 +294,7 @@ pub fn spawn<L, F>(
     mut after_cycle: F,
 ) -> std::io::Result<JoinHandle<Summary>>
 where
-    L: Line + 'static,
+    L: Line + Send + 'static,
     F: FnMut(&L) + Send + 'static,
 {
     thread::Builder::new()
@@ -304,6 +304,24 @@ where
             driver.run(&mut line, &config, &monitor, &mut after_cycle);
             driver.summary(&line)
         })
+}
+
+/// Runs the cycle on the calling thread (which it configures for real
+/// time) until the line has stopped; for lines that cannot move to another
+/// thread.
+pub fn run_here<L, F>(
+    mut line: L,
+    config: DriverConfig,
+    monitor: &LineMonitor,
+    mut after_cycle: F,
+) -> Summary
+where
+    L: Line,
+    F: FnMut(&L),
+{
+    let mut driver = Driver::new(&line, &config);
+    driver.run(&mut line, &config, monitor, &mut after_cycle);
+    driver.summary(&line)
 }
 
 /// The driver's state between cycles.

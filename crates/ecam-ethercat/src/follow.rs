@@ -395,7 +395,8 @@ impl FollowLine {
                 let travelled = (i128::from(v) * (k * n - k * (k + 1) / 2)).div_euclid(n);
                 f.target = from.saturating_add(i64::try_from(travelled).unwrap_or(0));
             } else {
-                if !drive.status().enabled {
+                // The state last heard: a lost cycle does not re-origin.
+                if drive.state() != crate::cia402::DriveState::OperationEnabled {
                     // Not following yet: the target is where the drive
                     // stands.
                     f.origin = drive.actual().saturating_sub(counts);

@@ -46,6 +46,7 @@ pub mod monitor;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
+pub mod summary;
 pub mod supervisor;
 
 pub use drive::Cia402Drive;

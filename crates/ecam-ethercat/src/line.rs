@@ -20,6 +20,7 @@ use ecam_core::CamCurve;
 use ecam_engine::drive::AxisDrive;
 use ecam_engine::{CamAxis, EngineError, StopKind, TickInput, TickOutput};
 
+use crate::cia402::DriveState;
 use crate::error::EthercatError;
 use crate::segment::{CycleReport, Segment};
 pub use crate::supervisor::{FaultCause, LineFault, LineState};
@@ -327,7 +328,8 @@ impl<C: CamCurve> CamLine<C> {
             let Some(drive) = drives.get(a.drive) else {
                 continue;
             };
-            let enabled = drive.status().enabled;
+            // The state last heard: a lost cycle does not disable the cam.
+            let enabled = drive.state() == DriveState::OperationEnabled;
             let actual = drive.actual();
             *out = a.axis.tick(&TickInput {
                 master,

@@ -120,6 +120,43 @@ pub enum Transport {
     Emulated(Arc<Mutex<EmulatedSegment>>),
 }
 
+impl Transport {
+    /// `emulated` drives in this process (returned too, to inject faults),
+    /// or else the configuration's `interface`; `None` when neither is
+    /// given.
+    pub fn choose(
+        emulated: Option<u16>,
+        interface: Option<&str>,
+    ) -> Option<(Self, Option<Arc<Mutex<EmulatedSegment>>>)> {
+        match (emulated, interface) {
+            (Some(n), _) => {
+                let segment = Arc::new(Mutex::new(EmulatedSegment::new(
+                    usize::from(n),
+                    crate::emulation::DriveBehaviour::default(),
+                )));
+                Some((Self::Emulated(Arc::clone(&segment)), Some(segment)))
+            }
+            (None, Some(interface)) => Some((Self::Interface(interface.to_string()), None)),
+            (None, None) => None,
+        }
+    }
+
+    /// The transport in words: the interface, or `emulated (N drives)`.
+    pub fn describe(&self) -> String {
+        match self {
+            Self::Interface(name) => name.clone(),
+            Self::Emulated(segment) => format!(
+                "emulated ({} drives)",
+                segment
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner)
+                    .escs()
+                    .len()
+            ),
+        }
+    }
+}
+
 impl Link {
     /// Opens the transport for the two loops.
     ///

@@ -454,3 +454,49 @@ fn a_drive_that_needs_the_reset_bit_held_is_reset() {
     assert_eq!(line.segment().drives()[0].state(), DriveState::SwitchOnDisabled);
     start(&mut line);
 }
+
+/// After a lost cycle the cams go on: the drive's last state counts (a
+/// lost reply once stopped a line shaft for good).
+#[test]
+fn after_a_lost_cycle_the_shaft_goes_on() {
+    let config = SegmentConfig {
+        reply_timeout: Duration::from_millis(5),
+        ..crate::test_config()
+    };
+    let (segment, emulation) = crate::emulated_with(1, DriveBehaviour::default(), config);
+    let shaft = ecam_engine::CamAxis::new(
+        ecam_core::PointTable::from_pairs(&[(0, 0), (1000, 1000)]).unwrap(),
+        ecam_engine::AxisConfig {
+            coupling: ecam_engine::Coupling::Repeat { min_stroke: 1 },
+            slave_align: ecam_engine::SlaveAlign::Relative,
+            ..ecam_engine::AxisConfig::default()
+        },
+    )
+    .unwrap();
+    let axes = vec![CamDrive {
+        axis: shaft,
+        drive: 0,
+        master: Master::Virtual,
+    }];
+    let mut line = CamLine::new(segment, axes, 100, Duration::ZERO).unwrap();
+    line.virtual_speed = 11;
+    start(&mut line);
+    for _ in 0..50 {
+        line.cycle().unwrap();
+    }
+    emulation.lock().unwrap().impair(Impairment {
+        hold_count: 1,
+        hold: Duration::from_millis(8),
+        ..Impairment::default()
+    });
+    let mut lost = false;
+    for _ in 0..30 {
+        lost |= line.cycle().unwrap().bus.frame_lost;
+    }
+    assert!(lost);
+    let before = line.segment().drives()[0].actual();
+    for _ in 0..30 {
+        line.cycle().unwrap();
+    }
+    assert_eq!(line.segment().drives()[0].actual() - before, 30 * 11);
+}
