@@ -363,6 +363,7 @@ impl Driver {
         after_cycle: &mut F,
     ) {
         self.summary.setup = configure_current_thread(&config.rt);
+        monitor.set_scheduling(self.summary.setup.to_string());
         let mut clock = match CycleClock::start(config.rt.period) {
             Ok(clock) => clock,
             Err(e) => {

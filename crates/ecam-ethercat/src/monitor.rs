@@ -149,6 +149,7 @@ pub struct LineMonitor {
     tail: AtomicUsize,
     senders: Mutex<()>,
     stop: AtomicBool,
+    scheduling: std::sync::OnceLock<String>,
 }
 
 fn zeros<const N: usize>() -> [AtomicU64; N] {
@@ -236,7 +237,19 @@ impl LineMonitor {
             tail: AtomicUsize::new(0),
             senders: Mutex::new(()),
             stop: AtomicBool::new(false),
+            scheduling: std::sync::OnceLock::new(),
         }
+    }
+
+    /// Records what scheduling the cycle got (the driver, before its
+    /// first cycle).
+    pub fn set_scheduling(&self, text: String) {
+        let _ = self.scheduling.set(text);
+    }
+
+    /// What scheduling the cycle got, once it runs.
+    pub fn scheduling(&self) -> Option<&str> {
+        self.scheduling.get().map(String::as_str)
     }
 
     /// Drives in the image.

@@ -170,7 +170,6 @@ fn run_line(args: RunArgs) -> anyhow::Result<()> {
     );
     done.store(true, Ordering::Release);
     let _ = watcher.join();
-    println!("cycle: {}", summary.setup);
     println!("{}", status_line(&monitor.snapshot(), Duration::ZERO));
     if let Some(e) = &summary.error {
         bail!("the cycle stopped: {e}");
@@ -185,8 +184,13 @@ fn watch(monitor: &LineMonitor, every: Duration, done: &AtomicBool) {
     let started = Instant::now();
     let mut last_status = started;
     let mut seen_faults = 0;
+    let mut told = false;
     loop {
         std::thread::sleep(Duration::from_millis(20));
+        if let (false, Some(scheduling)) = (told, monitor.scheduling()) {
+            println!("cycle: {scheduling}");
+            told = true;
+        }
         let snapshot = monitor.snapshot();
         if snapshot.fault_events > seen_faults {
             let new = usize::try_from(snapshot.fault_events - seen_faults).unwrap_or(usize::MAX);
