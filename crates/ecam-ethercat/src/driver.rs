@@ -381,6 +381,15 @@ impl Driver {
         )
         .unwrap_or(u64::MAX);
         loop {
+            if stopping.is_none() {
+                let done = config
+                    .cycles
+                    .is_some_and(|n| self.summary.counters.cycles >= n);
+                if done || monitor.stop_requested() {
+                    line.stop();
+                    stopping = Some(0);
+                }
+            }
             let mut scratch = LatenessHistogram::default();
             let lateness = if stopping.is_none() {
                 &mut self.summary.lateness
@@ -392,17 +401,7 @@ impl Driver {
                 break;
             }
             match &mut stopping {
-                None => {
-                    let done = config
-                        .cycles
-                        .is_some_and(|n| self.summary.counters.cycles >= n);
-                    if done || monitor.stop_requested() {
-                        line.stop();
-                        stopping = Some(0);
-                    } else {
-                        self.obey(line, config, monitor, &mut clock);
-                    }
-                }
+                None => self.obey(line, config, monitor, &mut clock),
                 Some(n) => {
                     *n += 1;
                     self.summary.stop_cycles += 1;
