@@ -33,9 +33,10 @@ pub const SW_CSP_FOLLOWING: u16 = 1 << 12;
 pub const SW_CSP_FOLLOWING_ERROR: u16 = 1 << 13;
 
 /// The states of the CiA 402 power drive system.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum DriveState {
     /// Initialising; the controlword is not obeyed yet.
+    #[default]
     NotReadyToSwitchOn,
     /// Initialised, power stage off, waiting for "shutdown".
     SwitchOnDisabled,
@@ -51,12 +52,6 @@ pub enum DriveState {
     FaultReactionActive,
     /// Stopped on a fault; a fault reset (rising edge of bit 7) leaves it.
     Fault,
-}
-
-impl Default for DriveState {
-    fn default() -> Self {
-        Self::NotReadyToSwitchOn
-    }
 }
 
 impl DriveState {

@@ -116,7 +116,10 @@ mod tests {
     #[test]
     fn settles_on_the_shift_despite_drift() {
         let period = 1_000_000i64;
-        let mut lock = Sync0Lock::new(Duration::from_nanos(1_000_000), Duration::from_nanos(250_000));
+        let mut lock = Sync0Lock::new(
+            Duration::from_nanos(1_000_000),
+            Duration::from_nanos(250_000),
+        );
         // DC time at the first frame: 730 µs into a cycle.
         let mut dc = 5_000_730_000i64;
         let mut last_error = 0;

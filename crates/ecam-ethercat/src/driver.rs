@@ -48,6 +48,19 @@ const RECOVER_AFTER: Duration = Duration::from_millis(100);
 /// Time kept free at the end of a cycle when an acyclic step runs.
 const STEP_MARGIN: Duration = Duration::from_micros(100);
 
+/// An exchange that failed outright (not a lost frame: ethercrab refused
+/// the frame). Counted; the cycle goes on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExchangeFailed;
+
+impl core::fmt::Display for ExchangeFailed {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("the process-data exchange failed")
+    }
+}
+
+impl std::error::Error for ExchangeFailed {}
+
 /// A line the driver cycles.
 pub trait Line {
     /// Where the line is.
@@ -65,7 +78,7 @@ pub trait Line {
     ///
     /// # Errors
     /// The exchange failed outright (counted; the cycle goes on).
-    fn cycle(&mut self) -> Result<CycleReport, ()>;
+    fn cycle(&mut self) -> Result<CycleReport, ExchangeFailed>;
     /// One acyclic step within `budget`.
     fn acyclic_step(&mut self, budget: Duration);
     /// Not moving and not enabled.
@@ -96,13 +109,12 @@ impl<C: CamCurve> Line for CamLine<C> {
         CamLine::stop(self);
     }
     fn reset(&mut self) -> bool {
-        !matches!(
-            CamLine::reset(self),
-            Err(crate::line::LineError::Bus(_))
-        )
+        !matches!(CamLine::reset(self), Err(crate::line::LineError::Bus(_)))
     }
-    fn cycle(&mut self) -> Result<CycleReport, ()> {
-        CamLine::cycle(self).map(|r| r.bus).map_err(|_| ())
+    fn cycle(&mut self) -> Result<CycleReport, ExchangeFailed> {
+        CamLine::cycle(self)
+            .map(|r| r.bus)
+            .map_err(|_| ExchangeFailed)
     }
     fn acyclic_step(&mut self, budget: Duration) {
         CamLine::acyclic_step(self, budget);
@@ -122,7 +134,12 @@ impl<C: CamCurve> Line for CamLine<C> {
             .zip(self.outputs())
             .find(|(a, _)| a.drive == position)
             .map_or_else(
-                || self.segment().drives().get(position).map_or(0, |d| d.actual()),
+                || {
+                    self.segment()
+                        .drives()
+                        .get(position)
+                        .map_or(0, |d| d.actual())
+                },
                 |(_, out)| out.slave,
             )
     }
@@ -183,9 +200,12 @@ impl Line for Following {
     fn reset(&mut self) -> bool {
         !matches!(self.line.reset(), Err(crate::follow::FollowError::Bus(_)))
     }
-    fn cycle(&mut self) -> Result<CycleReport, ()> {
+    fn cycle(&mut self) -> Result<CycleReport, ExchangeFailed> {
         let totals = self.pulses.read();
-        self.line.cycle(&totals).map(|r| r.bus).map_err(|_| ())
+        self.line
+            .cycle(&totals)
+            .map(|r| r.bus)
+            .map_err(|_| ExchangeFailed)
     }
     fn acyclic_step(&mut self, budget: Duration) {
         self.line.acyclic_step(budget);
@@ -416,7 +436,8 @@ impl Driver {
                 self.recover(line, &mut clock);
             }
             let c = &mut self.summary.counters;
-            c.lateness_max_ns = u64::try_from(self.summary.lateness.max.as_nanos()).unwrap_or(u64::MAX);
+            c.lateness_max_ns =
+                u64::try_from(self.summary.lateness.max.as_nanos()).unwrap_or(u64::MAX);
             c.lateness_mean_ns =
                 u64::try_from(self.summary.lateness.mean().as_nanos()).unwrap_or(u64::MAX);
             c.overruns = self.summary.lateness.overruns;
@@ -499,7 +520,7 @@ impl Driver {
                     c.working_counter_errors += 1;
                 }
             }
-            Err(()) => c.exchange_errors += 1,
+            Err(ExchangeFailed) => c.exchange_errors += 1,
         }
         c.late_replies = line.segment().link_stats().late_discarded;
         let cycle = c.cycles;
@@ -525,7 +546,8 @@ impl Driver {
         match line.state() {
             LineState::Faulted => {
                 self.faulted_for += 1;
-                if self.flowing_for > self.recover_after || self.faulted_for > 10 * self.recover_after
+                if self.flowing_for > self.recover_after
+                    || self.faulted_for > 10 * self.recover_after
                 {
                     self.faulted_for = 0;
                     if line.reset() {

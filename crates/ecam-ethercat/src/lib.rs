@@ -51,5 +51,5 @@ pub mod supervisor;
 
 pub use drive::Cia402Drive;
 pub use error::EthercatError;
-pub use segment::{CycleReport, Segment, SegmentConfig, Transport};
 pub use link::LinkStats;
+pub use segment::{CycleReport, Segment, SegmentConfig, Transport};

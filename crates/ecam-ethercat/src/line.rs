@@ -122,7 +122,11 @@ impl StopRamp {
         let travelled = i128::from(self.speed) * (k * n - k * (k + 1) / 2);
         let travelled = travelled.div_euclid(n);
         self.from
-            .saturating_add(i64::try_from(travelled).unwrap_or(if travelled < 0 { i64::MIN } else { i64::MAX }))
+            .saturating_add(i64::try_from(travelled).unwrap_or(if travelled < 0 {
+                i64::MIN
+            } else {
+                i64::MAX
+            }))
     }
 }
 

@@ -13,8 +13,8 @@ use ethercrab::{
 
 use crate::drive::Cia402Drive;
 use crate::error::EthercatError;
-use crate::link::{self, Link, LinkStats, LoopId};
 pub use crate::link::Transport;
+use crate::link::{self, Link, LinkStats, LoopId};
 use crate::pdo::{CspInputs, INPUTS_LEN, OUTPUTS_LEN};
 
 /// Most drives one segment carries.
@@ -221,7 +221,14 @@ impl core::fmt::Debug for Segment {
     }
 }
 
-fn storage() -> Result<(ethercrab::PduTx<'static>, ethercrab::PduRx<'static>, ethercrab::PduLoop<'static>), EthercatError> {
+fn storage() -> Result<
+    (
+        ethercrab::PduTx<'static>,
+        ethercrab::PduRx<'static>,
+        ethercrab::PduLoop<'static>,
+    ),
+    EthercatError,
+> {
     // ethercrab's storage must outlive every frame in flight: each
     // segment keeps its two for the life of the process.
     let storage: &'static Storage = Box::leak(Box::new(PduStorage::new()));
@@ -376,11 +383,8 @@ impl Segment {
         }
         let expected = self.expected_working_counter;
         let deadline = Instant::now() + self.config.reply_timeout;
-        let response = match link::run(
-            &mut self.link,
-            self.group.tx_rx_dc(&self.cyclic),
-            deadline,
-        ) {
+        let response = match link::run(&mut self.link, self.group.tx_rx_dc(&self.cyclic), deadline)
+        {
             Some(Ok(response)) => response,
             // No reply by the deadline, or ethercrab has no free frame
             // (every one still waiting): this cycle is lost.

@@ -350,7 +350,10 @@ impl Supervisor {
         }
         for d in segment.drives_mut() {
             d.set_request(
-                if matches!(d.state(), DriveState::Fault | DriveState::FaultReactionActive) {
+                if matches!(
+                    d.state(),
+                    DriveState::Fault | DriveState::FaultReactionActive
+                ) {
                     Request::ResetFault
                 } else {
                     Request::Disabled
@@ -399,7 +402,11 @@ impl Supervisor {
         let enabling = self.state == LineState::Enabling;
         let late = enabling && self.cycles_in_state > self.enable_limit;
         for position in 0..segment.len() {
-            let al = segment.al_states().get(position).copied().unwrap_or_default();
+            let al = segment
+                .al_states()
+                .get(position)
+                .copied()
+                .unwrap_or_default();
             let ours = self.drives.contains(&position);
             let Some(d) = segment.drives().get(position) else {
                 continue;
@@ -412,7 +419,13 @@ impl Supervisor {
                     },
                 );
             } else if !bus.frame_lost && !matches!(al, AlState::Op | AlState::Unknown) {
-                self.fault(Some(position), FaultCause::LeftOp { state: al, code: None });
+                self.fault(
+                    Some(position),
+                    FaultCause::LeftOp {
+                        state: al,
+                        code: None,
+                    },
+                );
                 if let Some(slot) = self.recovery.get_mut(position) {
                     *slot = Recovery::Diagnose;
                 }
@@ -452,7 +465,11 @@ impl Supervisor {
     fn check_recovery(&mut self, segment: &mut Segment) -> bool {
         let mut done = true;
         for position in 0..segment.len() {
-            let al = segment.al_states().get(position).copied().unwrap_or_default();
+            let al = segment
+                .al_states()
+                .get(position)
+                .copied()
+                .unwrap_or_default();
             let Some(d) = segment.drives_mut().get_mut(position) else {
                 continue;
             };
@@ -480,7 +497,11 @@ impl Supervisor {
         }
         if self.cycles_in_state > self.recovery_limit {
             for position in 0..segment.len() {
-                let al = segment.al_states().get(position).copied().unwrap_or_default();
+                let al = segment
+                    .al_states()
+                    .get(position)
+                    .copied()
+                    .unwrap_or_default();
                 let d = &segment.drives()[position];
                 let faulted = matches!(
                     d.state(),
@@ -518,7 +539,11 @@ impl Supervisor {
             return;
         };
         self.next_step = (position + 1) % n.max(1);
-        let al = segment.al_states().get(position).copied().unwrap_or_default();
+        let al = segment
+            .al_states()
+            .get(position)
+            .copied()
+            .unwrap_or_default();
         let phase = self.recovery[position];
         let step = match phase {
             Recovery::Idle => return,
@@ -528,7 +553,7 @@ impl Supervisor {
             Recovery::WaitOp => {
                 if al == AlState::Op {
                     self.recovery[position] = Recovery::Idle;
-                } else if al == AlState::SafeOp && self.cycles_in_state % 50 == 0 {
+                } else if al == AlState::SafeOp && self.cycles_in_state.is_multiple_of(50) {
                     // Ask again now and then: a drive may refuse OP while
                     // its outputs are not yet valid.
                     self.recovery[position] = Recovery::RequestOp;

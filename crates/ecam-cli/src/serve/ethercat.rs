@@ -14,6 +14,7 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use anyhow::{Context as _, bail};
+use ecam_ethercat::Segment;
 use ecam_ethercat::cia402::error_code_text;
 use ecam_ethercat::config::FollowConfig;
 use ecam_ethercat::driver::{self, DriverConfig, Following, PulseTotals};
@@ -22,7 +23,6 @@ use ecam_ethercat::follow::FollowLine;
 use ecam_ethercat::monitor::{LineCommand, LineMonitor};
 use ecam_ethercat::summary::summary_json;
 use ecam_ethercat::supervisor::{LineState, al_state_code};
-use ecam_ethercat::Segment;
 use ecam_plc::Device;
 use ecam_serve::{
     BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, BusTicks, DriveView, Shared,
@@ -162,7 +162,8 @@ impl Bus {
         let scans = cycle_us / shared.info.timing.scan_us;
         let relays = self.relays;
         {
-            let (shared, stop, monitor) = (Arc::clone(&shared), Arc::clone(&stop), Arc::clone(&monitor));
+            let (shared, stop, monitor) =
+                (Arc::clone(&shared), Arc::clone(&stop), Arc::clone(&monitor));
             std::thread::Builder::new()
                 .name("plc-scan".into())
                 .spawn(move || {
@@ -270,7 +271,12 @@ impl BusSource for Source {
                     .find(|f| f.drive == Some(position))
                     .map(|f| f.cause.to_string()),
                 actual: d.actual,
-                target: self.outputs.get(position).copied().flatten().map(|_| d.target),
+                target: self
+                    .outputs
+                    .get(position)
+                    .copied()
+                    .flatten()
+                    .map(|_| d.target),
                 following_error: d.following_error,
                 output: self.outputs.get(position).copied().flatten(),
                 al_state_code: al_state_code(d.al_state),

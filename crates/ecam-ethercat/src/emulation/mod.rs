@@ -187,7 +187,8 @@ impl EmulatedSegment {
         out[6] |= 0x02;
         self.frames = self.frames.saturating_add(1);
         let impairment = &mut self.impairment;
-        if impairment.drop_every > 0 && self.frames % u64::from(impairment.drop_every) == 0 {
+        if impairment.drop_every > 0 && self.frames.is_multiple_of(u64::from(impairment.drop_every))
+        {
             return Reply::None;
         }
         if impairment.hold_count > 0 {

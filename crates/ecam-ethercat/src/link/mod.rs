@@ -260,10 +260,7 @@ impl Link {
     /// Hands a received frame to the loop and frame waiting for it.
     fn deliver(&mut self, n: usize) -> bool {
         let frame = &self.buffer[..n];
-        if n <= FIRST_PDU_INDEX
-            || frame[12..14] != ETHERCAT
-            || frame[6] & PASSED_AN_ESC == 0
-        {
+        if n <= FIRST_PDU_INDEX || frame[12..14] != ETHERCAT || frame[6] & PASSED_AN_ESC == 0 {
             // Not EtherCAT, or our own frame on its way out.
             return false;
         }
@@ -293,10 +290,10 @@ impl Link {
     fn receive(&mut self) -> Option<usize> {
         match &mut self.port {
             Port::Emulated(port) => port.recv(&mut self.buffer[..]),
-            Port::Socket { socket, .. } => match socket.as_ref()?.recv(&mut self.buffer[..]) {
-                Ok(n) => n,
-                Err(_) => None,
-            },
+            Port::Socket { socket, .. } => socket
+                .as_ref()?
+                .recv(&mut self.buffer[..])
+                .unwrap_or_default(),
         }
     }
 

@@ -59,7 +59,10 @@ impl RawSocket {
             ..pnet_datalink::Config::default()
         };
         match pnet_datalink::channel(&found, config)? {
-            pnet_datalink::Channel::Ethernet(tx, rx) => Ok(Self { fd, _pnet: (tx, rx) }),
+            pnet_datalink::Channel::Ethernet(tx, rx) => Ok(Self {
+                fd,
+                _pnet: (tx, rx),
+            }),
             _ => Err(io::Error::other("not an Ethernet interface")),
         }
     }

@@ -8,10 +8,10 @@
 use std::time::Duration;
 
 use ecam_engine::drive::{AxisDrive, DriveFault};
+use ecam_ethercat::SegmentConfig;
 use ecam_ethercat::cia402::DriveState;
 use ecam_ethercat::emulation::{DriveBehaviour, EmulatedSegment, Impairment};
 use ecam_ethercat::line::{CamDrive, CamLine, FaultCause, LineFault, LineState, Master};
-use ecam_ethercat::SegmentConfig;
 use ecam_ethercat::segment::AlState;
 
 use crate::rotary_knife::knife_axis;
@@ -285,7 +285,12 @@ fn a_drive_out_of_op_faults_the_line_and_a_reset_brings_it_back() {
     for _ in 0..50 {
         line.cycle().unwrap();
     }
-    emulation.lock().unwrap().esc_mut(1).unwrap().watchdog_expired();
+    emulation
+        .lock()
+        .unwrap()
+        .esc_mut(1)
+        .unwrap()
+        .watchdog_expired();
     let mut faults = Vec::new();
     for _ in 0..3 {
         line.cycle().unwrap();
@@ -451,7 +456,10 @@ fn a_drive_that_needs_the_reset_bit_held_is_reset() {
     }
     assert_eq!(line.state(), LineState::Faulted);
     recover(&mut line);
-    assert_eq!(line.segment().drives()[0].state(), DriveState::SwitchOnDisabled);
+    assert_eq!(
+        line.segment().drives()[0].state(),
+        DriveState::SwitchOnDisabled
+    );
     start(&mut line);
 }
 

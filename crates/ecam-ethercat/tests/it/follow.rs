@@ -236,7 +236,12 @@ fn bad_bindings_are_refused() {
     ));
     let (segment, _) = emulated(1, DriveBehaviour::default());
     assert!(matches!(
-        FollowLine::new(segment, vec![follower(0, 0), follower(1, 0)], 1, Duration::ZERO),
+        FollowLine::new(
+            segment,
+            vec![follower(0, 0), follower(1, 0)],
+            1,
+            Duration::ZERO
+        ),
         Err(FollowError::DriveTwice(0))
     ));
     let (segment, _) = emulated(1, DriveBehaviour::default());
