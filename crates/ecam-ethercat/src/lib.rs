@@ -42,6 +42,7 @@ mod error;
 pub mod follow;
 pub mod line;
 pub mod link;
+pub mod log_bridge;
 pub mod monitor;
 pub mod pdo;
 pub mod rt;
