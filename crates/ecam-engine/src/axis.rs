@@ -36,9 +36,11 @@ mod phase;
 #[cfg(test)]
 mod steady_tests;
 mod takeover;
+mod underway;
 
 pub use online::AfterPass;
 use phase::{Armed, Engaged, Phase};
+use underway::Change;
 
 /// A slave axis coupled to a master through a cam curve.
 ///
@@ -379,10 +381,9 @@ impl<C: CamCurve> CamAxis<C> {
         if steady_allowed
             && estimate.fraction == 0
             && let Phase::Running(engaged) = &mut self.phase
-            && let Some(constants) = engaged.steady.as_ref()
+            && let Some(constants) = engaged.underway.steady()
             && let Some(cam) = constants.sample(master, &self.curve, &mut self.cursor)
         {
-            debug_assert!(engaged.ramp.is_none() && !engaged.changing());
             engaged.followed = i128::from(master) << 32;
             let k = i128::from(cam.k);
             if engaged.place.k != k {
@@ -578,7 +579,7 @@ impl<C: CamCurve> CamAxis<C> {
             &mut self.cursor,
             place,
         )?;
-        let (slave, ratio) = match (&engaged.blend, &engaged.scaling) {
+        let (slave, ratio) = match (engaged.blend(), engaged.scaling()) {
             (Some(blend), _) => {
                 let blended = blend.command(master)?;
                 (blended.slave, blended.velocity_ratio)
@@ -599,7 +600,7 @@ impl<C: CamCurve> CamAxis<C> {
             (None, None) => (cam.slave, cam.velocity_ratio),
         };
         match engaged
-            .ramp
+            .ramp_in()
             .and_then(|ramp| Some((ramp, ramp.blend(master, slave)?)))
         {
             Some((ramp, blended)) => Ok((cam, blended, ratio * ramp.weight(master), true)),
@@ -617,7 +618,7 @@ impl<C: CamCurve> CamAxis<C> {
         fraction: u32,
     ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
-        engaged.steady = None;
+        engaged.underway.settle(None);
         // Ramps and blends end where the position itself reaches their
         // end, not its whole count (below the position when the master
         // runs backwards), so the straight line between counts never
@@ -626,17 +627,17 @@ impl<C: CamCurve> CamAxis<C> {
             counts: master,
             fraction,
         };
-        if let Some(ramp) = engaged.offsets
+        if let Some(ramp) = engaged.offsets().copied()
             && ramp.finished_at(at)
         {
             engaged.engagement = ramp.apply(&engaged.engagement, master)?;
-            engaged.offsets = None;
+            engaged.underway.end_change();
         }
-        if let Some(ramp) = engaged.scaling
+        if let Some(ramp) = engaged.scaling().copied()
             && ramp.finished_at(at)
         {
             self.geometry = ramp.target;
-            engaged.scaling = None;
+            engaged.underway.end_change();
         }
         let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
         if here.stopped.is_none() && self.switch_at_seam(&mut engaged, here.place)? {
@@ -648,14 +649,15 @@ impl<C: CamCurve> CamAxis<C> {
         }
         engaged.end_blend(at)?;
         if here.stopped.is_none() && stop_at.is_none() {
-            let blending = engaged.blend.is_some();
+            let blending = engaged.blend().is_some();
             let previous = engaged.followed;
             let now = (i128::from(master) << 32) | i128::from(fraction);
             let policy = self.missed_policy;
             let turn = self.config.single_turn;
             let fired = engaged
-                .pending
-                .as_mut()
+                .underway
+                .change_mut()
+                .and_then(Change::pending_mut)
                 .map(|p| p.fires(previous, now, blending, policy, turn));
             events.activation_missed |= fired.is_some_and(|f| f.missed);
             if let Some(switch) = fired.and_then(|f| f.at) {
@@ -703,10 +705,10 @@ impl<C: CamCurve> CamAxis<C> {
             slave =
                 i64::try_from(i128::from(slave) + step).map_err(|_| EngineError::SlaveOverflow)?;
         }
-        if engaged.ramp.is_some_and(|ramp| ramp.finished_at(at)) {
-            engaged.ramp = None;
+        if engaged.ramp_in().is_some_and(|ramp| ramp.finished_at(at)) {
+            engaged.underway.end_ramp_in();
         }
-        let blending = engaged.blend.is_some();
+        let blending = engaged.blend().is_some();
         self.commanded = slave;
         if engaged.place.k != place.k {
             events.cycle_completed = true;
@@ -722,14 +724,15 @@ impl<C: CamCurve> CamAxis<C> {
             velocity_ratio,
             following: !ramping
                 && !blending
-                && engaged.offsets.is_none()
-                && engaged.scaling.is_none(),
+                && engaged.offsets().is_none()
+                && engaged.scaling().is_none(),
             input_offset: engaged.engagement.input_offset(&self.geometry),
             slave,
         };
-        if engaged.ramp.is_none() && stop_at.is_none() && !engaged.changing() {
-            // Settled: the next ticks can take the steady path.
-            engaged.steady = engaged.engagement.steady(&self.geometry);
+        if stop_at.is_none() && engaged.underway.is_settled() {
+            // Nothing under way: the next ticks can take the steady path.
+            let steady = engaged.engagement.steady(&self.geometry);
+            engaged.underway.settle(steady);
         }
         let phase = if let Some(forward) = here.stopped {
             events.cycle_completed |= forward;

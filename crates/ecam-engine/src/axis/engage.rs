@@ -12,6 +12,7 @@ use crate::{EngineError, RampIn};
 
 use super::CamAxis;
 use super::phase::{Engaged, Phase};
+use super::underway::Underway;
 
 impl<C: CamCurve> CamAxis<C> {
     /// Engages the cam at master `at` from the slave where it stands.
@@ -33,16 +34,9 @@ impl<C: CamCurve> CamAxis<C> {
         };
         self.phase = Phase::Running(Engaged {
             engagement,
-            ramp: ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded)),
             place,
-            queued: None,
-            seam_blend: None,
-            pending: None,
-            blend: None,
-            offsets: None,
-            scaling: None,
             followed: i128::from(at) << 32,
-            steady: None,
+            underway: Underway::at_engage(ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded))),
         });
         Ok(())
     }

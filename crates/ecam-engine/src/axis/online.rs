@@ -15,6 +15,7 @@ use crate::{AxisConfig, EngineError, OffsetChange, SwitchAt, Zoom};
 
 use super::CamAxis;
 use super::phase::Phase;
+use super::underway::{Change, Next, Queued};
 
 /// What an axis does once a table queued at the seam has run its first pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -53,21 +54,30 @@ impl<C: CamCurve> CamAxis<C> {
     /// # Errors
     /// As [`CamAxis::queue_curve`].
     pub fn queue_curve_then(&mut self, curve: C, then: AfterPass) -> Result<(), EngineError> {
-        let geometry = Geometry::new(&curve, &self.config)?;
+        self.queue_for_seam(Queued {
+            curve,
+            then,
+            blend: None,
+        })
+    }
+
+    /// Queues a table for the next seam (engaged), or replaces the table
+    /// at once (not engaged; `then` and the blend are the engaged cam's).
+    fn queue_for_seam(&mut self, queued: Queued<C>) -> Result<(), EngineError> {
+        let geometry = Geometry::new(&queued.curve, &self.config)?;
         match &mut self.phase {
             Phase::Running(engaged) | Phase::Stopping(engaged, _) => {
                 if geometry.extent == Extent::Single {
                     return Err(EngineError::NoSeam);
                 }
-                engaged.pending = None;
-                engaged.seam_blend = None;
-                engaged.queued = Some((curve, then));
-                engaged.steady = None;
+                // A seam table never meets a refusal: it may wait beside
+                // any ramp or blend.
+                engaged.underway.wait(Next::Seam(queued))?;
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.geometry = geometry;
                 self.cursor = Cursor::new();
-                self.retired = Some(core::mem::replace(&mut self.curve, curve));
+                self.retired = Some(core::mem::replace(&mut self.curve, queued.curve));
             }
         }
         Ok(())
@@ -95,26 +105,23 @@ impl<C: CamCurve> CamAxis<C> {
     pub fn switch_curve(&mut self, curve: C, at: SwitchAt) -> Result<(), EngineError> {
         let (trigger, blend) = match at {
             SwitchAt::NextSeam { blend } => {
-                self.queue_curve(curve)?;
-                if let Phase::Running(engaged) | Phase::Stopping(engaged, _) = &mut self.phase {
-                    engaged.seam_blend = blend;
-                }
-                return Ok(());
+                return self.queue_for_seam(Queued {
+                    curve,
+                    then: AfterPass::Repeat,
+                    blend,
+                });
             }
             SwitchAt::MasterPosition { position, blend } => (Trigger::Position(position), blend),
             SwitchAt::Now { blend } => (Trigger::Now, blend),
         };
         Geometry::new(&curve, &self.config)?;
         match &mut self.phase {
-            Phase::Running(engaged) if engaged.offsets.is_some() || engaged.scaling.is_some() => {
-                Err(EngineError::Busy)
-            }
-            Phase::Running(engaged) => {
-                engaged.queued = None;
-                engaged.pending = Some(Pending::new(Takeover::Table(curve), trigger, blend));
-                engaged.steady = None;
-                Ok(())
-            }
+            // Refused beside an offset or scaling ramp.
+            Phase::Running(engaged) => engaged.underway.wait(Next::Switch(Pending::new(
+                Takeover::Table(curve),
+                trigger,
+                blend,
+            ))),
             Phase::Stopping(..) => Err(EngineError::Busy),
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.queue_curve(curve)
@@ -127,7 +134,8 @@ impl<C: CamCurve> CamAxis<C> {
     pub fn has_queued_curve(&self) -> bool {
         self.phase
             .engaged()
-            .is_some_and(|e| e.queued.is_some() || e.pending.is_some())
+            .and_then(|e| e.underway.change())
+            .is_some_and(Change::waiting)
     }
 
     /// Changes the master and slave offsets of the running cam by
@@ -145,13 +153,9 @@ impl<C: CamCurve> CamAxis<C> {
         let mden = self.geometry.master_den();
         match &mut self.phase {
             Phase::Running(engaged) => {
-                if engaged.changing() {
-                    return Err(EngineError::Busy);
-                }
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
-                engaged.offsets = Some(OffsetRamp::new(change, from, mden));
-                engaged.steady = None;
-                Ok(())
+                let ramp = OffsetRamp::new(change, from, mden);
+                engaged.underway.begin(Change::Offsets(ramp, None))
             }
             _ => Err(EngineError::NotRunning),
         }
@@ -175,12 +179,9 @@ impl<C: CamCurve> CamAxis<C> {
         let target = self.geometry.with_slave_zoom(zoom);
         match &mut self.phase {
             Phase::Running(engaged) => {
-                if engaged.changing() {
-                    return Err(EngineError::Busy);
-                }
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
-                engaged.scaling = Some(ScalingRamp::new(target, from, distance));
-                engaged.steady = None;
+                let ramp = ScalingRamp::new(target, from, distance);
+                engaged.underway.begin(Change::Scaling(ramp, None))?;
                 self.config.slave_zoom = zoom;
                 Ok(())
             }
@@ -213,16 +214,13 @@ impl<C: CamCurve> CamAxis<C> {
         )?;
         match &mut self.phase {
             Phase::Running(engaged) => {
-                if engaged.changing() {
-                    return Err(EngineError::Busy);
-                }
-                engaged.pending = Some(Pending::new(
-                    Takeover::MasterScaling(zoom),
-                    Trigger::Now,
-                    blend,
-                ));
-                engaged.steady = None;
-                Ok(())
+                engaged
+                    .underway
+                    .begin(Change::Waiting(Next::Switch(Pending::new(
+                        Takeover::MasterScaling(zoom),
+                        Trigger::Now,
+                        blend,
+                    ))))
             }
             _ => Err(EngineError::NotRunning),
         }
@@ -230,12 +228,12 @@ impl<C: CamCurve> CamAxis<C> {
 
     /// True while an offset change is being ramped in.
     pub fn is_changing_offsets(&self) -> bool {
-        self.phase.engaged().is_some_and(|e| e.offsets.is_some())
+        self.phase.engaged().is_some_and(|e| e.offsets().is_some())
     }
 
     /// True while a switch's blend runs.
     pub fn is_blending(&self) -> bool {
-        self.phase.engaged().is_some_and(|e| e.blend.is_some())
+        self.phase.engaged().is_some_and(|e| e.blend().is_some())
     }
 
     /// The table the last switch or replacement retired, if not yet taken.

@@ -1,7 +1,5 @@
 //! The phases of an axis' life and what each one holds.
 
-use core::num::NonZeroU64;
-
 use crate::blend::Blend;
 use crate::coast::Coast;
 use crate::coupling::{Engagement, Place};
@@ -9,12 +7,10 @@ use crate::offset_ramp::OffsetRamp;
 use crate::ramp::Ramp;
 use crate::scaling::ScalingRamp;
 use crate::start::StartWatch;
-use crate::steady::Steady;
 use crate::stop::CycleEnd;
-use crate::switch::Pending;
 use crate::{AxisState, EngineError, MasterPosition};
 
-use super::AfterPass;
+use super::underway::{Change, Underway};
 
 /// The life of an axis; each phase holds what only it has, so a stopping
 /// axis without a cycle end, or a running one without an engagement,
@@ -50,58 +46,51 @@ pub(super) struct Armed {
 #[derive(Clone, Debug)]
 pub(super) struct Engaged<C> {
     pub(super) engagement: Engagement,
-    pub(super) ramp: Option<Ramp>,
     /// The place followed at the last tick (where a stop is measured from).
     pub(super) place: Place,
-    /// A table waiting for the next seam ([`CamAxis::queue_curve`]).
-    pub(super) queued: Option<(C, AfterPass)>,
-    /// The blend for the queued table's seam switch.
-    pub(super) seam_blend: Option<NonZeroU64>,
-    /// A table waiting for a master position or the next tick
-    /// ([`CamAxis::switch_curve`]); never together with `queued`.
-    pub(super) pending: Option<Pending<C>>,
-    /// The blend from the last switch's old cam, while it runs.
-    pub(super) blend: Option<Blend>,
-    /// An offset change being ramped in ([`CamAxis::change_offsets`]).
-    pub(super) offsets: Option<OffsetRamp>,
-    /// A slave-scaling change being ramped in
-    /// ([`CamAxis::change_slave_scaling`]).
-    pub(super) scaling: Option<ScalingRamp>,
     /// The master followed at the last tick, counts × 2^32 plus the
     /// fraction (where a switch position is crossed from).
     pub(super) followed: i128,
-    /// The engagement's 64-bit constants once the cam has settled (no
-    /// ramp-in, no change under way); the general tick clears and refills
-    /// them, and every change request clears them (`online.rs`), so they
-    /// never outlive what they were taken from and the steady tick needs
-    /// no other check.
-    pub(super) steady: Option<Steady>,
+    /// The ramp-in, a change, a blend or a table waiting, or nothing
+    /// (settled, with the steady tick's constants): `underway.rs`.
+    pub(super) underway: Underway<C>,
 }
 
 impl<C> Engaged<C> {
-    /// A table switch, blend, offset or scaling change is under way.
-    pub(super) fn changing(&self) -> bool {
-        self.offsets.is_some()
-            || self.scaling.is_some()
-            || self.blend.is_some()
-            || self.pending.is_some()
-            || self.queued.is_some()
+    /// The ramp-in, while it runs.
+    pub(super) fn ramp_in(&self) -> Option<&Ramp> {
+        self.underway.ramp_in()
+    }
+
+    /// The offset change being ramped in.
+    pub(super) fn offsets(&self) -> Option<&OffsetRamp> {
+        self.underway.change().and_then(Change::offsets)
+    }
+
+    /// The slave-scaling change being ramped in.
+    pub(super) fn scaling(&self) -> Option<&ScalingRamp> {
+        self.underway.change().and_then(Change::scaling)
+    }
+
+    /// The blend from the last switch's old cam, while it runs.
+    pub(super) fn blend(&self) -> Option<&Blend> {
+        self.underway.change().and_then(Change::blend)
     }
 
     /// Drops a blend the position `at` has completed, moving the new
     /// cam's output by the blend's whole shift so that the cam goes on
     /// where the blend ended.
     pub(super) fn end_blend(&mut self, at: MasterPosition) -> Result<(), EngineError> {
-        if let Some(shift) = self.blend.as_ref().and_then(|b| b.finished_at(at)) {
+        if let Some(shift) = self.blend().and_then(|b| b.finished_at(at)) {
             self.engagement.shift_output(shift)?;
-            self.blend = None;
+            self.underway.end_change();
         }
         Ok(())
     }
 
     /// The engagement in effect at `master`, an offset ramp included.
     pub(super) fn engagement_at(&self, master: i64) -> Result<Engagement, EngineError> {
-        match &self.offsets {
+        match self.offsets() {
             Some(ramp) => ramp.apply(&self.engagement, master),
             None => Ok(self.engagement),
         }

@@ -183,5 +183,5 @@ fn a_settled_cam_takes_the_steady_path() {
     let super::Phase::Running(engaged) = &axis.phase else {
         panic!("not running");
     };
-    assert!(engaged.steady.is_some());
+    assert!(engaged.underway.steady().is_some());
 }

@@ -12,24 +12,24 @@ use crate::switch::Takeover;
 use crate::{AxisConfig, EngineError, SlaveAlign};
 
 use super::phase::Engaged;
+use super::underway::{Change, Next, Queued, Underway};
 use super::{AfterPass, CamAxis};
 
 impl<C: CamCurve> CamAxis<C> {
     /// Ends a run: a table still queued is the one to restart with.
     pub(super) fn end_run(&mut self, engaged: Engaged<C>) {
-        let Engaged {
-            queued,
-            pending,
-            scaling,
-            ..
-        } = engaged;
+        let (scaling, waiting) = match engaged.underway {
+            Underway::RampIn(_, Some(change)) | Underway::Changing(change) => {
+                change.into_leftovers()
+            }
+            Underway::RampIn(_, None) | Underway::Settled(_) => (None, None),
+        };
         // The configuration already names the new scaling.
         if let Some(ramp) = scaling {
             self.geometry = ramp.target;
         }
-        let mut next = queued.map(|(curve, _)| curve);
-        match pending.map(|p| p.takeover) {
-            Some(Takeover::Table(curve)) => next = Some(curve),
+        let next = match waiting.map(Next::into_takeover) {
+            Some(Takeover::Table(curve)) => Some(curve),
             Some(Takeover::MasterScaling(zoom)) => {
                 let config = AxisConfig {
                     master_zoom: zoom,
@@ -39,9 +39,10 @@ impl<C: CamCurve> CamAxis<C> {
                     self.config = config;
                     self.geometry = geometry;
                 }
+                None
             }
-            None => {}
-        }
+            None => None,
+        };
         if let Some(curve) = next
             && let Ok(geometry) = Geometry::new(&curve, &self.config)
         {
@@ -60,7 +61,7 @@ impl<C: CamCurve> CamAxis<C> {
         engaged: &mut Engaged<C>,
         at: i64,
     ) -> Result<(), EngineError> {
-        let Some(pending) = engaged.pending.take() else {
+        let Some(pending) = engaged.underway.take_switch() else {
             return Ok(());
         };
         let place = self.resolve(&engaged.engagement, None, at).place;
@@ -102,13 +103,12 @@ impl<C: CamCurve> CamAxis<C> {
                 self.config = config;
             }
         }
-        engaged.blend = match pending.blend {
-            Some(distance) => {
-                let engagement = engaged.engagement;
-                Some(self.blend_onto(&engagement, at, distance, old.slave, old.velocity_ratio)?)
-            }
-            None => None,
-        };
+        if let Some(distance) = pending.blend {
+            let engagement = engaged.engagement;
+            let blend =
+                self.blend_onto(&engagement, at, distance, old.slave, old.velocity_ratio)?;
+            engaged.underway.begin(Change::Blend(blend, None))?;
+        }
         Ok(())
     }
 
@@ -122,11 +122,13 @@ impl<C: CamCurve> CamAxis<C> {
         let from = engaged.place;
         // A seam crossed while a blend runs is not taken: the switch waits
         // for the next seam after the blend.
+        // Only a table waiting alone is taken: beside a ramp or a blend it
+        // waits for the next seam after their end.
         if from.k == to.k
-            || engaged.queued.is_none()
-            || engaged.blend.is_some()
-            || engaged.offsets.is_some()
-            || engaged.scaling.is_some()
+            || !matches!(
+                engaged.underway.change(),
+                Some(Change::Waiting(Next::Seam(_)))
+            )
         {
             return Ok(false);
         }
@@ -142,12 +144,12 @@ impl<C: CamCurve> CamAxis<C> {
             engaged
                 .engagement
                 .sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
-        let Some((curve, then)) = engaged.queued.take() else {
+        let Some(Queued { curve, then, blend }) = engaged.underway.take_seam_table() else {
             return Ok(false);
         };
         // A blend starts at the last whole master count before the seam,
         // on the old cam there.
-        let blend_from = match engaged.seam_blend.take() {
+        let blend_from = match blend {
             Some(distance) => {
                 let at = engaged
                     .engagement
@@ -187,7 +189,8 @@ impl<C: CamCurve> CamAxis<C> {
         self.retired = Some(core::mem::replace(&mut self.curve, curve));
         engaged.engagement = next;
         if let Some((at, distance, p0, v0)) = blend_from {
-            engaged.blend = Some(self.blend_onto(&engaged.engagement, at, distance, p0, v0)?);
+            let blend = self.blend_onto(&engaged.engagement, at, distance, p0, v0)?;
+            engaged.underway.begin(Change::Blend(blend, None))?;
         }
         Ok(true)
     }

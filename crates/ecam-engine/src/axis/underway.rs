@@ -1,0 +1,408 @@
+//! What runs on top of an engaged cam, as types of what can coexist.
+//!
+//! - The **ramp-in** eases the slave onto whatever the cam commands, so it
+//!   goes with anything else; it only starts at engage.
+//! - An **offset or slave-scaling change** is ramped in only on a cam with
+//!   nothing else changing; a table queued for the seam meanwhile waits for
+//!   the ramp's end (a position or at-once switch is refused).
+//! - A switch's **blend** runs from the switch on; the next table (for the
+//!   seam, a master position or the next tick) waits for its end.
+//! - A **table waits** for the next seam or for its switch position (or the
+//!   next tick): one slot, a new request replaces the waiting one.
+//! - **Settled**: none of these; the steady tick's constants live here, so
+//!   they cannot outlive what they were taken from: every change replaces
+//!   this variant.
+//!
+//! [`Underway`] and [`Change`] hold exactly these combinations, so what
+//! may coexist is the shape of the types, not a rule each change request
+//! has to keep by hand.
+
+use core::num::NonZeroU64;
+
+use crate::EngineError;
+use crate::blend::Blend;
+use crate::offset_ramp::OffsetRamp;
+use crate::ramp::Ramp;
+use crate::scaling::ScalingRamp;
+use crate::steady::Steady;
+use crate::switch::{Pending, Takeover};
+
+use super::AfterPass;
+
+/// What is under way on top of the engaged cam.
+#[derive(Clone, Debug)]
+pub(super) enum Underway<C> {
+    /// Nothing: the steady tick's 64-bit constants once the general tick
+    /// has taken them (`None` before that, or when they leave 64 bits).
+    Settled(Option<Steady>),
+    /// The ramp-in runs, with a change beside it or not.
+    RampIn(Ramp, Option<Change<C>>),
+    /// A change, the ramp-in over.
+    Changing(Change<C>),
+}
+
+/// A change of the running cam: a ramp, a blend or a table waiting.
+#[derive(Clone, Debug)]
+pub(super) enum Change<C> {
+    /// An offset change being ramped in ([`crate::CamAxis::change_offsets`]);
+    /// a table queued for the seam waits for its end.
+    Offsets(OffsetRamp, Option<Queued<C>>),
+    /// A slave-scaling change being ramped in
+    /// ([`crate::CamAxis::change_slave_scaling`]); as `Offsets`.
+    Scaling(ScalingRamp, Option<Queued<C>>),
+    /// The blend from the last switch's old cam; the next table waits for
+    /// its end.
+    Blend(Blend, Option<Next<C>>),
+    /// A table waiting, nothing else changing.
+    Waiting(Next<C>),
+}
+
+/// The table waiting to take over.
+#[derive(Clone, Debug)]
+pub(super) enum Next<C> {
+    /// At the next seam ([`crate::CamAxis::queue_curve`]).
+    Seam(Queued<C>),
+    /// At a master position or the next tick ([`crate::CamAxis::switch_curve`],
+    /// [`crate::CamAxis::change_master_scaling`]).
+    Switch(Pending<C>),
+}
+
+/// A table queued for the next seam.
+#[derive(Clone, Debug)]
+pub(super) struct Queued<C> {
+    pub(super) curve: C,
+    /// What follows its first pass.
+    pub(super) then: AfterPass,
+    /// The blend of the seam switch.
+    pub(super) blend: Option<NonZeroU64>,
+}
+
+impl<C> Next<C> {
+    /// What takes over: the table, or the master scaling of a switch.
+    pub(super) fn into_takeover(self) -> Takeover<C> {
+        match self {
+            Self::Seam(queued) => Takeover::Table(queued.curve),
+            Self::Switch(pending) => pending.takeover,
+        }
+    }
+}
+
+impl<C> Underway<C> {
+    /// At engage: the ramp-in, if there is one, and nothing else.
+    pub(super) fn at_engage(ramp_in: Option<Ramp>) -> Self {
+        match ramp_in {
+            Some(ramp) => Self::RampIn(ramp, None),
+            None => Self::Settled(None),
+        }
+    }
+
+    /// The steady tick's constants, when settled and taken.
+    #[inline(always)]
+    pub(super) fn steady(&self) -> Option<&Steady> {
+        match self {
+            Self::Settled(steady) => steady.as_ref(),
+            _ => None,
+        }
+    }
+
+    /// Nothing is under way.
+    pub(super) fn is_settled(&self) -> bool {
+        matches!(self, Self::Settled(_))
+    }
+
+    /// The ramp-in, while it runs.
+    pub(super) fn ramp_in(&self) -> Option<&Ramp> {
+        match self {
+            Self::RampIn(ramp, _) => Some(ramp),
+            _ => None,
+        }
+    }
+
+    /// The change under way.
+    pub(super) fn change(&self) -> Option<&Change<C>> {
+        match self {
+            Self::RampIn(_, change) => change.as_ref(),
+            Self::Changing(change) => Some(change),
+            Self::Settled(_) => None,
+        }
+    }
+
+    /// The change under way, to change it.
+    pub(super) fn change_mut(&mut self) -> Option<&mut Change<C>> {
+        match self {
+            Self::RampIn(_, change) => change.as_mut(),
+            Self::Changing(change) => Some(change),
+            Self::Settled(_) => None,
+        }
+    }
+
+    /// Replaces the change (`None`: none), keeping the ramp-in; gives the
+    /// one there was.
+    fn replace_change(&mut self, change: Option<Change<C>>) -> Option<Change<C>> {
+        match core::mem::replace(self, Self::Settled(None)) {
+            Self::RampIn(ramp, old) => {
+                *self = Self::RampIn(ramp, change);
+                old
+            }
+            Self::Changing(old) => {
+                *self = Self::with_change(change);
+                Some(old)
+            }
+            Self::Settled(_) => {
+                *self = Self::with_change(change);
+                None
+            }
+        }
+    }
+
+    /// Without a ramp-in: the change, or settled (constants not yet taken).
+    fn with_change(change: Option<Change<C>>) -> Self {
+        match change {
+            Some(change) => Self::Changing(change),
+            None => Self::Settled(None),
+        }
+    }
+
+    /// Drops the ramp-in (it has ended); what runs beside it goes on.
+    pub(super) fn end_ramp_in(&mut self) {
+        if let Self::RampIn(..) = self
+            && let Self::RampIn(_, change) = core::mem::replace(self, Self::Settled(None))
+        {
+            *self = Self::with_change(change);
+        }
+    }
+
+    /// Ends the change's ramp or blend: the table waiting beside it, if
+    /// any, is what remains.
+    pub(super) fn end_change(&mut self) {
+        let change = self.replace_change(None);
+        self.replace_change(change.and_then(Change::after_end));
+    }
+
+    /// Starts `change` (an offset or scaling ramp, a master-scaling
+    /// switch, a switch's blend) on a cam with nothing changing.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] while another change is under way.
+    pub(super) fn begin(&mut self, change: Change<C>) -> Result<(), EngineError> {
+        if self.change().is_some() {
+            return Err(EngineError::Busy);
+        }
+        self.replace_change(Some(change));
+        Ok(())
+    }
+
+    /// Lets `next` wait in the table slot, replacing the table waiting
+    /// there; a ramp or blend under way goes on.
+    ///
+    /// # Errors
+    /// [`EngineError::Busy`] for a switch while an offset or scaling
+    /// change is being ramped in (nothing changes).
+    pub(super) fn wait(&mut self, next: Next<C>) -> Result<(), EngineError> {
+        let (change, answer) = match (self.replace_change(None), next) {
+            (Some(Change::Offsets(ramp, _)), Next::Seam(queued)) => {
+                (Change::Offsets(ramp, Some(queued)), Ok(()))
+            }
+            (Some(Change::Scaling(ramp, _)), Next::Seam(queued)) => {
+                (Change::Scaling(ramp, Some(queued)), Ok(()))
+            }
+            // Refused: the ramp goes on as it was.
+            (Some(ramp @ (Change::Offsets(..) | Change::Scaling(..))), Next::Switch(_)) => {
+                (ramp, Err(EngineError::Busy))
+            }
+            (Some(Change::Blend(blend, _)), next) => (Change::Blend(blend, Some(next)), Ok(())),
+            (Some(Change::Waiting(_)) | None, next) => (Change::Waiting(next), Ok(())),
+        };
+        self.replace_change(Some(change));
+        answer
+    }
+
+    /// Takes the switch waiting for its position or the next tick out of
+    /// a change that is only that switch (a blend keeps it waiting).
+    pub(super) fn take_switch(&mut self) -> Option<Pending<C>> {
+        if !matches!(self.change(), Some(Change::Waiting(Next::Switch(_)))) {
+            return None;
+        }
+        match self.replace_change(None) {
+            Some(Change::Waiting(Next::Switch(pending))) => Some(pending),
+            other => {
+                self.replace_change(other);
+                None
+            }
+        }
+    }
+
+    /// Takes the table queued for the seam out of a change that is only
+    /// that table (a ramp or blend keeps it waiting).
+    pub(super) fn take_seam_table(&mut self) -> Option<Queued<C>> {
+        if !matches!(self.change(), Some(Change::Waiting(Next::Seam(_)))) {
+            return None;
+        }
+        match self.replace_change(None) {
+            Some(Change::Waiting(Next::Seam(queued))) => Some(queued),
+            other => {
+                self.replace_change(other);
+                None
+            }
+        }
+    }
+
+    /// Sets the steady tick's constants: only a settled cam keeps them.
+    pub(super) fn settle(&mut self, steady: Option<Steady>) {
+        if let Self::Settled(constants) = self {
+            *constants = steady;
+        }
+    }
+}
+
+impl<C> Change<C> {
+    /// The offset change being ramped in.
+    pub(super) fn offsets(&self) -> Option<&OffsetRamp> {
+        match self {
+            Self::Offsets(ramp, _) => Some(ramp),
+            _ => None,
+        }
+    }
+
+    /// The slave-scaling change being ramped in.
+    pub(super) fn scaling(&self) -> Option<&ScalingRamp> {
+        match self {
+            Self::Scaling(ramp, _) => Some(ramp),
+            _ => None,
+        }
+    }
+
+    /// The switch's blend.
+    pub(super) fn blend(&self) -> Option<&Blend> {
+        match self {
+            Self::Blend(blend, _) => Some(blend),
+            _ => None,
+        }
+    }
+
+    /// A table waits, for the seam or a switch.
+    pub(super) fn waiting(&self) -> bool {
+        match self {
+            Self::Offsets(_, queued) | Self::Scaling(_, queued) => queued.is_some(),
+            Self::Blend(_, next) => next.is_some(),
+            Self::Waiting(_) => true,
+        }
+    }
+
+    /// The switch waiting for its position or the next tick.
+    pub(super) fn pending_mut(&mut self) -> Option<&mut Pending<C>> {
+        match self {
+            Self::Blend(_, Some(Next::Switch(pending))) | Self::Waiting(Next::Switch(pending)) => {
+                Some(pending)
+            }
+            _ => None,
+        }
+    }
+
+    /// What remains once the ramp or blend has ended: the table waiting
+    /// beside it, if any.
+    fn after_end(self) -> Option<Self> {
+        match self {
+            Self::Offsets(_, queued) | Self::Scaling(_, queued) => {
+                queued.map(|q| Self::Waiting(Next::Seam(q)))
+            }
+            Self::Blend(_, next) => next.map(Self::Waiting),
+            waiting @ Self::Waiting(_) => Some(waiting),
+        }
+    }
+
+    /// Everything a run leaves behind when it ends: the scaling a ramp was
+    /// moving to, and the table that was waiting.
+    pub(super) fn into_leftovers(self) -> (Option<ScalingRamp>, Option<Next<C>>) {
+        match self {
+            Self::Offsets(_, queued) => (None, queued.map(Next::Seam)),
+            Self::Scaling(ramp, queued) => (Some(ramp), queued.map(Next::Seam)),
+            Self::Blend(_, next) => (None, next),
+            Self::Waiting(next) => (None, Some(next)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::OffsetChange;
+    use crate::switch::Trigger;
+
+    fn offsets() -> Change<()> {
+        let change = OffsetChange {
+            master: 0,
+            slave: 10,
+            distance: NonZeroU64::MIN,
+        };
+        Change::Offsets(OffsetRamp::new(change, 0, 1), None)
+    }
+
+    fn seam() -> Next<()> {
+        Next::Seam(Queued {
+            curve: (),
+            then: AfterPass::Repeat,
+            blend: None,
+        })
+    }
+
+    fn switch() -> Next<()> {
+        Next::Switch(Pending::new(Takeover::Table(()), Trigger::Now, None))
+    }
+
+    #[test]
+    fn a_seam_table_waits_beside_a_ramp_and_outlasts_it() {
+        let mut underway = Underway::at_engage(None);
+        underway.begin(offsets()).unwrap();
+        underway.wait(seam()).unwrap();
+        assert!(underway.change().is_some_and(Change::waiting));
+        // Not taken while the ramp runs.
+        assert!(underway.take_seam_table().is_none());
+        underway.end_change();
+        assert!(matches!(
+            underway.change(),
+            Some(Change::Waiting(Next::Seam(_)))
+        ));
+        assert!(underway.take_seam_table().is_some());
+        assert!(underway.is_settled());
+    }
+
+    #[test]
+    fn a_switch_beside_a_ramp_is_refused_and_the_ramp_goes_on() {
+        let mut underway = Underway::at_engage(None);
+        underway.begin(offsets()).unwrap();
+        assert_eq!(underway.wait(switch()), Err(EngineError::Busy));
+        assert!(underway.change().and_then(Change::offsets).is_some());
+        assert_eq!(underway.begin(offsets()), Err(EngineError::Busy));
+    }
+
+    #[test]
+    fn the_ramp_in_goes_with_anything_and_a_change_keeps_it() {
+        let ramp = Ramp::new(
+            crate::RampIn {
+                distance: NonZeroU64::MIN,
+            },
+            0,
+            0,
+        );
+        let mut underway = Underway::at_engage(Some(ramp));
+        underway.settle(None);
+        assert!(underway.steady().is_none() && !underway.is_settled());
+        underway.wait(switch()).unwrap();
+        assert!(underway.ramp_in().is_some());
+        assert!(underway.take_switch().is_some());
+        assert!(underway.ramp_in().is_some() && underway.change().is_none());
+        underway.end_ramp_in();
+        assert!(underway.is_settled());
+    }
+
+    #[test]
+    fn a_new_table_replaces_the_waiting_one_whatever_its_kind() {
+        let mut underway = Underway::at_engage(None);
+        underway.wait(switch()).unwrap();
+        underway.wait(seam()).unwrap();
+        assert!(underway.take_switch().is_none());
+        assert!(underway.take_seam_table().is_some());
+        assert!(underway.change().is_none());
+    }
+}
