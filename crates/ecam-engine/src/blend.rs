@@ -25,7 +25,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::ramp::quintic;
+use crate::master_ramp::{MasterRamp, quintic};
 use crate::{EngineError, MasterPosition};
 
 /// One way out of the blend (the master may leave it forwards or backwards).
@@ -42,8 +42,7 @@ struct Side {
 /// A blend in progress.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Blend {
-    from: i64,
-    distance: u64,
+    span: MasterRamp,
     p0: i64,
     v0: f64,
     sides: [Side; 2],
@@ -72,8 +71,8 @@ pub(crate) struct Blended {
 impl Blend {
     /// The master positions where a blend from `from` over `distance` ends,
     /// forwards and backwards.
-    pub(crate) fn ends(from: i64, distance: u64) -> Result<[i64; 2], EngineError> {
-        let d = i128::from(distance);
+    pub(crate) fn ends(from: i64, distance: NonZeroU64) -> Result<[i64; 2], EngineError> {
+        let d = i128::from(distance.get());
         let at = |v: i128| i64::try_from(v).map_err(|_| EngineError::SlaveOverflow);
         Ok([at(i128::from(from) + d)?, at(i128::from(from) - d)?])
     }
@@ -82,7 +81,7 @@ impl Blend {
     /// onto the new cam, which ends at `ends` (as from [`Blend::ends`]).
     pub(crate) fn start(
         from: i64,
-        distance: u64,
+        distance: NonZeroU64,
         p0: i64,
         v0: f64,
         ends: [BlendEnd; 2],
@@ -94,7 +93,7 @@ impl Blend {
         }; 2];
         for ((side, end), sign) in sides.iter_mut().zip(ends).zip([1.0, -1.0]) {
             let v1 = end.velocity_ratio;
-            let target = p0 as f64 + sign * distance as f64 * 0.5 * (v0 + v1);
+            let target = p0 as f64 + sign * distance.get() as f64 * 0.5 * (v0 + v1);
             let gap = target - end.slave as f64;
             let shift = if target >= p0 as f64 {
                 libm::ceil(gap)
@@ -111,8 +110,7 @@ impl Blend {
             };
         }
         Ok(Self {
-            from,
-            distance,
+            span: MasterRamp::new(from, distance),
             p0,
             v0,
             sides,
@@ -121,30 +119,28 @@ impl Blend {
 
     /// [`Self::finished`] for the position itself, fraction included.
     pub(crate) fn finished_at(&self, at: MasterPosition) -> Option<i128> {
-        self.finished(at.count_toward(self.from))
+        self.finished(at.count_toward(self.span.from()))
     }
 
     /// The whole pulses to move the new cam's output by, once `master`
     /// has completed the blend; `None` while it runs.
     pub(crate) fn finished(&self, master: i64) -> Option<i128> {
-        let travelled = (i128::from(master) - i128::from(self.from)).unsigned_abs();
-        (travelled >= u128::from(self.distance)).then(|| {
+        self.span.finished(master).then(|| {
             self.sides
-                .get(usize::from(master < self.from))
+                .get(usize::from(self.span.backwards(master)))
                 .map_or(0, |s| s.shift)
         })
     }
 
     /// The blended command at `master` (past the end: the end itself).
     pub(crate) fn command(&self, master: i64) -> Result<Blended, EngineError> {
-        let travelled = i128::from(master) - i128::from(self.from);
-        let backwards = travelled < 0;
+        let backwards = self.span.backwards(master);
         let sign = if backwards { -1.0 } else { 1.0 };
         let Some(side) = self.sides.get(usize::from(backwards)) else {
             return Err(EngineError::SlaveOverflow);
         };
-        let d = self.distance as f64;
-        let u = (travelled.unsigned_abs() as f64 / d).min(1.0);
+        let d = self.span.distance() as f64;
+        let u = self.span.progress(master).min(1.0);
         let dv = side.v1 - self.v0;
         let position = self.p0 as f64
             + sign * d * (self.v0 * u + dv * smoothstep_integral(u))
@@ -199,7 +195,8 @@ mod tests {
             velocity_ratio: 3.0,
         };
         // From ratio 1 at slave 100 over 1000 counts: covers 2000.
-        let blend = Blend::start(0, 1000, 100, 1.0, [end(2000), end(-5000)]).unwrap();
+        let distance = NonZeroU64::new(1000).unwrap();
+        let blend = Blend::start(0, distance, 100, 1.0, [end(2000), end(-5000)]).unwrap();
         assert_eq!(blend.command(0).unwrap().slave, 100);
         assert_eq!(blend.command(1000).unwrap().slave, 2100);
         assert_eq!(blend.finished(1000), Some(100));

@@ -15,7 +15,8 @@
 //! The PLC (document 003 `DECAM`) and motion-processor (document 002) faces
 //! build on [`CamAxis`]; Rust users may prefer the PLCopen-shaped
 //! [`plcopen`] module. Use something else when you need a trajectory
-//! generator (point-to-point moves): this crate only couples axes.
+//! generator (point-to-point moves): this crate couples axes, and its
+//! [`LinearMove`] is only the faces' constant-velocity `MoveTo`.
 //!
 //! ```
 //! use ecam_core::PointTable;
@@ -51,7 +52,9 @@ mod coupling;
 pub mod drive;
 mod error;
 mod input;
+mod linear_move;
 mod master;
+mod master_ramp;
 mod offset_ramp;
 mod output;
 pub mod plcopen;
@@ -78,6 +81,7 @@ pub use config::{
 };
 pub use error::EngineError;
 pub use input::TickInput;
+pub use linear_move::LinearMove;
 pub use master::{TimeBase, Unwrap32};
 pub use offset_ramp::OffsetChange;
 pub use output::{AxisState, Events, TickOutput};

@@ -14,7 +14,7 @@
 use core::num::NonZeroU64;
 
 use crate::coupling::Engagement;
-use crate::ramp::quintic;
+use crate::master_ramp::{MasterRamp, quintic};
 use crate::{EngineError, MasterPosition};
 
 /// A change of offsets for [`crate::CamAxis::change_offsets`].
@@ -39,8 +39,7 @@ pub struct OffsetChange {
 /// A change being ramped in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct OffsetRamp {
-    from: i64,
-    distance: u64,
+    span: MasterRamp,
     /// Table-input change in × master-zoom-denominator units.
     input_num: i128,
     output: i128,
@@ -51,25 +50,20 @@ impl OffsetRamp {
     /// denominator (the table-input unit).
     pub(crate) fn new(change: OffsetChange, from: i64, mden: i128) -> Self {
         Self {
-            from,
-            distance: change.distance.get(),
+            span: MasterRamp::new(from, change.distance),
             input_num: i128::from(change.master).saturating_mul(mden),
             output: i128::from(change.slave),
         }
     }
 
-    fn travelled(&self, master: i64) -> u128 {
-        (i128::from(master) - i128::from(self.from)).unsigned_abs()
-    }
-
     /// The whole change has been ramped in at `master`.
     pub(crate) fn finished(&self, master: i64) -> bool {
-        self.travelled(master) >= u128::from(self.distance)
+        self.span.finished(master)
     }
 
     /// [`Self::finished`] for the position itself, fraction included.
     pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
-        self.finished(at.count_toward(self.from))
+        self.span.finished_at(at)
     }
 
     /// The engagement with the part of the change ramped in at `master`.
@@ -81,7 +75,7 @@ impl OffsetRamp {
         let (input, output) = if self.finished(master) {
             (self.input_num, self.output)
         } else {
-            let w = quintic(self.travelled(master) as f64 / self.distance as f64);
+            let w = quintic(self.span.progress(master));
             let part = |v: i128| libm::round(v as f64 * w) as i128;
             (part(self.input_num), part(self.output))
         };
@@ -104,6 +98,5 @@ mod tests {
         assert!(!ramp.finished(149));
         assert!(ramp.finished(150));
         assert!(ramp.finished(-50));
-        assert_eq!(quintic(0.5), 0.5);
     }
 }

@@ -9,20 +9,13 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
+use crate::master_ramp::{MasterRamp, quintic};
 use crate::{MasterPosition, RampIn};
-
-/// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
-/// the ends with zero slope and curvature there. The ramp-in, the offset
-/// and scaling ramps and a blend's end fraction all move along it.
-pub(crate) fn quintic(u: f64) -> f64 {
-    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
-}
 
 /// A ramp in progress.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Ramp {
-    from_master: i64,
-    distance: u64,
+    span: MasterRamp,
     hold: i64,
 }
 
@@ -30,25 +23,18 @@ impl Ramp {
     /// A ramp starting at master `from_master` with the slave at `hold`.
     pub(crate) fn new(ramp: RampIn, from_master: i64, hold: i64) -> Self {
         Self {
-            from_master,
-            distance: ramp.distance.get(),
+            span: MasterRamp::new(from_master, ramp.distance),
             hold,
         }
-    }
-
-    /// Master counts from the ramp's start to `master`, either way.
-    fn travelled(&self, master: i64) -> u128 {
-        (i128::from(master) - i128::from(self.from_master)).unsigned_abs()
     }
 
     /// The blended position for `cam` at `master`, or `None` once the ramp
     /// is complete (the caller then follows the cam).
     pub(crate) fn blend(&self, master: i64, cam: i64) -> Option<i64> {
-        let travelled = self.travelled(master);
-        if travelled >= u128::from(self.distance) {
+        if self.span.finished(master) {
             return None;
         }
-        let w = quintic(travelled as f64 / self.distance as f64);
+        let w = quintic(self.span.progress(master));
         let gap = (i128::from(self.hold) - i128::from(cam)) as f64;
         let offset = libm::round((1.0 - w) * gap) as i128;
         i64::try_from(i128::from(cam) + offset).ok()
@@ -57,12 +43,12 @@ impl Ramp {
     /// The ramp is over at `at` (its whole distance travelled by the
     /// position itself, fraction included): the axis drops it then.
     pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
-        self.travelled(at.count_toward(self.from_master)) >= u128::from(self.distance)
+        self.span.finished_at(at)
     }
 
     /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
     pub(crate) fn weight(&self, master: i64) -> f64 {
-        quintic((self.travelled(master) as f64 / self.distance as f64).min(1.0))
+        quintic(self.span.progress(master).min(1.0))
     }
 }
 

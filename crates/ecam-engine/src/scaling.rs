@@ -15,13 +15,12 @@ use core::num::NonZeroU64;
 
 use crate::MasterPosition;
 use crate::coupling::Geometry;
-use crate::ramp::quintic;
+use crate::master_ramp::{MasterRamp, quintic};
 
 /// A slave-scaling change being ramped in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct ScalingRamp {
-    from: i64,
-    distance: u64,
+    span: MasterRamp,
     /// The geometry with the new slave scaling.
     pub(crate) target: Geometry,
 }
@@ -34,24 +33,19 @@ impl ScalingRamp {
     /// A ramp onto `target` from master `from` over `distance`.
     pub(crate) fn new(target: Geometry, from: i64, distance: NonZeroU64) -> Self {
         Self {
-            from,
-            distance: distance.get(),
+            span: MasterRamp::new(from, distance),
             target,
         }
     }
 
-    fn travelled(&self, master: i64) -> u128 {
-        (i128::from(master) - i128::from(self.from)).unsigned_abs()
-    }
-
     /// The whole change has been ramped in at `master`.
     pub(crate) fn finished(&self, master: i64) -> bool {
-        self.travelled(master) >= u128::from(self.distance)
+        self.span.finished(master)
     }
 
     /// [`Self::finished`] for the position itself, fraction included.
     pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
-        self.finished(at.count_toward(self.from))
+        self.span.finished_at(at)
     }
 
     /// The command and velocity ratio at `master` from the two cams'
@@ -60,12 +54,16 @@ impl ScalingRamp {
         if self.finished(master) {
             return new;
         }
-        let d = self.distance as f64;
-        let u = self.travelled(master) as f64 / d;
+        let d = self.span.distance() as f64;
+        let u = self.span.progress(master);
         let w = quintic(u);
         let gap = (i128::from(new.0) - i128::from(old.0)) as f64;
         let slave = old.0.saturating_add(libm::round(w * gap) as i64);
-        let sign = if master < self.from { -1.0 } else { 1.0 };
+        let sign = if self.span.backwards(master) {
+            -1.0
+        } else {
+            1.0
+        };
         let ratio = (1.0 - w) * old.1 + w * new.1 + sign * quintic_slope(u) * gap / d;
         (slave, ratio)
     }

@@ -18,6 +18,7 @@ use ecam_engine::drive::AxisDrive;
 
 use crate::error::EthercatError;
 use crate::segment::{CycleReport, Segment};
+use crate::stop_ramp::StopRamp;
 use crate::supervisor::{LineFault, LineState, Supervision, Supervisor, check_positions};
 
 /// Pulse outputs a PLC has (Y0–Y3).
@@ -169,8 +170,8 @@ struct Following {
     /// Target change of the last cycle (the drive's velocity, counts per
     /// cycle).
     velocity: i64,
-    /// The velocity when a stop began, and where.
-    stop_from: (i64, i64),
+    /// The stop from where and how fast the drive went when it began.
+    stop: StopRamp,
 }
 
 /// Drives on a segment following pulse outputs.
@@ -237,7 +238,7 @@ impl FollowLine {
                     origin: 0,
                     target: 0,
                     velocity: 0,
-                    stop_from: (0, 0),
+                    stop: StopRamp::new(0, 0, stop_cycles),
                 })
                 .collect(),
             segment,
@@ -318,7 +319,7 @@ impl FollowLine {
     pub fn stop(&mut self) {
         if self.state() == LineState::Running {
             for f in &mut self.followers {
-                f.stop_from = (f.target, f.velocity);
+                f.stop = StopRamp::new(f.target, f.velocity, self.stop_cycles);
             }
             self.stopping = Some(0);
             self.settling = 0;
@@ -377,7 +378,6 @@ impl FollowLine {
         emitted: &[i64; PULSE_OUTPUTS as usize],
     ) -> Result<FollowReport, FollowError> {
         let stopping = self.stopping;
-        let n = i128::from(self.stop_cycles.max(1));
         for f in &mut self.followers {
             let pulses = emitted
                 .get(usize::from(f.spec.output))
@@ -389,11 +389,7 @@ impl FollowLine {
             };
             let before = f.target;
             if let Some(k) = stopping {
-                // A linear ramp from the velocity the stop began with.
-                let (from, v) = f.stop_from;
-                let k = i128::from(k.min(self.stop_cycles));
-                let travelled = (i128::from(v) * (k * n - k * (k + 1) / 2)).div_euclid(n);
-                f.target = from.saturating_add(i64::try_from(travelled).unwrap_or(0));
+                f.target = f.stop.position(k);
             } else {
                 // The state last heard: a lost cycle does not re-origin.
                 if drive.state() != crate::cia402::DriveState::OperationEnabled {

@@ -47,6 +47,7 @@ pub mod monitor;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
+mod stop_ramp;
 pub mod summary;
 pub mod supervisor;
 

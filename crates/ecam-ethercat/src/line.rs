@@ -23,6 +23,7 @@ use ecam_engine::{CamAxis, EngineError, StopKind, TickInput, TickOutput};
 use crate::cia402::DriveState;
 use crate::error::EthercatError;
 use crate::segment::{CycleReport, Segment};
+use crate::stop_ramp::StopRamp;
 pub use crate::supervisor::{FaultCause, LineFault, LineState};
 use crate::supervisor::{Supervision, Supervisor, check_positions};
 
@@ -101,32 +102,6 @@ impl std::error::Error for LineError {}
 impl From<EthercatError> for LineError {
     fn from(e: EthercatError) -> Self {
         Self::Bus(e)
-    }
-}
-
-/// The virtual master's deceleration to rest.
-#[derive(Clone, Copy, Debug)]
-struct StopRamp {
-    from: i64,
-    speed: i64,
-    cycles: u32,
-    done: u32,
-}
-
-impl StopRamp {
-    /// Position after `k` cycles of a linear ramp from `speed` to rest
-    /// over `cycles`: exact integers, monotonic.
-    fn position(&self, k: u32) -> i64 {
-        let n = i128::from(self.cycles.max(1));
-        let k = i128::from(k.min(self.cycles));
-        let travelled = i128::from(self.speed) * (k * n - k * (k + 1) / 2);
-        let travelled = travelled.div_euclid(n);
-        self.from
-            .saturating_add(i64::try_from(travelled).unwrap_or(if travelled < 0 {
-                i64::MIN
-            } else {
-                i64::MAX
-            }))
     }
 }
 
@@ -262,12 +237,11 @@ impl<C: CamCurve> CamLine<C> {
     /// disabled ([`CamLine::at_rest`] tells when).
     pub fn stop(&mut self) {
         if self.state() == LineState::Running {
-            self.ramp = Some(StopRamp {
-                from: self.virtual_master,
-                speed: self.virtual_speed,
-                cycles: self.stop_cycles,
-                done: 0,
-            });
+            self.ramp = Some(StopRamp::new(
+                self.virtual_master,
+                self.virtual_speed,
+                self.stop_cycles,
+            ));
             self.settling = 0;
         } else {
             self.stop_axes();
@@ -314,10 +288,7 @@ impl<C: CamCurve> CamLine<C> {
         let moving = matches!(state, LineState::Running | LineState::Stopping);
         if moving && self.advance {
             match &mut self.ramp {
-                Some(ramp) => {
-                    ramp.done = ramp.done.saturating_add(1).min(ramp.cycles);
-                    self.virtual_master = ramp.position(ramp.done);
-                }
+                Some(ramp) => self.virtual_master = ramp.step(),
                 None => {
                     self.virtual_master = self.virtual_master.saturating_add(self.virtual_speed);
                 }
@@ -378,7 +349,7 @@ impl<C: CamCurve> CamLine<C> {
     /// The stop ramp is over and every cam drive stands at its target (or
     /// has had a second to get there).
     fn settled(&mut self) -> bool {
-        let ramp_over = self.ramp.is_none_or(|r| r.done >= r.cycles);
+        let ramp_over = self.ramp.is_none_or(|r| r.over());
         if !ramp_over {
             return false;
         }
@@ -413,24 +384,5 @@ mod tests {
     fn line_is_send() {
         fn assert_send<T: Send>() {}
         assert_send::<CamLine<ecam_core::PointTable>>();
-    }
-
-    #[test]
-    fn stop_ramp_is_exact_and_reaches_rest() {
-        let ramp = StopRamp {
-            from: 100,
-            speed: 7,
-            cycles: 10,
-            done: 0,
-        };
-        let positions: Vec<i64> = (0..=12).map(|k| ramp.position(k)).collect();
-        assert!(positions.windows(2).all(|w| w[1] >= w[0]), "{positions:?}");
-        // 7 · (10·10 − 55) / 10 = 31.5 → 31 counts of braking distance.
-        assert_eq!(positions[10], 131);
-        assert_eq!(positions[12], 131, "at rest after the ramp");
-        // The first step is nearly the running speed.
-        assert_eq!(positions[1] - positions[0], 6);
-        let back = StopRamp { speed: -7, ..ramp };
-        assert_eq!(back.position(10), 100 - 32);
     }
 }

@@ -103,35 +103,10 @@ pub mod activity_bit {
 }
 
 /// A simulated linear move (`MoveTo`): constant velocity from the command
-/// on, with no acceleration or deceleration. Abrupt and smooth stops both
-/// end it where it is (see `docs/pmd.md`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LinearMove {
-    /// Position at the command.
-    pub from: i64,
-    /// Target.
-    pub to: i64,
-    /// Cycles the move takes (≥ 1).
-    pub ticks: u32,
-    /// Cycles done.
-    pub done: u32,
-}
-
-impl LinearMove {
-    /// Advances one cycle and gives the new position (exactly `to` at the end).
-    pub fn step(&mut self) -> i64 {
-        self.done = self.done.saturating_add(1).min(self.ticks);
-        let span = i128::from(self.to) - i128::from(self.from);
-        let pos =
-            i128::from(self.from) + span * i128::from(self.done) / i128::from(self.ticks.max(1));
-        i64::try_from(pos).unwrap_or(self.to)
-    }
-
-    /// Whether the move has arrived.
-    pub fn finished(&self) -> bool {
-        self.done >= self.ticks
-    }
-}
+/// on, with no acceleration or deceleration (the engine's integer linear
+/// move). Abrupt and smooth stops both end it where it is (see
+/// `docs/pmd.md`).
+pub use ecam_engine::LinearMove;
 
 /// One axis.
 #[derive(Debug, Default)]
@@ -180,18 +155,6 @@ impl Axis {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn linear_move_is_exact_at_the_end() {
-        let mut m = LinearMove {
-            from: 0,
-            to: 10,
-            ticks: 3,
-            done: 0,
-        };
-        assert_eq!([m.step(), m.step(), m.step(), m.step()], [3, 6, 10, 10]);
-        assert!(m.finished());
-    }
 
     #[test]
     fn modes_decode() {

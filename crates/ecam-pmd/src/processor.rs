@@ -7,6 +7,7 @@
 //! so a refused command leaves the processor as it was.
 
 use std::cell::RefCell;
+use std::num::NonZeroU32;
 use std::rc::Rc;
 
 use crate::axis::{Axis, LinearMove, ProfileMode, StopMode, event_bit};
@@ -544,17 +545,13 @@ impl MotionProcessor {
         if a.running.is_some() {
             return Err(PmdError::AxisCamming { axis });
         }
-        if ticks == 0 {
-            a.actual = position;
-            a.commanded = position;
-            a.moving = None;
-        } else {
-            a.moving = Some(LinearMove {
-                from: a.actual,
-                to: position,
-                ticks,
-                done: 0,
-            });
+        match NonZeroU32::new(ticks) {
+            None => {
+                a.actual = position;
+                a.commanded = position;
+                a.moving = None;
+            }
+            Some(ticks) => a.moving = Some(LinearMove::new(a.actual, position, ticks)),
         }
         Ok(())
     }

@@ -209,7 +209,7 @@ impl<C: CamCurve> CamAxis<C> {
             slave: 0,
             velocity_ratio: 0.0,
         }; 2];
-        for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
+        for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance)?) {
             let place = self.resolve(engagement, None, master).place;
             let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
             *end = BlendEnd {
@@ -217,6 +217,6 @@ impl<C: CamCurve> CamAxis<C> {
                 velocity_ratio: cam.velocity_ratio,
             };
         }
-        Blend::start(at, distance.get(), p0, v0, ends)
+        Blend::start(at, distance, p0, v0, ends)
     }
 }

@@ -42,7 +42,6 @@
 
 mod command;
 mod error;
-mod linear_move;
 mod parse;
 mod report;
 mod runner;

@@ -1,8 +1,10 @@
 //! Running a parsed script against a [`MotionController`] in simulated time.
 
 use core::fmt;
+use core::num::NonZeroU32;
 
-use super::linear_move::LinearMove;
+use ecam_engine::LinearMove;
+
 use super::trace::{Trace, TraceError};
 use super::{Command, DEFAULT_AXES, Report, Script, ScriptError};
 use crate::{ECamData, McError, MotionController, SingleTurn};
@@ -196,18 +198,21 @@ impl ScriptRunner {
                 cycles,
             } => {
                 self.free(*axis)?;
-                if *cycles == 0 {
-                    self.controller.set_position(*axis, *position)?;
-                    *self.drive(*axis)? = Drive::at(*position);
-                } else {
-                    let now = self.controller.position(*axis)?;
-                    let turn = self.controller.single_turn(*axis)?;
-                    let drive = self.drive(*axis)?;
-                    let from = drive.unwrapped(now, turn);
-                    *drive = Drive {
-                        commanded: from,
-                        moving: Some(LinearMove::new(from, *position, *cycles)),
-                    };
+                match NonZeroU32::new(*cycles) {
+                    None => {
+                        self.controller.set_position(*axis, *position)?;
+                        *self.drive(*axis)? = Drive::at(*position);
+                    }
+                    Some(cycles) => {
+                        let now = self.controller.position(*axis)?;
+                        let turn = self.controller.single_turn(*axis)?;
+                        let drive = self.drive(*axis)?;
+                        let from = drive.unwrapped(now, turn);
+                        *drive = Drive {
+                            commanded: from,
+                            moving: Some(LinearMove::new(from, *position, cycles)),
+                        };
+                    }
                 }
             }
             Command::ECamTable { .. } => {}
@@ -289,7 +294,8 @@ impl ScriptRunner {
     fn cycle(&mut self) -> Result<(), Refusal> {
         for (axis, drive) in self.drives.iter_mut().enumerate() {
             if let Some(m) = &mut drive.moving {
-                let (position, arrived) = m.step();
+                let position = m.step();
+                let arrived = m.finished();
                 // StartECAM refuses a moving slave, so this axis is free.
                 self.controller.set_position(axis, position)?;
                 drive.commanded = position;
