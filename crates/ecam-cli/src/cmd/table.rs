@@ -106,6 +106,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         sync: generated.sync,
         generator: Some(generated.name.to_string()),
         kinematics: generated.kinematics,
+        segments: generated.segments,
     };
     let columns = if output.minimal {
         Columns::Minimal
@@ -124,8 +125,11 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         eprintln!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
-        let design = generated.design.as_ref();
-        plot::draw_chart(cam_table::chart(&file, design, generated.name), path)?;
+        let chart = match &file.segments {
+            Some(cam) => cam_table::segment_cam_chart(cam, file.sync, generated.name),
+            None => cam_table::chart(&file, generated.design.as_ref(), generated.name),
+        };
+        plot::draw_chart(chart, path)?;
     }
     Ok(())
 }
@@ -339,7 +343,10 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
                 .generator
                 .clone()
                 .unwrap_or_else(|| display_name(&args.file));
-            cam_table::chart(&file, None, &name)
+            match &file.segments {
+                Some(cam) => cam_table::segment_cam_chart(cam, file.sync, &name),
+                None => cam_table::chart(&file, None, &name),
+            }
         }
         AnyTable::Uniform(table) => {
             cam_table::uniform_chart(&table, args.sync, &display_name(&args.file))

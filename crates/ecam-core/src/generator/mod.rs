@@ -19,6 +19,7 @@ mod placement;
 pub mod rotary_cut;
 pub mod s_curve;
 mod sampling;
+pub mod segments;
 pub mod schema;
 mod sync_zone;
 

@@ -277,6 +277,23 @@ impl SegmentCam {
             .collect()
     }
 
+    /// Points to draw the cam with: `per_segment + 1` evenly spaced samples
+    /// over every segment, both ends included and each evaluated on its own
+    /// segment, so a step at a point shows as a vertical edge (two samples
+    /// at the same master).
+    pub fn sample_segments(&self, per_segment: usize) -> Vec<(f64, Kinematics)> {
+        let per = per_segment.max(1);
+        let mut out = Vec::with_capacity(self.segments.len().saturating_mul(per + 1));
+        for i in 0..self.segments.len() {
+            let (lo, beta) = self.span(i);
+            for k in 0..=per {
+                let u = k as f64 / per as f64;
+                out.push((lo + beta * u, self.segment_at(i, u)));
+            }
+        }
+        out
+    }
+
     /// Continuity at every point between two segments, and at the seam.
     pub fn continuity(&self) -> ContinuityReport {
         continuity::report(self)

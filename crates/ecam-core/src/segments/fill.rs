@@ -93,7 +93,7 @@ pub fn make_continuous(
     let segments = segments
         .iter()
         .zip(&points[1..])
-        .map(|(s, p)| s.ending_at(*p))
+        .map(|(s, p)| s.with_end(*p))
         .collect();
     Ok((start, segments))
 }

@@ -117,8 +117,8 @@ impl SegmentSpec {
         }
     }
 
-    /// This segment ending at `point` instead.
-    pub(crate) const fn ending_at(mut self, point: InterpolationPoint) -> Self {
+    /// The same segment ending at `point` (position and boundary values).
+    pub const fn with_end(mut self, point: InterpolationPoint) -> Self {
         self.master = point.master;
         self.slave = point.slave;
         self.velocity = point.velocity;
