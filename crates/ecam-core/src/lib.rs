@@ -45,6 +45,7 @@ extern crate alloc;
 extern crate std;
 
 mod curve;
+pub mod drive_check;
 mod error;
 #[cfg(feature = "std")]
 #[doc(hidden)]

@@ -10,7 +10,8 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::bail;
+use anyhow::{Context, bail};
+use ecam_core::drive_check::DriveReport;
 use ecam_core::CamCurve;
 use ecam_core::io::{self, AnyTable, Columns, TableFile};
 use ecam_core::table::Summary;
@@ -51,6 +52,11 @@ pub struct ShowArgs {
     /// The machine, for peaks in physical units.
     #[command(flatten)]
     pub machine: MachineArgs,
+    /// Check the cam against a drive (TOML: `[mechanics]`, `[limits]`; see
+    /// docs/design.md): motor speed, torque and RMS torque at
+    /// --master-speed, and the fastest machine speed the drive allows.
+    #[arg(long, value_name = "FILE.toml")]
+    pub drive: Option<PathBuf>,
 }
 
 /// Arguments of `ecam table plot`.
@@ -156,6 +162,13 @@ struct ShowJson<'a> {
     /// table's (`of` says which).
     #[serde(skip_serializing_if = "Option::is_none")]
     at_speed: Option<AtSpeed>,
+    /// A segment cam's points, continuity at every point and per-segment
+    /// peaks (files of `ecam table gen segments`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    segments: Option<serde_json::Value>,
+    /// `--drive`: the drive check.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    drive: Option<&'a DriveReport>,
 }
 
 fn peaks(summary: &Summary) -> Peaks {
@@ -180,8 +193,21 @@ fn design_peaks(file: &TableFile) -> Option<Peaks> {
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
     let table = io::read(&args.file)?;
     let kind = table.kind();
+    let drive = match &args.drive {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read drive file {}", path.display()))?;
+            let report = ecam_design::check_table(&table, &text, args.machine.master_speed)
+                .with_context(|| format!("drive file {}", path.display()))?;
+            Some(report)
+        }
+        None => None,
+    };
+    let extra = Extra {
+        drive: drive.as_ref(),
+    };
     match table {
-        AnyTable::Points(file) => show_points(args, &file),
+        AnyTable::Points(file) => show_points(args, &file, &extra),
         AnyTable::Uniform(table) => {
             let values = table.values().len();
             // Document 002: N values make N − 1 pieces over CamCounts.
@@ -190,14 +216,19 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
                 "evenly spaced table, a value every {} counts",
                 short(spacing)
             );
-            show_curve(args, kind, &what, values, &table, Source::UniformPieces)
+            show_curve(args, kind, &what, values, &table, Source::UniformPieces, &extra)
         }
         AnyTable::Profile(profile) => {
             let key_points = profile.segments().len().saturating_add(1);
             let what = "segment profile, key points joined by motion laws, evaluated exactly";
-            show_curve(args, kind, what, key_points, &profile, Source::ProfileLaws)
+            show_curve(args, kind, what, key_points, &profile, Source::ProfileLaws, &extra)
         }
     }
+}
+
+/// What `show` adds to any table kind: the drive check.
+struct Extra<'a> {
+    drive: Option<&'a DriveReport>,
 }
 
 /// `show` for an evenly spaced table or a segment profile: its summary is
@@ -210,6 +241,7 @@ fn show_curve(
     points: usize,
     curve: &impl CamCurve,
     source: Source,
+    extra: &Extra<'_>,
 ) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
     let summary = Summary::of(curve);
@@ -227,6 +259,8 @@ fn show_curve(
             summary: &summary,
             design: None,
             at_speed: args.machine.at_speed(&table, source),
+            segments: None,
+            drive: extra.drive,
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
@@ -242,10 +276,13 @@ fn show_curve(
     )?;
     table_peaks::write(&mut out, None, (&table, source), None, &args.machine)?;
     writeln!(out, "continuity:        {}", summary.continuity)?;
+    if let Some(drive) = extra.drive {
+        writeln!(out, "{drive}")?;
+    }
     Ok(())
 }
 
-fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
+fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::Result<()> {
     // Written through a handle, not `println!`, so a closed pipe
     // (`ecam table show t.csv | head -1`) is an error, not a panic.
     let mut out = std::io::stdout().lock();
@@ -273,6 +310,8 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
                 Some(design) => args.machine.at_speed(design, Source::DesignColumns),
                 None => args.machine.at_speed(&table, Source::SampledTable),
             },
+            segments: file.segments.as_ref().map(ecam_design::segments_json),
+            drive: extra.drive,
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
@@ -305,6 +344,12 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
     writeln!(out, "continuity:        {}", summary.continuity)?;
     if let Some((lo, hi)) = file.sync {
         writeln!(out, "sync zone:         master {lo} .. {hi}")?;
+    }
+    if let Some(cam) = &file.segments {
+        write!(out, "{}", ecam_design::segments_text(cam))?;
+    }
+    if let Some(drive) = extra.drive {
+        writeln!(out, "{drive}")?;
     }
     Ok(())
 }

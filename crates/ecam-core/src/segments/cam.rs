@@ -360,6 +360,24 @@ impl SegmentCam {
     }
 }
 
+impl TryFrom<&crate::SegmentProfile> for SegmentCam {
+    type Error = SegmentError;
+    /// The same cam as segments: each profile segment's law as a
+    /// [`SegmentLaw::Rise`], its resolution kept, every boundary value free.
+    fn try_from(profile: &crate::SegmentProfile) -> Result<Self, SegmentError> {
+        let start = profile.start();
+        let segments = profile
+            .segments()
+            .iter()
+            .map(|s| SegmentSpec {
+                resolution: s.resolution,
+                ..SegmentSpec::new(SegmentLaw::Rise(s.law), s.master_end, s.slave_end)
+            })
+            .collect();
+        Self::new(InterpolationPoint::new(start.master, start.slave), segments)
+    }
+}
+
 impl CamCurve for SegmentCam {
     fn master_first(&self) -> i64 {
         self.start.master
