@@ -266,6 +266,16 @@ impl SegmentCam {
         }
     }
 
+    /// The coefficients of segment `i` (0-based) when it is a poly-5 or
+    /// poly-7: `S(u) = Σ c[k] uᵏ`, the slave travel from its first point
+    /// over its normalised master `u = (master − first)/span`.
+    pub fn polynomial(&self, i: usize) -> Option<super::poly::Polynomial> {
+        match self.shapes.get(i) {
+            Some(Shape::Polynomial(p)) => Some(*p),
+            _ => None,
+        }
+    }
+
     /// Each segment's peaks: the characteristic values `Cv`, `Ca`, `Cj`
     /// and the peak velocity, acceleration and jerk in pulses per count (ⁿ).
     pub fn peaks(&self) -> Vec<SegmentPeaks> {

@@ -43,7 +43,8 @@ pub fn make_continuous(
         .chain(segments.iter().map(SegmentSpec::end))
         .collect();
     for q in Quantity::ALL {
-        for joint in 0..n {
+        // The seam last, so a clash between two points is named at the first.
+        for joint in (1..n).chain([0]) {
             // Joint 0 is the seam: points 0 and n.
             let (at, left, right): (&[usize], usize, usize) = if joint == 0 {
                 (&[0, n], n - 1, 0)

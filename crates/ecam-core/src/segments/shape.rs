@@ -82,7 +82,13 @@ impl Shape {
                 }
             }
             Self::VelocityCycloid { v0, dv, c } => {
-                let (sin, cos) = (libm::sin(TAU * u), libm::cos(TAU * u));
+                // From the nearer end, so sin is exactly 0 at both ends
+                // (and the acceleration there exactly the law's 0).
+                let (sin, cos) = if u <= 0.5 {
+                    (libm::sin(TAU * u), libm::cos(TAU * u))
+                } else {
+                    (-libm::sin(TAU * (1.0 - u)), libm::cos(TAU * (1.0 - u)))
+                };
                 let cy = u - sin / TAU;
                 let integral = 0.5 * u * u + (cos - 1.0) / (TAU * TAU);
                 Kinematics {
