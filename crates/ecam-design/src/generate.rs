@@ -372,8 +372,11 @@ fn segments_table(params: &segments::Params) -> anyhow::Result<Generated> {
         name: "segments",
         design: None,
         outputs: vec![
-            ("continuity", format!("{} (seam {})", report.cam, report.seam)),
-            ("points", joints.join(", ")),
+            (
+                "segment cam continuity",
+                format!("{} (seam {})", report.cam, report.seam),
+            ),
+            ("at the points", joints.join(", ")),
             (
                 "segment resolutions",
                 g.resolutions
