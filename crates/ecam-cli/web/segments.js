@@ -127,6 +127,7 @@ const Segments = (() => {
       ]));
     }
     document.getElementById("seg-resolution").value = shown(seg().resolution);
+    document.getElementById("seg-keep").checked = !!seg().continuous;
     renderDriveFields();
   }
 
@@ -154,6 +155,7 @@ const Segments = (() => {
     const s = seg();
     const clean = (p) => Object.fromEntries(Object.entries(p).filter(([, v]) => v !== null && v !== ""));
     const out = { start: clean(s.start), segment: s.segment.map(clean) };
+    if (s.continuous) out.continuous = true;
     const resolution = valueOf(shown(s.resolution));
     if (resolution !== null) out.resolution = resolution;
     return out;
@@ -194,6 +196,14 @@ const Segments = (() => {
       td.title = `peaks: velocity ${ctx.fmt(p.peak_velocity)} pulses/count, acceleration ${ctx.fmt(p.peak_acceleration)} pulses/count², jerk ${ctx.fmt(p.peak_jerk)} pulses/count³`;
     }
     const filled = [s.start, ...s.segment];
+    // Free cells show the value the cam was solved with (filled in from the
+    // neighbours when "keep continuous" is on, else 0 where a law adapts).
+    filled.forEach((p, i) => {
+      for (const b of BOUNDARY) {
+        const input = document.querySelector(`#seg-grid input[data-row="${i}"][data-field="${b}"]`);
+        if (input && input.value === "") input.placeholder = p[b] === undefined ? "free" : ctx.fmt(p[b]);
+      }
+    });
     const free = BOUNDARY.filter((b) => filled.some((p) => p[b] === undefined));
     document.getElementById("seg-note").textContent =
       "joint: how each point joins its two segments (C0 velocity steps … C3 jerk continuous); Cv / Ca / Cj: the segment's characteristic values (– where it does not rise)." +
@@ -281,6 +291,7 @@ const Segments = (() => {
     ctx = context;
     document.getElementById("seg-add").addEventListener("click", addSegment);
     document.getElementById("seg-continuous").addEventListener("click", makeContinuous);
+    document.getElementById("seg-keep").addEventListener("change", (e) => { seg().continuous = e.target.checked; ctx.changed(true); });
     document.getElementById("seg-resolution").addEventListener("input", (e) => { seg().resolution = valueOf(e.target.value); ctx.changed(); });
   }
 

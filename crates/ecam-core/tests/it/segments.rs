@@ -299,3 +299,24 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_dwell_that_adapts_takes_the_filled_velocities() {
+    // The poly-5 segments 1 and 3 do not rise; make continuous gives them
+    // the constant velocity's 5000/1200 at one end and 0 at the other.
+    // (Rounding in the solved end values once refused them as unmet.)
+    let cam = SegmentCam::continuous(
+        InterpolationPoint::new(0, 0),
+        vec![
+            SegmentSpec::new(SegmentLaw::Poly5, 600, 0),
+            SegmentSpec::new(SegmentLaw::Rise(MotionLaw::ConstantVelocity), 1800, 5000),
+            SegmentSpec::new(SegmentLaw::Poly5, 2400, 5000),
+            SegmentSpec::new(SegmentLaw::Poly5, 3600, 0),
+        ],
+    )
+    .unwrap();
+    assert_eq!(cam.continuity().cam, Continuity::C2);
+    let v = cam.points()[1].velocity.unwrap();
+    assert!((v - 5000.0 / 1200.0).abs() < 1e-12);
+    assert!(cam.peaks()[0].cv.is_none());
+}
