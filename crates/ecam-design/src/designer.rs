@@ -266,7 +266,14 @@ pub fn segments_text(cam: &ecam_core::segments::SegmentCam) -> String {
     let points: Vec<String> = report
         .joints
         .iter()
-        .map(|j| format!("{} at {}: {}", if j.seam { "seam" } else { "point" }, j.master, j.class))
+        .map(|j| {
+            format!(
+                "{} at {}: {}",
+                if j.seam { "seam" } else { "point" },
+                j.master,
+                j.class
+            )
+        })
         .collect();
     out.push_str(&format!("  points:          {}\n", points.join(", ")));
     for p in cam.peaks() {
@@ -291,7 +298,11 @@ pub fn segments_text(cam: &ecam_core::segments::SegmentCam) -> String {
 /// Six significant digits, plainly where that reads well.
 fn sig(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
-        return if x.is_infinite() { "∞".into() } else { "0".into() };
+        return if x.is_infinite() {
+            "∞".into()
+        } else {
+            "0".into()
+        };
     }
     if (1e-3..1e6).contains(&x.abs()) {
         let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
@@ -322,8 +333,8 @@ pub fn segments_continuous_json(body: &Value) -> Result<Value, String> {
         .map_err(|e| ecam_core::io::plain_serde_message(&e.to_string()))?;
     let p: ecam_core::generator::segments::Params =
         crate::params::typed(values).map_err(|e| format!("{e:#}"))?;
-    let (start, segment) = ecam_core::segments::make_continuous(p.start, p.segment)
-        .map_err(|e| e.to_string())?;
+    let (start, segment) =
+        ecam_core::segments::make_continuous(p.start, p.segment).map_err(|e| e.to_string())?;
     Ok(json!({ "start": start, "segment": segment }))
 }
 

@@ -89,10 +89,18 @@ pub fn drive_check_json(body: &Value) -> Result<Value, String> {
                 .cloned()
                 .context("the body needs \"drive\": {\"mechanics\": {...}, \"limits\": {...}}")?,
         )
-        .map_err(|e| anyhow::anyhow!("drive: {}", ecam_core::io::plain_serde_message(&e.to_string())))?;
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "drive: {}",
+                ecam_core::io::plain_serde_message(&e.to_string())
+            )
+        })?;
         let master_hz = match body.get("master_speed") {
             None | Some(Value::Null) => None,
-            Some(v) => Some(v.as_f64().context("master_speed must be a number (counts/s)")?),
+            Some(v) => Some(
+                v.as_f64()
+                    .context("master_speed must be a number (counts/s)")?,
+            ),
         };
         let g = crate::generate::from_json(name, params)?;
         let motion = match &g.segments {

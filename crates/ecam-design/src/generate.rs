@@ -363,7 +363,14 @@ fn segments_table(params: &segments::Params) -> anyhow::Result<Generated> {
     let joints: Vec<String> = report
         .joints
         .iter()
-        .map(|j| format!("{}{} {}", if j.seam { "seam " } else { "" }, j.point, j.class))
+        .map(|j| {
+            format!(
+                "{}{} {}",
+                if j.seam { "seam " } else { "" },
+                j.point,
+                j.class
+            )
+        })
         .collect();
     Ok(Generated {
         kinematics: Some(kinematics_along(&g.table, &g.cam)),
@@ -399,7 +406,9 @@ fn segments_table(params: &segments::Params) -> anyhow::Result<Generated> {
 pub fn parse_point_flag(text: &str) -> Result<ecam_core::segments::InterpolationPoint, String> {
     let fields: Vec<&str> = text.split(':').map(str::trim).collect();
     if fields.len() < 2 || fields.len() > 5 {
-        return Err(format!("--start {text:?}: expected MASTER:SLAVE[:V[:A[:J]]]"));
+        return Err(format!(
+            "--start {text:?}: expected MASTER:SLAVE[:V[:A[:J]]]"
+        ));
     }
     point_fields(&fields, "--start", text)
 }

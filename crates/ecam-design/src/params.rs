@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 
 use ecam_core::generator::Generator as Schema;
 use ecam_core::generator::key_points::KeyPoint;
-use ecam_core::segments::{InterpolationPoint, SegmentSpec};
 use ecam_core::generator::schema::{Field, FieldKind, Storage};
+use ecam_core::segments::{InterpolationPoint, SegmentSpec};
 use serde::Deserialize;
 use serde::de::value::MapDeserializer;
 use serde::de::{

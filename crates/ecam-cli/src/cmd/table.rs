@@ -11,8 +11,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
-use ecam_core::drive_check::DriveReport;
 use ecam_core::CamCurve;
+use ecam_core::drive_check::DriveReport;
 use ecam_core::io::{self, AnyTable, Columns, TableFile};
 use ecam_core::table::Summary;
 use ecam_plot::cam_table;
@@ -112,7 +112,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         sync: generated.sync,
         generator: Some(generated.name.to_string()),
         kinematics: generated.kinematics,
-        segments: generated.segments,
+        segments: generated.segments.map(Box::new),
     };
     let columns = if output.minimal {
         Columns::Minimal
@@ -216,12 +216,28 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
                 "evenly spaced table, a value every {} counts",
                 short(spacing)
             );
-            show_curve(args, kind, &what, values, &table, Source::UniformPieces, &extra)
+            show_curve(
+                args,
+                kind,
+                &what,
+                values,
+                &table,
+                Source::UniformPieces,
+                &extra,
+            )
         }
         AnyTable::Profile(profile) => {
             let key_points = profile.segments().len().saturating_add(1);
             let what = "segment profile, key points joined by motion laws, evaluated exactly";
-            show_curve(args, kind, what, key_points, &profile, Source::ProfileLaws, &extra)
+            show_curve(
+                args,
+                kind,
+                what,
+                key_points,
+                &profile,
+                Source::ProfileLaws,
+                &extra,
+            )
         }
     }
 }
@@ -310,7 +326,7 @@ fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::
                 Some(design) => args.machine.at_speed(design, Source::DesignColumns),
                 None => args.machine.at_speed(&table, Source::SampledTable),
             },
-            segments: file.segments.as_ref().map(ecam_design::segments_json),
+            segments: file.segments.as_deref().map(ecam_design::segments_json),
             drive: extra.drive,
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;

@@ -113,7 +113,11 @@ struct Torque {
 /// # Errors
 /// A drive that fails [`Drive::validate`]; a motion without span; a
 /// master speed that is not a positive finite number.
-pub fn check(motion: &Motion, drive: &Drive, master_hz: Option<f64>) -> Result<DriveReport, DriveError> {
+pub fn check(
+    motion: &Motion,
+    drive: &Drive,
+    master_hz: Option<f64>,
+) -> Result<DriveReport, DriveError> {
     drive.validate()?;
     let span = motion.span();
     if !(span > 0.0 && span.is_finite()) {
@@ -158,7 +162,11 @@ pub fn check(motion: &Motion, drive: &Drive, master_hz: Option<f64>) -> Result<D
             .sum();
         sum / span
     };
-    let (aa, ab, bb) = (mean(&|t| t.a * t.a), mean(&|t| t.a * t.b), mean(&|t| t.b * t.b));
+    let (aa, ab, bb) = (
+        mean(&|t| t.a * t.a),
+        mean(&|t| t.a * t.b),
+        mean(&|t| t.b * t.b),
+    );
     let cycles = |f: f64| f * 60.0 / span;
     let step = motion.velocity_steps.first().copied();
     let jerk_step = motion.acceleration_steps.first().copied();
@@ -183,9 +191,17 @@ pub fn check(motion: &Motion, drive: &Drive, master_hz: Option<f64>) -> Result<D
     // Peak torque: |A f² + B| ≤ T_peak at every sample.
     let static_over = torques.iter().find(|t| t.b.abs() > l.peak_torque);
     let (peak_hz, reason, at) = if let Some(at) = step {
-        (0.0, Some("the cam's velocity steps here: an impulse of torque"), Some(at))
+        (
+            0.0,
+            Some("the cam's velocity steps here: an impulse of torque"),
+            Some(at),
+        )
     } else if let Some(t) = static_over {
-        (0.0, Some("friction and load torque alone exceed the peak torque"), Some(t.master))
+        (
+            0.0,
+            Some("friction and load torque alone exceed the peak torque"),
+            Some(t.master),
+        )
     } else {
         let x = torques
             .iter()
@@ -205,12 +221,24 @@ pub fn check(motion: &Motion, drive: &Drive, master_hz: Option<f64>) -> Result<D
     // RMS torque: aa·x² + 2ab·x + bb ≤ T_rms², x = f².
     let limit2 = l.rms_torque * l.rms_torque;
     let (rms_hz, reason, at) = if let Some(at) = step {
-        (0.0, Some("the cam's velocity steps here: an impulse of torque"), Some(at))
+        (
+            0.0,
+            Some("the cam's velocity steps here: an impulse of torque"),
+            Some(at),
+        )
     } else if bb > limit2 {
-        (0.0, Some("friction and load torque alone exceed the RMS torque"), None)
+        (
+            0.0,
+            Some("friction and load torque alone exceed the RMS torque"),
+            None,
+        )
     } else if aa > 0.0 {
         let disc = (ab * ab - aa * (bb - limit2)).max(0.0);
-        (libm::sqrt(((-ab + libm::sqrt(disc)) / aa).max(0.0)), None, None)
+        (
+            libm::sqrt(((-ab + libm::sqrt(disc)) / aa).max(0.0)),
+            None,
+            None,
+        )
     } else {
         (f64::INFINITY, None, None)
     };
@@ -218,7 +246,11 @@ pub fn check(motion: &Motion, drive: &Drive, master_hz: Option<f64>) -> Result<D
     // Jerk: max|j|·f³ ≤ jerk_max.
     if let Some(max_jerk) = l.max_jerk {
         let (hz, reason, at) = if let Some(at) = jerk_step.or(step) {
-            (0.0, Some("the cam's acceleration steps here: an impulse of jerk"), Some(at))
+            (
+                0.0,
+                Some("the cam's acceleration steps here: an impulse of jerk"),
+                Some(at),
+            )
         } else if peak_j > 0.0 {
             (libm::cbrt(max_jerk / peak_j), None, None)
         } else {
@@ -230,7 +262,9 @@ pub fn check(motion: &Motion, drive: &Drive, master_hz: Option<f64>) -> Result<D
         .iter()
         .min_by(|a, b| a.max_master_hz.total_cmp(&b.max_master_hz))
         .copied();
-    let (binding, max_hz) = first.map_or((Limit::Speed, f64::INFINITY), |f| (f.limit, f.max_master_hz));
+    let (binding, max_hz) = first.map_or((Limit::Speed, f64::INFINITY), |f| {
+        (f.limit, f.max_master_hz)
+    });
 
     let at_speed = master_hz.map(|f| {
         let x = f * f;
@@ -341,7 +375,11 @@ impl fmt::Display for DriveReport {
                 "at master speed:   {} counts/s = {} cycles/min{}",
                 Sig(s.master_hz),
                 Sig(s.cycles_per_min),
-                if s.within_limits { " (within the limits)" } else { " (OVER A LIMIT)" }
+                if s.within_limits {
+                    " (within the limits)"
+                } else {
+                    " (OVER A LIMIT)"
+                }
             )?;
             writeln!(
                 f,

@@ -71,7 +71,9 @@ impl fmt::Display for DriveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Value { key, must } => write!(f, "drive: `{key}` must be {must}"),
-            Self::NoMotion => f.write_str("drive check: the cam has no motion to check (no master span)"),
+            Self::NoMotion => {
+                f.write_str("drive check: the cam has no motion to check (no master span)")
+            }
         }
     }
 }

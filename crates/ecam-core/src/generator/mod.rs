@@ -19,8 +19,8 @@ mod placement;
 pub mod rotary_cut;
 pub mod s_curve;
 mod sampling;
-pub mod segments;
 pub mod schema;
+pub mod segments;
 mod sync_zone;
 
 pub use accel_curve::AccelCurve;

@@ -30,8 +30,8 @@ use std::vec::Vec;
 use serde::{Deserialize, Serialize};
 
 use super::FormatError;
-use crate::table::derivatives;
 use crate::segments::SegmentCam;
+use crate::table::derivatives;
 use crate::{CamCurve, CamPoint, CamTable, Kinematics, PointTable, SegmentProfile, UniformTable};
 
 /// A point table with what its file adds.
@@ -50,7 +50,7 @@ pub struct TableFile {
     /// The segment cam the table was sampled from (`ecam table gen
     /// segments`), where known: JSON keeps it as `"segments": {"start",
     /// "segments"}`, so its continuity and peaks can be reported exactly.
-    pub segments: Option<SegmentCam>,
+    pub segments: Option<Box<SegmentCam>>,
 }
 
 impl TableFile {
@@ -224,7 +224,7 @@ struct JsonTable {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     sync: Option<JsonSync>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    segments: Option<SegmentCam>,
+    segments: Option<Box<SegmentCam>>,
     points: Vec<JsonPoint>,
 }
 

@@ -170,7 +170,10 @@ impl SegmentCam {
     /// [`SegmentError::CannotMeet`] where a law cannot give a value its
     /// point asks for (a rest-to-rest law where the point wants a velocity);
     /// a segment resolution outside 1..=512.
-    pub fn new(start: InterpolationPoint, segments: Vec<SegmentSpec>) -> Result<Self, SegmentError> {
+    pub fn new(
+        start: InterpolationPoint,
+        segments: Vec<SegmentSpec>,
+    ) -> Result<Self, SegmentError> {
         check_points(&start, &segments)?;
         let mut shapes = Vec::with_capacity(segments.len());
         let mut from = start;
@@ -297,7 +300,13 @@ impl SegmentCam {
         (0..self.segments.len())
             .map(|i| {
                 let (from, to) = (self.point(i), self.point(i + 1));
-                SegmentPeaks::of(i + 1, self.segments[i].law, &self.shapes[i], (from.master, from.slave), (to.master, to.slave))
+                SegmentPeaks::of(
+                    i + 1,
+                    self.segments[i].law,
+                    &self.shapes[i],
+                    (from.master, from.slave),
+                    (to.master, to.slave),
+                )
             })
             .collect()
     }

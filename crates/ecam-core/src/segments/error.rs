@@ -91,7 +91,10 @@ impl fmt::Display for SegmentError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let code = self.code();
         match self {
-            Self::NoSegments => write!(f, "segment error ({code}): a cam needs at least one segment"),
+            Self::NoSegments => write!(
+                f,
+                "segment error ({code}): a cam needs at least one segment"
+            ),
             Self::MasterNotIncreasing { point } => write!(
                 f,
                 "segment error ({code}) at point {point}: its master must be greater than point {}'s",

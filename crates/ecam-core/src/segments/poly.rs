@@ -151,8 +151,8 @@ pub fn solve(rise: f64, start: &[f64], end: &[f64]) -> Polynomial {
     for (r, row) in matrix.iter_mut().enumerate().take(n) {
         let target = if r == 0 { rise } else { end[r] };
         let known: f64 = (0..=m).map(|k| falling(k, r) * c[k]).sum();
-        for i in 0..n {
-            row[i] = falling(m + 1 + i, r);
+        for (i, slot) in row.iter_mut().take(n).enumerate() {
+            *slot = falling(m + 1 + i, r);
         }
         row[n] = target - known;
     }
@@ -170,10 +170,11 @@ fn gauss(m: &mut [[f64; 5]; 4], n: usize) -> [f64; 4] {
             .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
             .unwrap_or(col);
         m.swap(col, pivot);
-        for row in col + 1..n {
-            let f = m[row][col] / m[col][col];
-            for k in col..=n {
-                m[row][k] -= f * m[col][k];
+        let pivot_row = m[col];
+        for row in m.iter_mut().take(n).skip(col + 1) {
+            let f = row[col] / pivot_row[col];
+            for (x, p) in row.iter_mut().zip(pivot_row).take(n + 1).skip(col) {
+                *x -= f * p;
             }
         }
     }
@@ -202,8 +203,14 @@ mod tests {
             assert!(close(*a, b), "{:?}", p.coefficients);
         }
         assert!(close(p.derivative().max_abs(), 1.875));
-        assert!(close(p.derivative().derivative().max_abs(), 10.0 / 3f64.sqrt()));
-        assert!(close(p.derivative().derivative().derivative().max_abs(), 60.0));
+        assert!(close(
+            p.derivative().derivative().max_abs(),
+            10.0 / 3f64.sqrt()
+        ));
+        assert!(close(
+            p.derivative().derivative().derivative().max_abs(),
+            60.0
+        ));
     }
 
     #[test]

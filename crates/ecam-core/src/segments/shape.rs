@@ -174,8 +174,16 @@ mod tests {
 
     #[test]
     fn velocity_cycloid_meets_its_ends_and_its_derivatives_agree() {
-        let start = End { v: 3.0, a: 9.0, j: 9.0 };
-        let end = End { v: 0.5, a: 9.0, j: 9.0 };
+        let start = End {
+            v: 3.0,
+            a: 9.0,
+            j: 9.0,
+        };
+        let end = End {
+            v: 0.5,
+            a: 9.0,
+            j: 9.0,
+        };
         let s = Shape::solve(SegmentLaw::VelocityCycloid, 2.0, start, end);
         let (k0, k1) = (s.at(0.0), s.at(1.0));
         assert!(k0.s.abs() < 1e-15 && (k1.s - 2.0).abs() < 1e-12);
@@ -194,18 +202,85 @@ mod tests {
     #[test]
     fn closed_form_peaks_match_dense_samples() {
         let shapes = [
-            Shape::solve(SegmentLaw::VelocityCycloid, 2.0, End { v: 3.0, ..End::default() }, End { v: 0.5, ..End::default() }),
-            Shape::solve(SegmentLaw::VelocityCycloid, 1.0, End { v: 1.0, ..End::default() }, End { v: 1.0, ..End::default() }),
-            Shape::solve(SegmentLaw::VelocityCycloid, -1.0, End { v: 0.0, ..End::default() }, End { v: 2.0, ..End::default() }),
-            Shape::solve(SegmentLaw::Poly5, 1.0, End { v: 1.0, a: -2.0, j: 0.0 }, End { v: 3.0, a: 0.0, j: 0.0 }),
-            Shape::solve(SegmentLaw::Poly7, -2.0, End { v: 1.0, a: 0.5, j: 3.0 }, End { v: 0.0, a: 0.0, j: 0.0 }),
-            Shape::Rise { law: MotionLaw::Cycloid, rise: -3.0 },
+            Shape::solve(
+                SegmentLaw::VelocityCycloid,
+                2.0,
+                End {
+                    v: 3.0,
+                    ..End::default()
+                },
+                End {
+                    v: 0.5,
+                    ..End::default()
+                },
+            ),
+            Shape::solve(
+                SegmentLaw::VelocityCycloid,
+                1.0,
+                End {
+                    v: 1.0,
+                    ..End::default()
+                },
+                End {
+                    v: 1.0,
+                    ..End::default()
+                },
+            ),
+            Shape::solve(
+                SegmentLaw::VelocityCycloid,
+                -1.0,
+                End {
+                    v: 0.0,
+                    ..End::default()
+                },
+                End {
+                    v: 2.0,
+                    ..End::default()
+                },
+            ),
+            Shape::solve(
+                SegmentLaw::Poly5,
+                1.0,
+                End {
+                    v: 1.0,
+                    a: -2.0,
+                    j: 0.0,
+                },
+                End {
+                    v: 3.0,
+                    a: 0.0,
+                    j: 0.0,
+                },
+            ),
+            Shape::solve(
+                SegmentLaw::Poly7,
+                -2.0,
+                End {
+                    v: 1.0,
+                    a: 0.5,
+                    j: 3.0,
+                },
+                End {
+                    v: 0.0,
+                    a: 0.0,
+                    j: 0.0,
+                },
+            ),
+            Shape::Rise {
+                law: MotionLaw::Cycloid,
+                rise: -3.0,
+            },
         ];
         for s in shapes {
             let (v, a, j) = s.peaks();
             let (sv, sa, sj) = sampled(&s);
             let near = |x: f64, y: f64| (x - y).abs() <= 1e-6 * x.abs().max(1.0);
-            assert!(near(v, sv) && near(a, sa) && near(j, sj), "{s:?}: {:?} vs {:?}", (v, a, j), (sv, sa, sj));
+            assert!(
+                near(v, sv) && near(a, sa) && near(j, sj),
+                "{s:?}: {:?} vs {:?}",
+                (v, a, j),
+                (sv, sa, sj)
+            );
         }
     }
 }

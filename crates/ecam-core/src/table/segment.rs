@@ -297,7 +297,10 @@ pub(crate) fn sample_spans(
 ///
 /// # Errors
 /// As [`SegmentProfile::sample_uniform`].
-pub(crate) fn sample_uniform(curve: &impl CamCurve, values: usize) -> Result<UniformTable, TableError> {
+pub(crate) fn sample_uniform(
+    curve: &impl CamCurve,
+    values: usize,
+) -> Result<UniformTable, TableError> {
     if values < 2 {
         return Err(TableError::SectionCount {
             count: values,

@@ -27,7 +27,10 @@ fn numbers(v: &Value) -> Vec<f64> {
 /// A one-segment cam with the fixture case's boundary values.
 fn cam_of(case: &Value) -> SegmentCam {
     let degree = case["degree"].as_u64().unwrap();
-    let (span, rise) = (case["span"].as_f64().unwrap(), case["rise"].as_f64().unwrap());
+    let (span, rise) = (
+        case["span"].as_f64().unwrap(),
+        case["rise"].as_f64().unwrap(),
+    );
     let (s, e) = (numbers(&case["start"]), numbers(&case["end"]));
     let jerk = |x: f64| (degree == 7).then_some(x);
     let start = InterpolationPoint {
@@ -36,7 +39,11 @@ fn cam_of(case: &Value) -> SegmentCam {
         jerk: jerk(s[2]),
         ..InterpolationPoint::new(0, 0)
     };
-    let law = if degree == 7 { SegmentLaw::Poly7 } else { SegmentLaw::Poly5 };
+    let law = if degree == 7 {
+        SegmentLaw::Poly7
+    } else {
+        SegmentLaw::Poly5
+    };
     let end = InterpolationPoint {
         velocity: Some(e[0]),
         acceleration: Some(e[1]),
@@ -63,13 +70,21 @@ fn polynomial_coefficients_and_peaks_match_the_numpy_fixture() {
         let p = cam.peaks()[0];
         for (what, got, want) in [
             ("peak velocity", p.peak_velocity, &case["peak_velocity"]),
-            ("peak acceleration", p.peak_acceleration, &case["peak_acceleration"]),
+            (
+                "peak acceleration",
+                p.peak_acceleration,
+                &case["peak_acceleration"],
+            ),
             ("peak jerk", p.peak_jerk, &case["peak_jerk"]),
         ] {
             let want = want.as_f64().unwrap();
             assert!(close(got, want, 0.0), "{name}: {what} {got} vs {want}");
         }
-        for (what, got, want) in [("Cv", p.cv, &case["cv"]), ("Ca", p.ca, &case["ca"]), ("Cj", p.cj, &case["cj"])] {
+        for (what, got, want) in [
+            ("Cv", p.cv, &case["cv"]),
+            ("Ca", p.ca, &case["ca"]),
+            ("Cj", p.cj, &case["cj"]),
+        ] {
             match (got, want.as_f64()) {
                 (Some(g), Some(w)) => assert!(close(g, w, 0.0), "{name}: {what} {g} vs {w}"),
                 (None, None) => {}
@@ -104,7 +119,11 @@ fn the_flying_saw_made_continuous_solves_to_the_fixture() {
             .unwrap()
             .clone()
     };
-    for (segment, name) in [(0, "flying saw, segment 1"), (2, "flying saw, segment 3"), (3, "flying saw, segment 4")] {
+    for (segment, name) in [
+        (0, "flying saw, segment 1"),
+        (2, "flying saw, segment 3"),
+        (3, "flying saw, segment 4"),
+    ] {
         let want = numbers(&by_name(name)["coefficients_u"]);
         let got = cam.polynomial(segment).unwrap().coefficients;
         for (g, w) in got.iter().zip(&want) {
@@ -123,7 +142,13 @@ fn the_flying_saw_made_continuous_solves_to_the_fixture() {
     // The poly-7 takes the jerk of both neighbours: C3 either side of it.
     assert_eq!(
         classes,
-        [Continuity::C2, Continuity::C2, Continuity::C3, Continuity::C3, Continuity::C2]
+        [
+            Continuity::C2,
+            Continuity::C2,
+            Continuity::C3,
+            Continuity::C3,
+            Continuity::C2
+        ]
     );
 }
 
@@ -138,14 +163,22 @@ fn a_rest_to_rest_law_is_refused_where_the_point_asks_for_velocity() {
     )
     .unwrap_err();
     match &err {
-        SegmentError::CannotMeet { point, segment, quantity, .. } => {
+        SegmentError::CannotMeet {
+            point,
+            segment,
+            quantity,
+            ..
+        } => {
             assert_eq!((*point, *segment, *quantity), (1, 1, Quantity::Velocity));
         }
         other => panic!("{other:?}"),
     }
     let text = err.to_string();
     assert!(text.contains("point 1 (master 1000)"), "{text}");
-    assert!(text.contains("cycloid") && text.contains("poly-5"), "{text}");
+    assert!(
+        text.contains("cycloid") && text.contains("poly-5"),
+        "{text}"
+    );
     assert_eq!(err.code(), 6781);
 }
 
@@ -161,7 +194,9 @@ fn make_continuous_refuses_two_laws_that_fix_different_velocities() {
     .unwrap_err();
     let text = err.to_string();
     assert!(
-        text.contains("point 1 (master 1000)") && text.contains("arrives with velocity 0") && text.contains("leaves with 1"),
+        text.contains("point 1 (master 1000)")
+            && text.contains("arrives with velocity 0")
+            && text.contains("leaves with 1"),
         "{text}"
     );
     // Without make continuous the same cam is built, and its report says C0.
@@ -194,29 +229,49 @@ fn bad_points_are_named() {
     assert_eq!(e, SegmentError::MasterNotIncreasing { point: 2 });
     assert_eq!(e.code(), 6782);
     let e = SegmentCam::new(
-        InterpolationPoint { velocity: Some(f64::NAN), ..InterpolationPoint::new(0, 0) },
+        InterpolationPoint {
+            velocity: Some(f64::NAN),
+            ..InterpolationPoint::new(0, 0)
+        },
         vec![SegmentSpec::new(SegmentLaw::Poly5, 100, 1)],
     )
     .unwrap_err();
-    assert_eq!(e, SegmentError::OutOfRange { point: 0, what: "velocity" });
+    assert_eq!(
+        e,
+        SegmentError::OutOfRange {
+            point: 0,
+            what: "velocity"
+        }
+    );
     let e = SegmentCam::new(
         InterpolationPoint::new(0, 0),
         vec![SegmentSpec::new(SegmentLaw::Poly5, 1 << 60, 1)],
     )
     .unwrap_err();
-    assert_eq!(e, SegmentError::OutOfRange { point: 1, what: "master" });
+    assert_eq!(
+        e,
+        SegmentError::OutOfRange {
+            point: 1,
+            what: "master"
+        }
+    );
 }
 
 #[test]
 fn a_poly_5_cannot_meet_a_jerk_a_poly_7_can() {
     let ask = |law| {
         SegmentCam::new(
-            InterpolationPoint { jerk: Some(1e-6), ..InterpolationPoint::new(0, 0) },
+            InterpolationPoint {
+                jerk: Some(1e-6),
+                ..InterpolationPoint::new(0, 0)
+            },
             vec![SegmentSpec::new(law, 1000, 100)],
         )
     };
     match ask(SegmentLaw::Poly5).unwrap_err() {
-        SegmentError::CannotMeet { quantity, point, .. } => {
+        SegmentError::CannotMeet {
+            quantity, point, ..
+        } => {
             assert_eq!((quantity, point), (Quantity::Jerk, 0));
         }
         other => panic!("{other:?}"),
@@ -228,7 +283,10 @@ fn a_poly_5_cannot_meet_a_jerk_a_poly_7_can() {
 #[test]
 fn sampling_keeps_the_points_and_fills_buffers() {
     let cam = SegmentCam::continuous(
-        InterpolationPoint { velocity: Some(0.4), ..InterpolationPoint::new(0, 0) },
+        InterpolationPoint {
+            velocity: Some(0.4),
+            ..InterpolationPoint::new(0, 0)
+        },
         vec![
             SegmentSpec::new(SegmentLaw::Rise(MotionLaw::ConstantVelocity), 500, 200),
             SegmentSpec::new(SegmentLaw::VelocityCycloid, 2250, 600),
@@ -239,7 +297,12 @@ fn sampling_keeps_the_points_and_fills_buffers() {
     let table = cam.sample(100).unwrap();
     assert_eq!(table.points().len(), 100);
     for p in cam.points() {
-        assert!(table.points().iter().any(|q| q.master == p.master && q.slave == p.slave));
+        assert!(
+            table
+                .points()
+                .iter()
+                .any(|q| q.master == p.master && q.slave == p.slave)
+        );
     }
     // Every table point within half a pulse of the exact cam.
     let mut c = Cursor::new();

@@ -9,12 +9,16 @@ use ecam_core::table::Continuity;
 use ecam_design::Generated;
 
 fn example(name: &str) -> String {
-    let path = format!("{}/../../examples/tables/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../examples/tables/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     std::fs::read_to_string(&path).unwrap()
 }
 
 fn generate(name: &str) -> Generated {
-    let values = ecam_design::read_toml(ecam_design::find("segments").unwrap(), &example(name)).unwrap();
+    let values =
+        ecam_design::read_toml(ecam_design::find("segments").unwrap(), &example(name)).unwrap();
     ecam_design::generate(ecam_design::find("segments").unwrap(), values).unwrap()
 }
 
@@ -74,10 +78,19 @@ fn the_pick_and_place_is_c2_as_written() {
     assert_eq!(g.sync, None);
     let peaks = cam.peaks();
     // Cv·h/β of the modified sine and of the poly-5 (3-4-5) return.
-    assert!(near(peaks[1].peak_velocity, 1.759_603_385_953_770_5 * 5000.0 / 1200.0, 1e-9));
+    assert!(near(
+        peaks[1].peak_velocity,
+        1.759_603_385_953_770_5 * 5000.0 / 1200.0,
+        1e-9
+    ));
     assert!(near(peaks[3].peak_velocity, 1.875 * 5000.0 / 1200.0, 1e-9));
     assert!(near(peaks[3].ca.unwrap(), 10.0 / 3f64.sqrt(), 1e-9));
-    assert!(cam.continuity().joints.iter().all(|j| j.class == Continuity::C2));
+    assert!(
+        cam.continuity()
+            .joints
+            .iter()
+            .all(|j| j.class == Continuity::C2)
+    );
 }
 
 #[test]
@@ -88,9 +101,10 @@ fn the_pick_and_place_drive_check_is_the_hand_calculation() {
         sync: None,
         generator: None,
         kinematics: None,
-        segments: g.segments.clone(),
+        segments: g.segments.clone().map(Box::new),
     });
-    let r = ecam_design::check_table(&table, &example("drive-pick-and-place.toml"), Some(3600.0)).unwrap();
+    let r = ecam_design::check_table(&table, &example("drive-pick-and-place.toml"), Some(3600.0))
+        .unwrap();
     // docs/design.md, "The drive check by hand".
     let j = 0.00012 + 0.0045 / 9.0;
     let k = j * 2.0 * std::f64::consts::PI / 2000.0; // N·m per pulse/s²
@@ -98,22 +112,45 @@ fn the_pick_and_place_drive_check_is_the_hand_calculation() {
     let at = r.at_speed.unwrap();
     assert!(near(r.inertia_at_motor, j, 1e-15));
     assert!(near(at.motor_speed_rpm, 843.75, 1e-6));
-    assert!(near(at.peak_torque, k * a_peak * 3600.0 * 3600.0 + 0.1, 1e-6));
+    assert!(near(
+        at.peak_torque,
+        k * a_peak * 3600.0 * 3600.0 + 0.1,
+        1e-6
+    ));
     // ∫a² over the rise: h²/β³·Ca²/2 (modified sine); over the return:
     // h²/β³·120/7 (poly-5); friction 0.1 N·m while moving (2400 counts).
     let ca_sine = 5.527_957_070_544_09_f64;
     let a2 = 5000.0_f64.powi(2) / 1200.0_f64.powi(3) * (ca_sine * ca_sine / 2.0 + 120.0 / 7.0);
     let rms = ((k * 3600.0 * 3600.0).powi(2) * a2 + 0.01 * 2400.0) / 3600.0;
-    assert!(near(at.rms_torque, rms.sqrt(), 1e-5), "{} vs {}", at.rms_torque, rms.sqrt());
+    assert!(
+        near(at.rms_torque, rms.sqrt(), 1e-5),
+        "{} vs {}",
+        at.rms_torque,
+        rms.sqrt()
+    );
     assert!(at.within_limits);
     // The highest speed each limit allows.
-    let by = |l: Limit| r.limits.iter().find(|s| s.limit == l).unwrap().max_master_hz;
+    let by = |l: Limit| {
+        r.limits
+            .iter()
+            .find(|s| s.limit == l)
+            .unwrap()
+            .max_master_hz
+    };
     assert!(near(by(Limit::Speed), 12800.0, 1e-6));
     // Sampled 2000 times per segment: within a few parts per million.
     let peak_hz = (1.2 / (k * a_peak)).sqrt();
-    assert!(near(by(Limit::PeakTorque), peak_hz, 1e-5 * peak_hz), "{} vs {peak_hz}", by(Limit::PeakTorque));
+    assert!(
+        near(by(Limit::PeakTorque), peak_hz, 1e-5 * peak_hz),
+        "{} vs {peak_hz}",
+        by(Limit::PeakTorque)
+    );
     let rms_hz = ((0.45f64.powi(2) * 3600.0 - 24.0) / (k * k * a2)).powf(0.25);
-    assert!(near(by(Limit::RmsTorque), rms_hz, 1e-5 * rms_hz), "{} vs {rms_hz}", by(Limit::RmsTorque));
+    assert!(
+        near(by(Limit::RmsTorque), rms_hz, 1e-5 * rms_hz),
+        "{} vs {rms_hz}",
+        by(Limit::RmsTorque)
+    );
     assert_eq!(r.binding, Limit::RmsTorque);
     assert!(
         near(r.max_cycles_per_min, rms_hz * 60.0 / 3600.0, 1e-5 * rms_hz),
@@ -146,6 +183,8 @@ fn bad_drive_files_name_the_key() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("units_per_motor_rev"), "{e}");
-    let e = ecam_design::read_drive("[mechanics]\nunits_per_motor_rv = 1\n").unwrap_err().to_string();
+    let e = ecam_design::read_drive("[mechanics]\nunits_per_motor_rv = 1\n")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("units_per_motor_rv"), "{e}");
 }
