@@ -180,6 +180,16 @@ fn peaks(summary: &Summary) -> Peaks {
 
 /// The design's peaks from a file's derivative columns, when it has them.
 fn design_peaks(file: &TableFile) -> Option<Peaks> {
+    // A segment cam's own peaks are exact (closed forms), not those at the points.
+    if let Some(cam) = &file.segments {
+        let (v, a) = cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
+            (v.max(p.peak_velocity), a.max(p.peak_acceleration))
+        });
+        return Some(Peaks {
+            peak_velocity: v,
+            peak_acceleration: a,
+        });
+    }
     let known = file.kinematics.as_ref()?;
     let peak = |f: fn(&ecam_core::Kinematics) -> f64| {
         known.iter().map(f).fold(0.0_f64, |m, v| m.max(v.abs()))
@@ -305,6 +315,10 @@ fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::
     let summary = Summary::of(&file.table);
     let table = peaks(&summary);
     let design = design_peaks(file);
+    let design_source = match file.segments {
+        Some(_) => Source::ProfileLaws,
+        None => Source::DesignColumns,
+    };
     let points = file.table.points();
     let (first, last) = match (points.first(), points.last()) {
         (Some(f), Some(l)) => (*f, *l),
@@ -323,7 +337,7 @@ fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::
             summary: &summary,
             design,
             at_speed: match &design {
-                Some(design) => args.machine.at_speed(design, Source::DesignColumns),
+                Some(design) => args.machine.at_speed(design, design_source),
                 None => args.machine.at_speed(&table, Source::SampledTable),
             },
             segments: file.segments.as_deref().map(ecam_design::segments_json),
@@ -352,7 +366,7 @@ fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::
         .min();
     table_peaks::write(
         &mut out,
-        design.as_ref().map(|d| (d, Source::DesignColumns)),
+        design.as_ref().map(|d| (d, design_source)),
         (&table, Source::SampledTable),
         shortest,
         &args.machine,

@@ -188,3 +188,23 @@ fn bad_drive_files_name_the_key() {
         .to_string();
     assert!(e.contains("units_per_motor_rv"), "{e}");
 }
+
+#[test]
+fn the_published_double_dwell_case() {
+    // docs/design.md, "A published case": h = 25 mm over β = 90° at
+    // ω = 2π rad/s with the 3-4-5 law peaks at 1.875·h·ω/β = 187.5 mm/s,
+    // 5.7735·h·ω²/β² = 2309.4 mm/s² and 60·h·ω³/β³ = 96 000 mm/s³.
+    let g = generate("segments-double-dwell.toml");
+    let cam = g.segments.as_ref().unwrap();
+    let rise = cam.peaks()[1];
+    let f = 3600.0; // counts/s: one turn a second
+    let mm = 0.001; // per pulse
+    assert!(near(rise.peak_velocity * f * mm, 187.5, 1e-9));
+    assert!(near(rise.peak_acceleration * f * f * mm, 2309.401_076_758_503, 1e-6));
+    assert!(near(rise.peak_jerk * f * f * f * mm, 96_000.0, 1e-6));
+    let c = cam.polynomial(1).unwrap().coefficients;
+    for (got, want) in c.iter().zip([0.0, 0.0, 0.0, 250_000.0, -375_000.0, 150_000.0]) {
+        assert!(near(*got, want, 1e-6), "{c:?}");
+    }
+    assert_eq!(cam.continuity().cam, Continuity::C2);
+}
