@@ -200,10 +200,17 @@ fn the_published_double_dwell_case() {
     let f = 3600.0; // counts/s: one turn a second
     let mm = 0.001; // per pulse
     assert!(near(rise.peak_velocity * f * mm, 187.5, 1e-9));
-    assert!(near(rise.peak_acceleration * f * f * mm, 2309.401_076_758_503, 1e-6));
+    assert!(near(
+        rise.peak_acceleration * f * f * mm,
+        2309.401_076_758_503,
+        1e-6
+    ));
     assert!(near(rise.peak_jerk * f * f * f * mm, 96_000.0, 1e-6));
     let c = cam.polynomial(1).unwrap().coefficients;
-    for (got, want) in c.iter().zip([0.0, 0.0, 0.0, 250_000.0, -375_000.0, 150_000.0]) {
+    for (got, want) in c
+        .iter()
+        .zip([0.0, 0.0, 0.0, 250_000.0, -375_000.0, 150_000.0])
+    {
         assert!(near(*got, want, 1e-6), "{c:?}");
     }
     assert_eq!(cam.continuity().cam, Continuity::C2);
