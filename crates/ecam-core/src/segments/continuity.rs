@@ -42,7 +42,14 @@ pub struct ContinuityReport {
 /// cam's own peak of that derivative (the laws meet at a point to ~1e-12).
 const JUMP_TOLERANCE: f64 = 1e-7;
 
-pub(crate) fn report(cam: &SegmentCam) -> ContinuityReport {
+impl SegmentCam {
+    /// Continuity at every point between two segments, and at the seam.
+    pub fn continuity(&self) -> ContinuityReport {
+        report(self)
+    }
+}
+
+fn report(cam: &SegmentCam) -> ContinuityReport {
     let n = cam.segment_count();
     let peaks = cam.peaks();
     let scale = |f: fn(&super::SegmentPeaks) -> f64| {

@@ -23,9 +23,9 @@
 
 use alloc::vec::Vec;
 
-use super::cam::{agree, check_points, solve_segment, value_at};
 use super::error::SegmentError;
 use super::point::{InterpolationPoint, Quantity, SegmentSpec};
+use super::solve::{agree, check_points, solve_segment, value_at};
 
 /// Fills the free boundary values of `start` and `segments` (see the module).
 ///

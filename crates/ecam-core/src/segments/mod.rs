@@ -48,6 +48,7 @@ mod peaks;
 mod point;
 pub mod poly;
 mod shape;
+mod solve;
 
 pub use cam::SegmentCam;
 pub use continuity::{ContinuityReport, Joint};
