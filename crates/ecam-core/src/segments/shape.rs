@@ -153,7 +153,7 @@ fn trig_roots(p: f64, q: f64, r: f64) -> [Option<f64>; 2] {
     let phi = libm::atan2(r, q);
     let alpha = libm::acos(-p / rho);
     let wrap = |theta: f64| {
-        let t = theta.rem_euclid(TAU);
+        let t = theta - TAU * libm::floor(theta / TAU);
         (t > 0.0 && t < TAU).then_some(t)
     };
     [wrap(phi + alpha), wrap(phi - alpha)]

@@ -202,7 +202,7 @@ fn the_published_double_dwell_case() {
     assert!(near(rise.peak_velocity * f * mm, 187.5, 1e-9));
     assert!(near(
         rise.peak_acceleration * f * f * mm,
-        2309.401_076_758_503,
+        2_309.401_076_758_503,
         1e-6
     ));
     assert!(near(rise.peak_jerk * f * f * f * mm, 96_000.0, 1e-6));
