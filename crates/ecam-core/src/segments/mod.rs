@@ -57,3 +57,4 @@ pub use fill::make_continuous;
 pub use law::{Adapts, SegmentLaw};
 pub use peaks::SegmentPeaks;
 pub use point::{InterpolationPoint, Quantity, SegmentSpec};
+pub use solve::MAX_SEGMENTS;

@@ -3,7 +3,8 @@
 use super::law::SegmentLaw;
 use super::shape::Shape;
 
-/// Peaks of one segment, from closed forms (see [`Shape::peaks`]).
+/// Peaks of one segment, from closed forms (`docs/design.md`, "Continuity
+/// and peaks").
 ///
 /// `cv`, `ca`, `cj` are the dimensionless factors of the cam-design tables:
 /// a segment rising `h` over `β` counts peaks at `cv·|h|/β`, `ca·|h|/β²`,

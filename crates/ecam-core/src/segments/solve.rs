@@ -9,6 +9,9 @@ use super::shape::{End, Shape};
 use crate::TableError;
 use crate::table::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION};
 
+/// Most segments a cam may have: a 512-point table holds the start and 511 ends.
+pub const MAX_SEGMENTS: usize = crate::table::MAX_TOTAL_RESOLUTION as usize - 1;
+
 fn in_range(value: i64) -> bool {
     (-MAX_PROFILE_POSITION..=MAX_PROFILE_POSITION).contains(&value)
 }
@@ -20,6 +23,16 @@ pub(crate) fn check_points(
 ) -> Result<(), SegmentError> {
     if segments.is_empty() {
         return Err(SegmentError::NoSegments);
+    }
+    // Every point must fit a sampled table (512 points, the start one of
+    // them); this also bounds the work a file or a request can ask for.
+    if segments.len() > MAX_SEGMENTS {
+        return Err(TableError::SectionCount {
+            count: segments.len(),
+            min: 1,
+            max: MAX_SEGMENTS,
+        }
+        .into());
     }
     let points = core::iter::once(*start).chain(segments.iter().map(SegmentSpec::end));
     let mut previous: Option<i64> = None;
