@@ -125,6 +125,7 @@ def main():
     parser.add_argument("--ecam", required=True, help="the side_by_side example binary")
     parser.add_argument("--data", required=True, help="where the binary writes the data")
     parser.add_argument("--paths", help="the tick_paths example binary (tick-worst-instr)")
+    parser.add_argument("--cycle", help="ecam-ethercat's cycle_cost example binary (ethercat-cycle-N)")
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     data = Path(args.data)
@@ -177,6 +178,10 @@ def main():
         emit(peer)
     else:
         emit(with_reference(peer, "pyplcopen 0.21.0 MC_CamIn (C++, scripts/plcopen-peer)", ns))
+    if args.cycle:
+        run = subprocess.run([args.cycle, *quick], check=True, capture_output=True, text=True)
+        for line in run.stdout.splitlines():
+            emit(json.loads(line))
     return 0
 
 
