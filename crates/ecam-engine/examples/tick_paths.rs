@@ -13,12 +13,17 @@
 //! gives the same counts on a loaded machine. See docs/engine.md,
 //! "Benchmarks".
 //!
+//! `--only SCENARIO` runs one scenario and `--probe N` measures only its
+//! `N`th tick (to profile one tick: `callgrind_annotate` on a run without
+//! the dumps).
+//!
 //! Without valgrind it runs the same ticks natively (a quick check that
 //! every scenario does what its name says: each prints the state it ends
 //! in after `end PATH`).
 
 use std::hint::black_box;
 use std::num::{NonZeroU32, NonZeroU64};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use ecam_core::PointTable;
 use ecam_engine::{
@@ -28,6 +33,17 @@ use ecam_engine::{
 
 #[path = "../benches/common/mod.rs"]
 mod common;
+
+/// Probes so far; `--probe N` measures only the `N`th (counted from 0),
+/// so that a profile shows that one tick alone.
+static PROBES: AtomicUsize = AtomicUsize::new(0);
+
+fn only_probe() -> Option<usize> {
+    std::env::args()
+        .skip_while(|a| a != "--probe")
+        .nth(1)
+        .and_then(|n| n.parse().ok())
+}
 
 /// Steady ticks measured for the reference mean.
 const STEADY_TICKS: usize = 2000;
@@ -79,8 +95,13 @@ impl Driver {
 
     /// One measured tick at `input`.
     fn probe_at(&mut self, path: &str, input: &TickInput) -> TickOutput {
-        println!("probe {path}");
-        let out = instr_probe(&mut self.axis, input);
+        let index = PROBES.fetch_add(1, Ordering::Relaxed);
+        let out = if only_probe().is_none_or(|only| only == index) {
+            println!("probe {path}");
+            instr_probe(&mut self.axis, input)
+        } else {
+            *self.axis.tick_in_place(input)
+        };
         drop(self.axis.take_retired_curve());
         out
     }

@@ -35,7 +35,7 @@ pub(crate) struct Place {
 }
 
 /// The integer geometry of the cycle, fixed while a cam is engaged.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Geometry {
     origin: i64,
     origin_num: i128,
@@ -50,6 +50,30 @@ pub(crate) struct Geometry {
     /// slave values differ and whose stroke is not accumulated.
     pub(crate) jumps_at_seam: bool,
     pub(crate) extent: Extent,
+    /// Floats of the zooms, taken once here rather than at every sample
+    /// (the same values: each is the one conversion the sample made).
+    floats: ZoomFloats,
+}
+
+/// The zoom factors as floats, and their product as the coupling law forms it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ZoomFloats {
+    mden: f64,
+    snum: f64,
+    sden: f64,
+    /// `(mnum / mden) × (snum / sden)`.
+    factor: f64,
+}
+
+impl ZoomFloats {
+    fn of(mnum: i128, mden: i128, snum: i128, sden: i128) -> Self {
+        Self {
+            mden: to_f64(mden),
+            snum: to_f64(snum),
+            sden: to_f64(sden),
+            factor: (to_f64(mnum) / to_f64(mden)) * (to_f64(snum) / to_f64(sden)),
+        }
+    }
 }
 
 /// Largest single-turn range accepted (keeps every product far from overflow).
@@ -103,17 +127,21 @@ impl Geometry {
             return Err(EngineError::ReversedOneShot);
         }
         let mden = i128::from(config.master_zoom.den());
+        let mnum = i128::from(config.master_zoom.signed_num());
+        let snum = i128::from(config.slave_zoom.signed_num());
+        let sden = i128::from(config.slave_zoom.den());
         Ok(Self {
             origin,
             origin_num: i128::from(origin) * mden,
             period_num: span * mden,
-            mnum: i128::from(config.master_zoom.signed_num()),
+            mnum,
             mden,
-            snum: i128::from(config.slave_zoom.signed_num()),
-            sden: i128::from(config.slave_zoom.den()),
+            snum,
+            sden,
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
+            floats: ZoomFloats::of(mnum, mden, snum, sden),
         })
     }
 
@@ -129,9 +157,12 @@ impl Geometry {
 
     /// The same geometry with another slave zoom.
     pub(crate) fn with_slave_zoom(&self, zoom: crate::Zoom) -> Self {
+        let snum = i128::from(zoom.signed_num());
+        let sden = i128::from(zoom.den());
         Self {
-            snum: i128::from(zoom.signed_num()),
-            sden: i128::from(zoom.den()),
+            snum,
+            sden,
+            floats: ZoomFloats::of(self.mnum, self.mden, snum, sden),
             ..*self
         }
     }
@@ -190,12 +221,12 @@ impl Geometry {
 
     /// Table input as a float for the curve (the only float in the chain).
     pub(crate) fn table_x(&self, place: Place) -> f64 {
-        self.origin as f64 + to_f64(place.r_num) / to_f64(self.mden)
+        self.origin as f64 + to_f64(place.r_num) / self.floats.mden
     }
 
     /// d(slave)/d(master) factor of the two zooms.
     fn zoom_factor(&self) -> f64 {
-        (to_f64(self.mnum) / to_f64(self.mden)) * (to_f64(self.snum) / to_f64(self.sden))
+        self.floats.factor
     }
 
     /// Exact zoomed value of `table + strokes × stroke`, rounded once.
@@ -204,8 +235,7 @@ impl Geometry {
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
         let (whole, rem) = div_floor(accumulated, self.sden);
-        let fraction =
-            round_half_away((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
+        let fraction = round_half_away((to_f64(rem) + table * self.floats.snum) / self.floats.sden);
         if !fraction.is_finite() || fraction.abs() > 1e36 {
             return Err(EngineError::SlaveOverflow);
         }
@@ -242,7 +272,7 @@ fn mul_exact(a: i128, b: i128) -> Option<i128> {
 /// ones are built from their two halves (within a rounding of the nearest
 /// float, which is all a float inside a cycle needs).
 #[inline]
-fn to_f64(v: i128) -> f64 {
+pub(crate) fn to_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
         Err(_) => ((v >> 64) as i64 as f64) * 18_446_744_073_709_551_616.0 + (v as u64) as f64,
@@ -285,6 +315,26 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
         let r = libm::round(v);
         // Strictly inside ±2^63, so the conversion is exact.
         (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+    }
+}
+
+/// `v` as a float, for a count that is never negative (travel, spans):
+/// one conversion below 2^64, where every such value lies in practice.
+#[inline]
+pub(crate) fn unsigned_to_f64(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => v as f64,
+    }
+}
+
+/// `libm::round(v) as i128` (saturating, NaN as 0) with the fast rounding
+/// of [`round_to_i64`] where it applies: the same integer.
+#[inline]
+pub(crate) fn round_to_i128(v: f64) -> i128 {
+    match round_to_i64(v) {
+        Some(whole) => i128::from(whole),
+        None => libm::round(v) as i128,
     }
 }
 
@@ -564,13 +614,13 @@ impl Engagement {
             origin: geo.origin,
             origin_f: geo.origin as f64,
             mden: narrow(geo.mden).filter(|&d| d > 0)?,
-            mden_f: to_f64(geo.mden),
+            mden_f: geo.floats.mden,
             shift: narrow(self.shift)?,
             stroke,
             stroke_snum: stroke.checked_mul(snum)?,
-            snum_f: to_f64(geo.snum),
+            snum_f: geo.floats.snum,
             sden: narrow(geo.sden).filter(|&d| d > 0)?,
-            sden_f: to_f64(geo.sden),
+            sden_f: geo.floats.sden,
             zoom_factor: geo.zoom_factor(),
             output_offset: narrow(self.output_offset)?,
             k_engage: narrow(self.k_engage)?,
@@ -596,7 +646,7 @@ impl Engagement {
         let unzoomed = mul_exact(strokes, geo.stroke)
             .unwrap_or(i128::MAX)
             .saturating_add(whole_to_i128(round_half_away(table)));
-        let in_cycle_zoomed = round_half_away(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
+        let in_cycle_zoomed = round_half_away(table * geo.floats.snum / geo.floats.sden) as i64;
         Ok(Sample {
             place,
             slave,
