@@ -31,6 +31,7 @@ use crate::{
 
 mod cam_out;
 mod engage;
+mod lane;
 mod online;
 mod phase;
 #[cfg(test)]
@@ -406,6 +407,34 @@ impl<C: CamCurve> CamAxis<C> {
             });
         }
         let hz = effective_frequency(self.config.max_frequency_hz);
+        // A running cam with a ramp, blend or change on top: the general
+        // tick's fast lane (`lane.rs`), from the same constants.
+        if steady_allowed && settled.is_none() && estimate.fraction == 0 {
+            let Self {
+                phase,
+                curve,
+                geometry,
+                cursor,
+                ..
+            } = self;
+            let lane = match phase {
+                Phase::Running(engaged) => {
+                    engaged.follow_lane(geometry, curve, cursor, None, master)
+                }
+                Phase::Stopping(engaged, end) => {
+                    engaged.follow_lane(geometry, curve, cursor, Some(end), master)
+                }
+                _ => None,
+            };
+            if let Some((followed, happened)) = lane {
+                events.merge(happened);
+                self.commanded = followed.slave;
+                let pulses = self
+                    .pulse
+                    .step(self.commanded, input.output_enabled, hz, input.dt_us);
+                return self.report::<false>(master, Some(followed), pulses, events, fault);
+            }
+        }
         if let Some(followed) = settled {
             self.commanded = followed.slave;
             let pulses = self

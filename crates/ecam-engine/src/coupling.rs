@@ -594,7 +594,14 @@ impl Engagement {
 
     /// Document 002 `CamInputOffset`, in table counts (floor).
     pub(crate) fn input_offset(&self, geo: &Geometry) -> i64 {
-        clamp_i64(div_floor(self.input_offset_num, geo.mden).0)
+        match (
+            i64::try_from(self.input_offset_num),
+            i64::try_from(geo.mden),
+        ) {
+            // The common case in one division (the denominator is positive).
+            (Ok(num), Ok(den)) if den > 0 => num.div_euclid(den),
+            _ => clamp_i64(div_floor(self.input_offset_num, geo.mden).0),
+        }
     }
 
     /// The 64-bit constants of this engagement on `geo` for the steady
@@ -637,6 +644,61 @@ impl Engagement {
         place: Place,
     ) -> Result<Sample, EngineError> {
         let (table, slope) = table_value(curve, cursor, geo.table_x(place))?;
+        match self.sample_narrow(geo, place, table, slope) {
+            Some(sample) => Ok(sample),
+            None => self.sample_wide(geo, place, table, slope),
+        }
+    }
+
+    /// [`Engagement::sample`] in 64-bit integers, for the table value
+    /// `table` and slope `slope` at `place`: the same steps in the same
+    /// order as [`Engagement::sample_wide`] (as the steady tick takes them),
+    /// so the same results; `None` as soon as a value would leave 64 bits,
+    /// and the wide path decides (and reports any error).
+    #[inline]
+    fn sample_narrow(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: f64,
+        slope: f64,
+    ) -> Option<Sample> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let strokes = narrow(place.k)?.checked_add(narrow(self.shift)?)?;
+        let stroke = narrow(geo.stroke)?;
+        let sden = narrow(geo.sden)?;
+        let accumulated = strokes
+            .checked_mul(stroke)?
+            .checked_mul(narrow(geo.snum)?)?;
+        let whole = accumulated.div_euclid(sden);
+        let rem = accumulated.rem_euclid(sden);
+        let fraction = round_to_i64((rem as f64 + table * geo.floats.snum) / geo.floats.sden)?;
+        let slave = whole
+            .checked_add(fraction)?
+            .checked_add(narrow(self.output_offset)?)?;
+        let unzoomed = strokes
+            .checked_mul(stroke)?
+            .checked_add(round_to_i64(table)?)?;
+        let in_cycle = table * geo.floats.snum / geo.floats.sden;
+        Some(Sample {
+            place,
+            slave,
+            unzoomed,
+            // Saturating, as the wide path reports it.
+            in_cycle_zoomed: round_to_i64(in_cycle)
+                .unwrap_or_else(|| round_half_away(in_cycle) as i64),
+            velocity_ratio: slope * geo.zoom_factor(),
+        })
+    }
+
+    /// [`Engagement::sample`] in 128-bit integers (any value).
+    fn sample_wide(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: f64,
+        slope: f64,
+    ) -> Result<Sample, EngineError> {
         let strokes = place.k.saturating_add(self.shift);
         let zoomed = geo.zoomed(strokes, table)?;
         let slave = zoomed
@@ -768,6 +830,55 @@ mod tests {
                 assert_eq!(round_to_i64(w), reference(w), "{w}");
             }
         }
+    }
+
+    /// The 64-bit sample is the 128-bit one wherever it gives a value, and
+    /// gives one for every value of ordinary size.
+    #[test]
+    fn narrow_sample_equals_wide_sample() {
+        let mut words = xorshift(0x5851_F42D_4C95_7F2D);
+        let mut next = move || words.next().unwrap_or(1);
+        let mut compared = 0;
+        for _ in 0..20_000 {
+            let pick = |w: u64, scale: u32| (w >> (64 - scale)) as i64 - (1i64 << (scale - 1));
+            let config = AxisConfig {
+                coupling: Coupling::Repeat { min_stroke: 1 },
+                master_zoom: Zoom::new(1 + (next() % 9) as u16, 1 + (next() % 7) as u16).unwrap(),
+                slave_zoom: Zoom::signed(
+                    if next() % 2 == 0 { 1 } else { -1 } * (1 + (next() % 11) as i32),
+                    1 + (next() % 13) as u16,
+                )
+                .unwrap(),
+                ..AxisConfig::default()
+            };
+            let scale = [20, 40, 62][(next() % 3) as usize];
+            let t =
+                PointTable::from_pairs(&[(0, pick(next(), scale)), (1000, pick(next(), scale))])
+                    .unwrap();
+            let geo = Geometry::new(&t, &config).unwrap();
+            let e = Engagement {
+                input_offset_num: 0,
+                shift: i128::from(pick(next(), scale)),
+                output_offset: i128::from(pick(next(), scale)),
+                k_engage: 0,
+                span: None,
+            };
+            let place = Place {
+                k: i128::from(pick(next(), scale)),
+                r_num: i128::from((next() % 1000) as i64),
+            };
+            let table = (pick(next(), scale) as f64) * 0.37;
+            let slope = 0.25;
+            let wide = e.sample_wide(&geo, place, table, slope);
+            match e.sample_narrow(&geo, place, table, slope) {
+                Some(narrow) => {
+                    assert_eq!(Ok(narrow), wide, "{e:?} {place:?} {table}");
+                    compared += 1;
+                }
+                None => assert!(scale > 20, "small values stay narrow: {e:?} {place:?}"),
+            }
+        }
+        assert!(compared > 5000, "{compared}");
     }
 
     #[test]
