@@ -231,6 +231,12 @@ impl Geometry {
 
     /// Exact zoomed value of `table + strokes × stroke`, rounded once.
     fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
+        if let Some(value) = i64::try_from(strokes)
+            .ok()
+            .and_then(|strokes| self.zoomed_narrow(strokes, table))
+        {
+            return Ok(i128::from(value));
+        }
         let accumulated = mul_exact(strokes, self.stroke)
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
@@ -242,6 +248,21 @@ impl Geometry {
         whole
             .checked_add(whole_to_i128(fraction))
             .ok_or(EngineError::SlaveOverflow)
+    }
+
+    /// [`Geometry::zoomed`] in 64 bits, the same steps: `None` when a
+    /// value leaves them (the 128-bit route then decides).
+    #[inline]
+    fn zoomed_narrow(&self, strokes: i64, table: f64) -> Option<i64> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let accumulated = strokes
+            .checked_mul(narrow(self.stroke)?)?
+            .checked_mul(narrow(self.snum)?)?;
+        let sden = narrow(self.sden)?;
+        let whole = accumulated.div_euclid(sden);
+        let rem = accumulated.rem_euclid(sden);
+        let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
+        whole.checked_add(fraction)
     }
 }
 
@@ -315,6 +336,16 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
         let r = libm::round(v);
         // Strictly inside ±2^63, so the conversion is exact.
         (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+    }
+}
+
+/// `v as f64`, bit for bit, without the 128-bit library routine where
+/// `v` fits 64 bits (nearly always).
+#[inline]
+pub(crate) fn exact_f64(v: i128) -> f64 {
+    match i64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => v as f64,
     }
 }
 
@@ -666,15 +697,8 @@ impl Engagement {
         let narrow = |v: i128| i64::try_from(v).ok();
         let strokes = narrow(place.k)?.checked_add(narrow(self.shift)?)?;
         let stroke = narrow(geo.stroke)?;
-        let sden = narrow(geo.sden)?;
-        let accumulated = strokes
-            .checked_mul(stroke)?
-            .checked_mul(narrow(geo.snum)?)?;
-        let whole = accumulated.div_euclid(sden);
-        let rem = accumulated.rem_euclid(sden);
-        let fraction = round_to_i64((rem as f64 + table * geo.floats.snum) / geo.floats.sden)?;
-        let slave = whole
-            .checked_add(fraction)?
+        let slave = geo
+            .zoomed_narrow(strokes, table)?
             .checked_add(narrow(self.output_offset)?)?;
         let unzoomed = strokes
             .checked_mul(stroke)?
@@ -724,9 +748,9 @@ impl Engagement {
 fn nearest_shift(geo: &Geometry, k: i128, table: f64, target: i128) -> Result<i128, EngineError> {
     let base = geo.zoomed(k, table)?;
     // One stroke moves the output by stroke × snum / sden.
-    let per_stroke = geo.stroke as f64 * geo.snum as f64 / geo.sden as f64;
+    let per_stroke = exact_f64(geo.stroke) * exact_f64(geo.snum) / exact_f64(geo.sden);
     let gap = target.checked_sub(base).ok_or(EngineError::SlaveOverflow)?;
-    let guess = libm::round(gap as f64 / per_stroke);
+    let guess = libm::round(exact_f64(gap) / per_stroke);
     if !guess.is_finite() {
         return Err(EngineError::SlaveOverflow);
     }

@@ -9,7 +9,7 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
-use crate::coupling::{round_to_i128, to_f64, unsigned_to_f64};
+use crate::coupling::{exact_f64, round_to_i128, unsigned_to_f64};
 use crate::{MasterPosition, RampIn};
 
 /// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
@@ -50,7 +50,7 @@ impl Ramp {
             return None;
         }
         let w = quintic(unsigned_to_f64(travelled) / self.distance as f64);
-        let gap = to_f64(i128::from(self.hold) - i128::from(cam));
+        let gap = exact_f64(i128::from(self.hold) - i128::from(cam));
         let offset = round_to_i128((1.0 - w) * gap);
         i64::try_from(i128::from(cam) + offset).ok()
     }

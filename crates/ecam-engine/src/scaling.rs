@@ -14,7 +14,7 @@
 use core::num::NonZeroU64;
 
 use crate::MasterPosition;
-use crate::coupling::{Geometry, round_to_i64, to_f64, unsigned_to_f64};
+use crate::coupling::{Geometry, exact_f64, round_to_i64, unsigned_to_f64};
 use crate::ramp::quintic;
 
 /// A slave-scaling change being ramped in.
@@ -63,7 +63,7 @@ impl ScalingRamp {
         let d = self.distance as f64;
         let u = unsigned_to_f64(self.travelled(master)) / d;
         let w = quintic(u);
-        let gap = to_f64(i128::from(new.0) - i128::from(old.0));
+        let gap = exact_f64(i128::from(new.0) - i128::from(old.0));
         let step = w * gap;
         // `libm::round(step) as i64`, the common case without its routine.
         let step = round_to_i64(step).unwrap_or_else(|| libm::round(step) as i64);
