@@ -53,6 +53,41 @@ pub(crate) struct Geometry {
     /// Floats of the zooms, taken once here rather than at every sample
     /// (the same values: each is the one conversion the sample made).
     floats: ZoomFloats,
+    /// The integers in 64 bits when they all fit (nearly always), for the
+    /// 64-bit routes (`locate`, the steady constants).
+    narrow: Option<NarrowGeometry>,
+}
+
+/// A geometry's integers in 64 bits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct NarrowGeometry {
+    origin_num: i64,
+    /// Positive.
+    period_num: i64,
+    mnum: i64,
+    /// Positive.
+    mden: i64,
+    stroke: i64,
+    /// `stroke × snum`.
+    stroke_snum: i64,
+    /// Positive.
+    sden: i64,
+}
+
+impl NarrowGeometry {
+    fn of(geo: &Geometry) -> Option<Self> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let stroke = narrow(geo.stroke)?;
+        Some(Self {
+            origin_num: narrow(geo.origin_num)?,
+            period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
+            mnum: narrow(geo.mnum)?,
+            mden: narrow(geo.mden).filter(|&d| d > 0)?,
+            stroke,
+            stroke_snum: stroke.checked_mul(narrow(geo.snum)?)?,
+            sden: narrow(geo.sden).filter(|&d| d > 0)?,
+        })
+    }
 }
 
 /// The zoom factors as floats, and their product as the coupling law forms it.
@@ -130,7 +165,7 @@ impl Geometry {
         let mnum = i128::from(config.master_zoom.signed_num());
         let snum = i128::from(config.slave_zoom.signed_num());
         let sden = i128::from(config.slave_zoom.den());
-        Ok(Self {
+        let mut geometry = Self {
             origin,
             origin_num: i128::from(origin) * mden,
             period_num: span * mden,
@@ -142,7 +177,10 @@ impl Geometry {
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
             floats: ZoomFloats::of(mnum, mden, snum, sden),
-        })
+            narrow: None,
+        };
+        geometry.narrow = NarrowGeometry::of(&geometry);
+        Ok(geometry)
     }
 
     /// One stroke in output pulses (0 for a cam that does not accumulate).
@@ -159,12 +197,14 @@ impl Geometry {
     pub(crate) fn with_slave_zoom(&self, zoom: crate::Zoom) -> Self {
         let snum = i128::from(zoom.signed_num());
         let sden = i128::from(zoom.den());
-        Self {
+        let mut geometry = Self {
             snum,
             sden,
             floats: ZoomFloats::of(self.mnum, self.mden, snum, sden),
             ..*self
-        }
+        };
+        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry
     }
 
     /// The zoomed master in table-input units.
@@ -174,6 +214,23 @@ impl Geometry {
 
     /// Where table input `t_num` lies.
     pub(crate) fn locate(&self, t_num: i128) -> Place {
+        // In 64 bits when the input and the offset from the origin fit
+        // (the same place: nothing saturates there).
+        if let Some(n) = &self.narrow
+            && let Ok(t) = i64::try_from(t_num)
+            && let Some(u) = t.checked_sub(n.origin_num)
+        {
+            return match self.extent {
+                Extent::Single => Place {
+                    k: 0,
+                    r_num: i128::from(u.clamp(0, n.period_num)),
+                },
+                Extent::Cyclic | Extent::Cycles(_) => Place {
+                    k: i128::from(u.div_euclid(n.period_num)),
+                    r_num: i128::from(u.rem_euclid(n.period_num)),
+                },
+            };
+        }
         let u = t_num.saturating_sub(self.origin_num);
         match self.extent {
             Extent::Single => Place {
@@ -643,21 +700,20 @@ impl Engagement {
             return None;
         }
         let narrow = |v: i128| i64::try_from(v).ok();
-        let stroke = narrow(geo.stroke)?;
-        let snum = narrow(geo.snum)?;
+        let n = geo.narrow.as_ref()?;
         Some(Steady {
-            mnum: narrow(geo.mnum)?,
-            offset_num: narrow(self.input_offset_num.checked_sub(geo.origin_num)?)?,
-            period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
+            mnum: n.mnum,
+            offset_num: narrow(self.input_offset_num)?.checked_sub(n.origin_num)?,
+            period_num: n.period_num,
             origin: geo.origin,
             origin_f: geo.origin as f64,
-            mden: narrow(geo.mden).filter(|&d| d > 0)?,
+            mden: n.mden,
             mden_f: geo.floats.mden,
             shift: narrow(self.shift)?,
-            stroke,
-            stroke_snum: stroke.checked_mul(snum)?,
+            stroke: n.stroke,
+            stroke_snum: n.stroke_snum,
             snum_f: geo.floats.snum,
-            sden: narrow(geo.sden).filter(|&d| d > 0)?,
+            sden: n.sden,
             sden_f: geo.floats.sden,
             zoom_factor: geo.zoom_factor(),
             output_offset: narrow(self.output_offset)?,
