@@ -387,8 +387,11 @@ fn faults() -> Result<(), String> {
     Ok(())
 }
 
+/// One scenario: drives its axes and measures the ticks of its path.
+type Scenario = fn() -> Result<(), String>;
+
 /// The scenarios, by name.
-const SCENARIOS: [(&str, fn() -> Result<(), String>); 9] = [
+const SCENARIOS: [(&str, Scenario); 9] = [
     ("steady", steady),
     ("seam", seam),
     ("jumps", jumps),

@@ -702,9 +702,9 @@ impl<C: CamCurve> Coupled<'_, C> {
         master: i64,
     ) -> Result<(Sample, i64, f64, bool), EngineError> {
         let cam = engaged.engagement_at(master)?.sample(
-            &self.geometry,
+            self.geometry,
             &*self.curve,
-            &mut self.cursor,
+            self.cursor,
             place,
         )?;
         let (slave, ratio) = match (&engaged.blend, &engaged.scaling) {
@@ -716,7 +716,7 @@ impl<C: CamCurve> Coupled<'_, C> {
                 let new = engaged.engagement_at(master)?.sample(
                     &scaling.target,
                     &*self.curve,
-                    &mut self.cursor,
+                    self.cursor,
                     place,
                 )?;
                 scaling.mix(
@@ -853,12 +853,12 @@ impl<C: CamCurve> Coupled<'_, C> {
                 && !blending
                 && engaged.offsets.is_none()
                 && engaged.scaling.is_none(),
-            input_offset: engaged.engagement.input_offset(&self.geometry),
+            input_offset: engaged.engagement.input_offset(self.geometry),
             slave,
         };
         if engaged.ramp.is_none() && stop_at.is_none() && !engaged.changing() {
             // Settled: the next ticks can take the steady path.
-            engaged.steady = engaged.engagement.steady(&self.geometry);
+            engaged.steady = engaged.engagement.steady(self.geometry);
         }
         let ended = if let Some(forward) = here.stopped {
             events.cycle_completed |= forward;

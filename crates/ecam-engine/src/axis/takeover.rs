@@ -82,10 +82,10 @@ impl<C: CamCurve> Coupled<'_, C> {
         let place = self.resolve(&engaged.engagement, None, at).place;
         let old = engaged
             .engagement
-            .sample(&self.geometry, &*self.curve, self.cursor, place)?;
+            .sample(self.geometry, &*self.curve, self.cursor, place)?;
         match pending.takeover {
             Takeover::Table(curve) => {
-                let geometry = Geometry::new(&curve, &self.config)?;
+                let geometry = Geometry::new(&curve, self.config)?;
                 let mut cursor = Cursor::new();
                 let config = AxisConfig {
                     slave_align: SlaveAlign::Relative,
@@ -107,7 +107,7 @@ impl<C: CamCurve> Coupled<'_, C> {
                 let mut engagement =
                     engaged
                         .engagement
-                        .with_master_rescaled(&self.geometry, &geometry, at)?;
+                        .with_master_rescaled(self.geometry, &geometry, at)?;
                 let place = self.resolve_on(&geometry, &engagement, at);
                 let new = engagement.sample(&geometry, &*self.curve, self.cursor, place)?;
                 // Anchored: the new table unit may round the phase.
@@ -155,7 +155,7 @@ impl<C: CamCurve> Coupled<'_, C> {
         };
         let old = engaged
             .engagement
-            .sample(&self.geometry, &*self.curve, self.cursor, at_seam)?;
+            .sample(self.geometry, &*self.curve, self.cursor, at_seam)?;
         let Some((curve, then)) = engaged.queued.take() else {
             return Ok(false);
         };
@@ -165,13 +165,13 @@ impl<C: CamCurve> Coupled<'_, C> {
             Some(distance) => {
                 let at = engaged
                     .engagement
-                    .master_at_seam(&self.geometry, from.k, forward);
+                    .master_at_seam(self.geometry, from.k, forward);
                 let place = self.resolve(&engaged.engagement, None, at).place;
                 // Exactly on the seam: seen from the old cycle's side.
                 let there = if place.k == from.k {
                     engaged
                         .engagement
-                        .sample(&self.geometry, &*self.curve, self.cursor, place)?
+                        .sample(self.geometry, &*self.curve, self.cursor, place)?
                 } else {
                     old
                 };
@@ -179,10 +179,10 @@ impl<C: CamCurve> Coupled<'_, C> {
             }
             None => None,
         };
-        let geometry = Geometry::new(&curve, &self.config)?;
+        let geometry = Geometry::new(&curve, self.config)?;
         let mut cursor = Cursor::new();
         let mut next = engaged.engagement.across_seam(
-            &self.geometry,
+            self.geometry,
             &geometry,
             &curve,
             &mut cursor,
@@ -219,7 +219,7 @@ impl<C: CamCurve> Coupled<'_, C> {
         }; 2];
         for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
             let place = self.resolve(engagement, None, master).place;
-            let cam = engagement.sample(&self.geometry, &*self.curve, self.cursor, place)?;
+            let cam = engagement.sample(self.geometry, &*self.curve, self.cursor, place)?;
             *end = BlendEnd {
                 slave: cam.slave,
                 velocity_ratio: cam.velocity_ratio,
