@@ -27,7 +27,7 @@ use ecam_engine::{AxisConfig, CamAxis, Coupling, SlaveAlign, TickInput, TickOutp
 use ecam_ethercat::emulation::{DriveBehaviour, EmulatedSegment};
 use ecam_ethercat::line::LineState;
 use ecam_ethercat::pdo::{CspInputs, INPUTS_LEN, OUTPUTS_LEN};
-use ecam_ethercat::supervisor::Supervisor;
+use ecam_ethercat::supervisor::{Supervisor, default_max_lost_cycles};
 use ecam_ethercat::{CycleReport, Segment, SegmentConfig, Transport};
 use nix::time::{ClockId, clock_gettime};
 
@@ -73,7 +73,8 @@ impl Line {
         };
         let mut segment = Segment::bring_up(Transport::Emulated(emulation), config)
             .map_err(|e| format!("segment: {e}"))?;
-        let mut supervisor = Supervisor::new((0..n).collect(), CYCLE);
+        let mut supervisor =
+            Supervisor::new((0..n).collect(), n, CYCLE, default_max_lost_cycles(CYCLE));
         supervisor
             .start(&mut segment)
             .map_err(|state| format!("start: line {state:?}"))?;
@@ -145,8 +146,8 @@ impl Line {
             ..CycleReport::default()
         };
         let seen = self.supervisor.after_exchange(&mut self.segment, &bus);
-        if !seen.new_faults.is_empty() {
-            return Err(format!("fault: {:?}", seen.new_faults));
+        if seen.new_faults != 0 {
+            return Err(format!("fault: {:?}", self.supervisor.new_faults()));
         }
         if seen.now_running {
             for (axis, drive) in self.axes.iter_mut().zip(self.segment.drives()) {
