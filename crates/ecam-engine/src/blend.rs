@@ -25,6 +25,7 @@
 
 use core::num::NonZeroU64;
 
+use crate::coupling::round_half_away;
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::{EngineError, MasterPosition};
 
@@ -145,7 +146,8 @@ impl Blend {
         let position = self.p0 as f64
             + sign * d * (self.v0 * u + dv * smoothstep_integral(u))
             + side.residual * quintic(u);
-        let position = libm::round(position);
+        // `libm::round`'s value, the common case without its routine.
+        let position = round_half_away(position);
         if !position.is_finite() || position.abs() > 9.0e18 {
             return Err(EngineError::SlaveOverflow);
         }

@@ -10,6 +10,7 @@
 use core::num::NonZeroU64;
 
 use crate::MasterPosition;
+use crate::coupling::unsigned_to_f64;
 
 /// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
 /// the ends with zero slope and curvature there. The ramp-in, the offset
@@ -68,7 +69,7 @@ impl MasterRamp {
 
     /// `u`: the travel at `master` over the distance (beyond 1 past the end).
     pub(crate) fn progress(&self, master: i64) -> f64 {
-        self.travelled(master) as f64 / self.distance as f64
+        unsigned_to_f64(self.travelled(master)) / self.distance as f64
     }
 }
 

@@ -13,7 +13,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::coupling::Engagement;
+use crate::coupling::{Engagement, exact_f64, round_to_i128};
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::{EngineError, MasterPosition};
 
@@ -76,7 +76,7 @@ impl OffsetRamp {
             (self.input_num, self.output)
         } else {
             let w = quintic(self.span.progress(master));
-            let part = |v: i128| libm::round(v as f64 * w) as i128;
+            let part = |v: i128| round_to_i128(exact_f64(v) * w);
             (part(self.input_num), part(self.output))
         };
         engagement.shifted(input, output)

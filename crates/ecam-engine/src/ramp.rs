@@ -9,6 +9,7 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
+use crate::coupling::{exact_f64, round_to_i128};
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::{MasterPosition, RampIn};
 
@@ -35,8 +36,8 @@ impl Ramp {
             return None;
         }
         let w = quintic(self.span.progress(master));
-        let gap = (i128::from(self.hold) - i128::from(cam)) as f64;
-        let offset = libm::round((1.0 - w) * gap) as i128;
+        let gap = exact_f64(i128::from(self.hold) - i128::from(cam));
+        let offset = round_to_i128((1.0 - w) * gap);
         i64::try_from(i128::from(cam) + offset).ok()
     }
 

@@ -14,11 +14,11 @@
 use core::num::NonZeroU64;
 
 use crate::MasterPosition;
-use crate::coupling::Geometry;
+use crate::coupling::{Geometry, exact_f64, round_to_i64};
 use crate::master_ramp::{MasterRamp, quintic};
 
 /// A slave-scaling change being ramped in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ScalingRamp {
     span: MasterRamp,
     /// The geometry with the new slave scaling.
@@ -57,8 +57,11 @@ impl ScalingRamp {
         let d = self.span.distance() as f64;
         let u = self.span.progress(master);
         let w = quintic(u);
-        let gap = (i128::from(new.0) - i128::from(old.0)) as f64;
-        let slave = old.0.saturating_add(libm::round(w * gap) as i64);
+        let gap = exact_f64(i128::from(new.0) - i128::from(old.0));
+        let step = w * gap;
+        // `libm::round(step) as i64`, the common case without its routine.
+        let step = round_to_i64(step).unwrap_or_else(|| libm::round(step) as i64);
+        let slave = old.0.saturating_add(step);
         let sign = if self.span.backwards(master) {
             -1.0
         } else {

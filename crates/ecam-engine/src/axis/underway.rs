@@ -96,6 +96,20 @@ impl<C> Underway<C> {
         }
     }
 
+    /// What is under way after a tick that left `ramp_in` and `change`
+    /// running: settled, with `steady` as its constants, when neither runs.
+    pub(super) fn after_tick(
+        ramp_in: Option<Ramp>,
+        change: Option<Change<C>>,
+        steady: Option<Steady>,
+    ) -> Self {
+        match (ramp_in, change) {
+            (Some(ramp), change) => Self::RampIn(ramp, change),
+            (None, Some(change)) => Self::Changing(change),
+            (None, None) => Self::Settled(steady),
+        }
+    }
+
     /// The steady tick's constants, when settled and taken.
     #[inline(always)]
     pub(super) fn steady(&self) -> Option<&Steady> {
