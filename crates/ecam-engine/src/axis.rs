@@ -660,6 +660,7 @@ impl<C: CamCurve> Coupled<'_, C> {
     /// Where the cam stands for `master`: the place (clamped to a one-shot's
     /// span or to the end of a requested end-of-cycle stop), whether a
     /// one-shot finished, and whether the stop was reached (and forwards).
+    #[inline(always)]
     fn resolve(
         &self,
         engagement: &Engagement,
@@ -702,36 +703,28 @@ impl<C: CamCurve> Coupled<'_, C> {
         place: Place,
         master: i64,
     ) -> Result<(Sample, i64, f64, bool), EngineError> {
-        let cam = engaged.engagement_at(master)?.sample(
-            self.geometry,
-            &*self.curve,
-            self.cursor,
-            place,
-        )?;
-        let (slave, ratio) = match (engaged.blend(), engaged.scaling()) {
-            (Some(blend), _) => {
+        let (ramp_in, change) = engaged.underway.parts();
+        let engagement = match change.and_then(Change::offsets) {
+            Some(ramp) => ramp.apply(&engaged.engagement, master)?,
+            None => engaged.engagement,
+        };
+        let cam = engagement.sample(self.geometry, &*self.curve, self.cursor, place)?;
+        let (slave, ratio) = match change {
+            Some(Change::Blend(blend, _)) => {
                 let blended = blend.command(master)?;
                 (blended.slave, blended.velocity_ratio)
             }
-            (None, Some(scaling)) => {
-                let new = engaged.engagement_at(master)?.sample(
-                    &scaling.target,
-                    &*self.curve,
-                    self.cursor,
-                    place,
-                )?;
+            Some(Change::Scaling(scaling, _)) => {
+                let new = engagement.sample(&scaling.target, &*self.curve, self.cursor, place)?;
                 scaling.mix(
                     master,
                     (cam.slave, cam.velocity_ratio),
                     (new.slave, new.velocity_ratio),
                 )
             }
-            (None, None) => (cam.slave, cam.velocity_ratio),
+            _ => (cam.slave, cam.velocity_ratio),
         };
-        match engaged
-            .ramp_in()
-            .and_then(|ramp| Some((ramp, ramp.blend(master, slave)?)))
-        {
+        match ramp_in.and_then(|ramp| Some((ramp, ramp.blend(master, slave)?))) {
             Some((ramp, blended)) => Ok((cam, blended, ratio * ramp.weight(master), true)),
             None => Ok((cam, slave, ratio, false)),
         }
@@ -748,7 +741,6 @@ impl<C: CamCurve> Coupled<'_, C> {
         fraction: u32,
     ) -> Result<(bool, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
-        engaged.underway.settle(None);
         // Ramps and blends end where the position itself reaches their
         // end, not its whole count (below the position when the master
         // runs backwards), so the straight line between counts never
@@ -757,17 +749,17 @@ impl<C: CamCurve> Coupled<'_, C> {
             counts: master,
             fraction,
         };
-        if let Some(ramp) = engaged.offsets().copied()
-            && ramp.finished_at(at)
-        {
-            engaged.engagement = ramp.apply(&engaged.engagement, master)?;
-            engaged.underway.end_change();
-        }
-        if let Some(ramp) = engaged.scaling().copied()
-            && ramp.finished_at(at)
-        {
-            *self.geometry = ramp.target;
-            engaged.underway.end_change();
+        match engaged.underway.change() {
+            Some(Change::Offsets(ramp, _)) if ramp.finished_at(at) => {
+                let ramp = *ramp;
+                engaged.engagement = ramp.apply(&engaged.engagement, master)?;
+                engaged.underway.end_change();
+            }
+            Some(Change::Scaling(ramp, _)) if ramp.finished_at(at) => {
+                *self.geometry = ramp.target;
+                engaged.underway.end_change();
+            }
+            _ => {}
         }
         let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
         if here.stopped.is_none() && self.switch_at_seam(engaged, here.place)? {
@@ -837,7 +829,13 @@ impl<C: CamCurve> Coupled<'_, C> {
         if engaged.ramp_in().is_some_and(|ramp| ramp.finished_at(at)) {
             engaged.underway.end_ramp_in();
         }
-        let blending = engaged.blend().is_some();
+        // Following the cam itself: no ramp-in blending, and no ramp or
+        // blend (a table may wait).
+        let following = !ramping
+            && engaged
+                .underway
+                .change()
+                .is_none_or(|change| matches!(change, Change::Waiting(_)));
         *self.commanded = slave;
         if engaged.place.k != place.k {
             events.cycle_completed = true;
@@ -851,16 +849,19 @@ impl<C: CamCurve> Coupled<'_, C> {
             unzoomed: cam.unzoomed,
             in_cycle_zoomed: cam.in_cycle_zoomed,
             velocity_ratio,
-            following: !ramping
-                && !blending
-                && engaged.offsets().is_none()
-                && engaged.scaling().is_none(),
+            following,
             input_offset: engaged.engagement.input_offset(self.geometry),
             slave,
         };
-        if stop_at.is_none() && engaged.underway.is_settled() {
-            // Nothing under way: the next ticks can take the steady path.
-            let steady = engaged.engagement.steady(self.geometry);
+        // Nothing under way: the next ticks can take the steady path, from
+        // the constants of the engagement as it is now (a stop drops them).
+        // Nothing this tick did can have changed a settled engagement, so
+        // the constants are refreshed here rather than dropped on entry.
+        if engaged.underway.is_settled() {
+            let steady = match stop_at {
+                None => engaged.engagement.steady(self.geometry),
+                Some(_) => None,
+            };
             engaged.underway.settle(steady);
         }
         let ended = if let Some(forward) = here.stopped {

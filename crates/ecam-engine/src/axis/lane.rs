@@ -22,7 +22,7 @@ use crate::{Events, MasterPosition};
 
 use super::FollowSample;
 use super::phase::Engaged;
-use super::underway::{Change, Underway};
+use super::underway::Change;
 
 /// What the lane hands back: the sample followed and what happened.
 pub(super) type Followed = (FollowSample, Events);
@@ -39,27 +39,32 @@ impl<C> Engaged<C> {
         stop_at: Option<&CycleEnd>,
         master: i64,
     ) -> Option<Followed> {
-        // A table waiting is the general tick's (it may switch).
-        if self.underway.change().is_some_and(Change::waiting) {
-            return None;
-        }
+        // At most one ramp or blend; a table waiting is the general
+        // tick's (it may switch).
+        let (was_offsets, was_scaling, was_blend) = match self.underway.change() {
+            None => (None, None, None),
+            Some(Change::Offsets(ramp, None)) => (Some(*ramp), None, None),
+            Some(Change::Scaling(ramp, None)) => (None, Some(ramp), None),
+            Some(Change::Blend(blend, None)) => (None, None, Some(*blend)),
+            Some(_) => return None,
+        };
         let at = MasterPosition {
             counts: master,
             fraction: 0,
         };
         // Ramps that end here end first, as in the general tick.
-        let offsets = self.offsets().copied().filter(|ramp| !ramp.finished_at(at));
-        let mut base = match self.offsets().copied() {
+        let offsets = was_offsets.filter(|ramp| !ramp.finished_at(at));
+        let mut base = match was_offsets {
             Some(ramp) if offsets.is_none() => ramp.apply(&self.engagement, master).ok()?,
             _ => self.engagement,
         };
-        let scaling = self.scaling().copied().filter(|ramp| !ramp.finished_at(at));
-        let target = self.scaling().filter(|_| scaling.is_none());
+        let scaling = was_scaling.filter(|ramp| !ramp.finished_at(at));
+        let target = was_scaling.filter(|_| scaling.is_none());
         let geo: &Geometry = match target {
             Some(ramp) => &ramp.target,
             None => geometry,
         };
-        let blend = match self.blend().copied() {
+        let blend = match was_blend {
             Some(blend) => match blend.finished_at(at) {
                 Some(shift) => {
                     let mut shifted = base;
@@ -104,7 +109,7 @@ impl<C> Engaged<C> {
             Some((ramp, blended)) => (blended, ratio * ramp.weight(master), true),
             None => (slave, ratio, false),
         };
-        let ramp = self.ramp_in().copied().filter(|ramp| !ramp.finished_at(at));
+        let ramp_in_ends = self.ramp_in().is_some_and(|ramp| ramp.finished_at(at));
         let input_offset = match offsets {
             // The report names the engagement's own offset, not the ramp's.
             Some(_) => base.input_offset(geo),
@@ -118,27 +123,29 @@ impl<C> Engaged<C> {
             events.cycle_completed = true;
             events.seam_jump |= geo.jumps_at_seam;
         }
+        let following = !ramping && blend.is_none() && offsets.is_none() && scaling.is_none();
+        let scaling_ends = target.is_some();
         if let Some(ramp) = target {
             *geometry = ramp.target;
         }
         self.engagement = base;
-        // No table waits here (checked on entry): at most one ramp or
-        // blend, as it goes on after this tick.
-        let change = match (offsets, scaling, blend) {
-            (Some(ramp), _, _) => Some(Change::Offsets(ramp, None)),
-            (None, Some(ramp), _) => Some(Change::Scaling(ramp, None)),
-            (None, None, Some(blend)) => Some(Change::Blend(blend, None)),
-            (None, None, None) => None,
-        };
+        // What ended this tick ends in place; nothing else is written.
+        if was_offsets.is_some() && offsets.is_none()
+            || scaling_ends
+            || was_blend.is_some() && blend.is_none()
+        {
+            self.underway.end_change();
+        }
+        if ramp_in_ends {
+            self.underway.end_ramp_in();
+        }
         // Settled: the constants just used are the engagement's own.
-        let steady = stop_at.is_none().then_some(constants);
-        self.underway = Underway::after_tick(ramp, change, steady);
+        self.underway.settle(stop_at.is_none().then_some(constants));
         self.followed = i128::from(master) << 32;
         self.place = crate::coupling::Place {
             k,
             r_num: i128::from(cam.r_num),
         };
-        let following = !ramping && blend.is_none() && offsets.is_none() && scaling.is_none();
         let sample = FollowSample {
             master_in_cycle: cam.master_in_cycle,
             master_in_cycle_raw: cam.master_in_cycle_raw,

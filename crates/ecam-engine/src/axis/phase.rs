@@ -5,7 +5,6 @@ use crate::coast::Coast;
 use crate::coupling::{Engagement, Place};
 use crate::offset_ramp::OffsetRamp;
 use crate::ramp::Ramp;
-use crate::scaling::ScalingRamp;
 use crate::start::StartWatch;
 use crate::stop::CycleEnd;
 use crate::{AxisState, EngineError, MasterPosition};
@@ -65,11 +64,6 @@ impl<C> Engaged<C> {
     /// The offset change being ramped in.
     pub(super) fn offsets(&self) -> Option<&OffsetRamp> {
         self.underway.change().and_then(Change::offsets)
-    }
-
-    /// The slave-scaling change being ramped in.
-    pub(super) fn scaling(&self) -> Option<&ScalingRamp> {
-        self.underway.change().and_then(Change::scaling)
     }
 
     /// The blend from the last switch's old cam, while it runs.

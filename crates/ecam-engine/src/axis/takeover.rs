@@ -22,7 +22,7 @@ impl<C: CamCurve> CamAxis<C> {
             Underway::RampIn(_, Some(change)) | Underway::Changing(change) => {
                 change.into_leftovers()
             }
-            Underway::RampIn(_, None) | Underway::Settled(_) => (None, None),
+            Underway::RampIn(_, None) | Underway::Settled | Underway::Steady(_) => (None, None),
         };
         // The configuration already names the new scaling.
         if let Some(ramp) = scaling {

@@ -9,9 +9,10 @@
 //!   seam, a master position or the next tick) waits for its end.
 //! - A **table waits** for the next seam or for its switch position (or the
 //!   next tick): one slot, a new request replaces the waiting one.
-//! - **Settled**: none of these; the steady tick's constants live here, so
-//!   they cannot outlive what they were taken from: every change replaces
-//!   this variant.
+//! - **Settled**: none of these; once taken, the steady tick's constants
+//!   live in a variant of their own, so they cannot outlive what they were
+//!   taken from (every change replaces that variant) and the steady tick
+//!   checks one discriminant.
 //!
 //! [`Underway`] and [`Change`] hold exactly these combinations, so what
 //! may coexist is the shape of the types, not a rule each change request
@@ -31,10 +32,13 @@ use super::AfterPass;
 
 /// What is under way on top of the engaged cam.
 #[derive(Clone, Debug)]
+#[repr(u8)]
 pub(super) enum Underway<C> {
-    /// Nothing: the steady tick's 64-bit constants once the general tick
-    /// has taken them (`None` before that, or when they leave 64 bits).
-    Settled(Option<Steady>),
+    /// Nothing, and the steady tick's 64-bit constants not taken (not yet,
+    /// while stopping, or when they leave 64 bits).
+    Settled,
+    /// Nothing, and the steady tick's constants, taken by the general tick.
+    Steady(Steady),
     /// The ramp-in runs, with a change beside it or not.
     RampIn(Ramp, Option<Change<C>>),
     /// A change, the ramp-in over.
@@ -43,6 +47,7 @@ pub(super) enum Underway<C> {
 
 /// A change of the running cam: a ramp, a blend or a table waiting.
 #[derive(Clone, Debug)]
+#[repr(u8)]
 pub(super) enum Change<C> {
     /// An offset change being ramped in ([`crate::CamAxis::change_offsets`]);
     /// a table queued for the seam waits for its end.
@@ -92,21 +97,7 @@ impl<C> Underway<C> {
     pub(super) fn at_engage(ramp_in: Option<Ramp>) -> Self {
         match ramp_in {
             Some(ramp) => Self::RampIn(ramp, None),
-            None => Self::Settled(None),
-        }
-    }
-
-    /// What is under way after a tick that left `ramp_in` and `change`
-    /// running: settled, with `steady` as its constants, when neither runs.
-    pub(super) fn after_tick(
-        ramp_in: Option<Ramp>,
-        change: Option<Change<C>>,
-        steady: Option<Steady>,
-    ) -> Self {
-        match (ramp_in, change) {
-            (Some(ramp), change) => Self::RampIn(ramp, change),
-            (None, Some(change)) => Self::Changing(change),
-            (None, None) => Self::Settled(steady),
+            None => Self::Settled,
         }
     }
 
@@ -114,14 +105,14 @@ impl<C> Underway<C> {
     #[inline(always)]
     pub(super) fn steady(&self) -> Option<&Steady> {
         match self {
-            Self::Settled(steady) => steady.as_ref(),
+            Self::Steady(steady) => Some(steady),
             _ => None,
         }
     }
 
     /// Nothing is under way.
     pub(super) fn is_settled(&self) -> bool {
-        matches!(self, Self::Settled(_))
+        matches!(self, Self::Settled | Self::Steady(_))
     }
 
     /// The ramp-in, while it runs.
@@ -137,7 +128,17 @@ impl<C> Underway<C> {
         match self {
             Self::RampIn(_, change) => change.as_ref(),
             Self::Changing(change) => Some(change),
-            Self::Settled(_) => None,
+            Self::Settled | Self::Steady(_) => None,
+        }
+    }
+
+    /// The ramp-in and the change under way, read at once.
+    #[inline]
+    pub(super) fn parts(&self) -> (Option<&Ramp>, Option<&Change<C>>) {
+        match self {
+            Self::RampIn(ramp, change) => (Some(ramp), change.as_ref()),
+            Self::Changing(change) => (None, Some(change)),
+            Self::Settled | Self::Steady(_) => (None, None),
         }
     }
 
@@ -146,14 +147,14 @@ impl<C> Underway<C> {
         match self {
             Self::RampIn(_, change) => change.as_mut(),
             Self::Changing(change) => Some(change),
-            Self::Settled(_) => None,
+            Self::Settled | Self::Steady(_) => None,
         }
     }
 
     /// Replaces the change (`None`: none), keeping the ramp-in; gives the
     /// one there was.
     fn replace_change(&mut self, change: Option<Change<C>>) -> Option<Change<C>> {
-        match core::mem::replace(self, Self::Settled(None)) {
+        match core::mem::replace(self, Self::Settled) {
             Self::RampIn(ramp, old) => {
                 *self = Self::RampIn(ramp, change);
                 old
@@ -162,7 +163,7 @@ impl<C> Underway<C> {
                 *self = Self::with_change(change);
                 Some(old)
             }
-            Self::Settled(_) => {
+            Self::Settled | Self::Steady(_) => {
                 *self = Self::with_change(change);
                 None
             }
@@ -173,14 +174,14 @@ impl<C> Underway<C> {
     fn with_change(change: Option<Change<C>>) -> Self {
         match change {
             Some(change) => Self::Changing(change),
-            None => Self::Settled(None),
+            None => Self::Settled,
         }
     }
 
     /// Drops the ramp-in (it has ended); what runs beside it goes on.
     pub(super) fn end_ramp_in(&mut self) {
         if let Self::RampIn(..) = self
-            && let Self::RampIn(_, change) = core::mem::replace(self, Self::Settled(None))
+            && let Self::RampIn(_, change) = core::mem::replace(self, Self::Settled)
         {
             *self = Self::with_change(change);
         }
@@ -261,10 +262,16 @@ impl<C> Underway<C> {
         }
     }
 
-    /// Sets the steady tick's constants: only a settled cam keeps them.
+    /// Sets the steady tick's constants (`None`: drops them): only a
+    /// settled cam keeps them.
     pub(super) fn settle(&mut self, steady: Option<Steady>) {
-        if let Self::Settled(constants) = self {
-            *constants = steady;
+        // In place where it can be: the tick that refreshes the constants
+        // copies them, not the whole enum.
+        match (&mut *self, steady) {
+            (Self::Steady(constants), Some(new)) => *constants = new,
+            (Self::Settled, Some(new)) => *self = Self::Steady(new),
+            (Self::Steady(_), None) => *self = Self::Settled,
+            _ => {}
         }
     }
 }
@@ -274,14 +281,6 @@ impl<C> Change<C> {
     pub(super) fn offsets(&self) -> Option<&OffsetRamp> {
         match self {
             Self::Offsets(ramp, _) => Some(ramp),
-            _ => None,
-        }
-    }
-
-    /// The slave-scaling change being ramped in.
-    pub(super) fn scaling(&self) -> Option<&ScalingRamp> {
-        match self {
-            Self::Scaling(ramp, _) => Some(ramp),
             _ => None,
         }
     }
