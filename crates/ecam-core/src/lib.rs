@@ -61,7 +61,7 @@ pub mod segments;
 pub mod table;
 
 pub use curve::{CamCurve, Cursor};
-pub use error::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, TableError};
+pub use error::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE, CamErrorCode, TableError};
 pub use kinematics::Kinematics;
 pub use law::MotionLaw;
 pub use table::{CamPoint, CamTable, PointTable, Segment, SegmentProfile, UniformTable};

@@ -45,14 +45,15 @@ pub enum EngineError {
     ReversedOneShot,
 }
 
-use ecam_core::{CODE_PARAMETER, CODE_TABLE};
+use ecam_core::CamErrorCode;
 
 impl EngineError {
-    /// The document 003 operation error code: 6781 for parameters and
-    /// runtime faults, 6782 for a table that does not fit the configuration.
-    pub const fn code(self) -> u16 {
+    /// The document 003 operation error: a parameter error for parameters
+    /// and runtime faults, a table error for a table that does not fit the
+    /// configuration.
+    pub const fn kind(self) -> CamErrorCode {
         match self {
-            Self::EmptyCycle | Self::TableOutsideTurn | Self::CurveNotFinite => CODE_TABLE,
+            Self::EmptyCycle | Self::TableOutsideTurn | Self::CurveNotFinite => CamErrorCode::Table,
             Self::Busy
             | Self::BadZoom
             | Self::BadTurn
@@ -63,8 +64,14 @@ impl EngineError {
             | Self::RampInLimits
             | Self::RampDirection
             | Self::UnsupportedBufferMode
-            | Self::ReversedOneShot => CODE_PARAMETER,
+            | Self::ReversedOneShot => CamErrorCode::Parameter,
         }
+    }
+
+    /// The document 003 operation error code: 6781 for parameters and
+    /// runtime faults, 6782 for a table that does not fit the configuration.
+    pub const fn code(self) -> u16 {
+        self.kind().number()
     }
 }
 

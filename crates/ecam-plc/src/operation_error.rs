@@ -2,6 +2,8 @@
 
 use core::fmt;
 
+use ecam_core::CamErrorCode;
+
 /// An instruction that could not execute. The scan cycle writes `code` to
 /// D8067 and sets M8067, as the FX family does; the E-cam instructions use
 /// document 003's codes 6781 (parameter), 6782 (table out of range) and 6783
@@ -35,6 +37,12 @@ impl OperationError {
             code,
             message: message.into(),
         }
+    }
+
+    /// One of the E-cam instructions' operation errors (6781, 6782, 6783)
+    /// with a message.
+    pub fn cam(kind: CamErrorCode, message: impl Into<String>) -> Self {
+        Self::new(kind.number(), message)
     }
 }
 

@@ -1,9 +1,11 @@
 //! What can be wrong with a DECAM register block, mapped onto document 003's
-//! codes, the error register (offset 2) and the flag bits.
+//! operation errors ([`CamErrorCode`], whose codes live in ecam-core), the
+//! error register (offset 2) and the flag bits: each follows from the
+//! error's kind, none is kept as a number of its own.
 
 use core::fmt;
 
-use ecam_core::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE};
+use ecam_core::CamErrorCode;
 
 use super::{flags, offsets};
 use crate::operation_error::OperationError;
@@ -34,13 +36,18 @@ pub enum BlockError {
 }
 
 impl BlockError {
-    /// The code for D8067.
-    pub const fn code(&self) -> u16 {
+    /// The document 003 operation error the block shows.
+    pub const fn kind(&self) -> CamErrorCode {
         match self {
-            Self::Parameter { .. } => CODE_PARAMETER,
-            Self::Table { .. } => CODE_TABLE,
-            Self::SectionCount { .. } => CODE_SECTION_COUNT,
+            Self::Parameter { .. } => CamErrorCode::Parameter,
+            Self::Table { .. } => CamErrorCode::Table,
+            Self::SectionCount { .. } => CamErrorCode::SectionCount,
         }
+    }
+
+    /// The code for D8067 ([`Self::kind`]'s number).
+    pub const fn code(&self) -> u16 {
+        self.kind().number()
     }
 
     /// What the error register (offset 2) shows: the code for parameter and
@@ -52,18 +59,19 @@ impl BlockError {
         }
     }
 
-    /// Flag bits 3–5 for this error.
+    /// Flag bits 3–5 for this error: bit 4 for a parameter error, bit 5
+    /// for a table or count error (document 003's "datasheet error").
     pub const fn flag_bits(&self) -> u16 {
-        match self {
-            Self::Parameter { .. } => flags::ERROR | flags::PARAMETER_ERROR,
-            Self::Table { .. } | Self::SectionCount { .. } => flags::ERROR | flags::TABLE_ERROR,
+        match self.kind() {
+            CamErrorCode::Parameter => flags::ERROR | flags::PARAMETER_ERROR,
+            CamErrorCode::Table | CamErrorCode::SectionCount => flags::ERROR | flags::TABLE_ERROR,
         }
     }
 
     /// The operation error the scan reports, naming the block's registers.
     pub fn to_operation_error(&self, block: u16) -> OperationError {
-        OperationError::new(
-            self.code(),
+        OperationError::cam(
+            self.kind(),
             format!("DECAM block D{block}: {}", Located(self, block)),
         )
     }
@@ -111,7 +119,7 @@ impl std::error::Error for BlockError {}
 
 impl From<&BlockError> for OperationError {
     fn from(e: &BlockError) -> Self {
-        OperationError::new(e.code(), e.to_string())
+        OperationError::cam(e.kind(), e.to_string())
     }
 }
 
@@ -131,6 +139,10 @@ mod tests {
         );
         assert_eq!(BlockError::Table { section: 7 }.register_value(), 7);
         assert_eq!(BlockError::SectionCount { count: 0 }.register_value(), 6783);
+        assert_eq!(
+            BlockError::SectionCount { count: 0 }.flag_bits(),
+            flags::ERROR | flags::TABLE_ERROR
+        );
         let e = BlockError::Table { section: 3 }.to_operation_error(2000);
         assert_eq!(e.code, 6782);
         assert!(e.message.contains("D2052"), "{}", e.message);

@@ -259,8 +259,8 @@ impl Decam {
         let _ = devices.set_word(self.operands.reg(offsets::ERROR), shown as i16);
         self.write_flags(devices);
         match (result, self.fault_to_report.take()) {
-            (Ok(()), Some(fault)) => Err(OperationError::new(
-                fault.code(),
+            (Ok(()), Some(fault)) => Err(OperationError::cam(
+                fault.kind(),
                 format!("DECAM block D{base}: {fault}"),
             )),
             (result, _) => result,

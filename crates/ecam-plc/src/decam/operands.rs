@@ -1,6 +1,6 @@
 //! The five operands of `DECAM S1 S2 S3 D1 D2`, checked once at load.
 
-use ecam_core::CODE_PARAMETER;
+use ecam_core::CamErrorCode;
 
 use super::offsets;
 use crate::devices::{C_COUNT, D_COUNT, Device};
@@ -33,7 +33,7 @@ pub struct DecamOperands {
 }
 
 fn parameter(message: String) -> OperationError {
-    OperationError::new(CODE_PARAMETER, message)
+    OperationError::cam(CamErrorCode::Parameter, message)
 }
 
 impl DecamOperands {

@@ -3,7 +3,7 @@
 //! with document 003's checks. ECAMTBX writes its tables this way, and so
 //! does `ecam plc run --load D2000=table.csv`.
 
-use ecam_core::{CODE_SECTION_COUNT, CODE_TABLE, PointTable, TableError, register_image};
+use ecam_core::{CamErrorCode, PointTable, TableError, register_image};
 
 use super::offsets;
 use crate::devices::{D_COUNT, Devices};
@@ -36,25 +36,25 @@ pub fn load_table(
 ) -> Result<usize, OperationError> {
     let points = table.points().len();
     if !(2..=usize::from(offsets::MAX_SECTIONS)).contains(&points) {
-        return Err(OperationError::new(
-            CODE_SECTION_COUNT,
+        return Err(OperationError::cam(
+            CamErrorCode::SectionCount,
             format!("{points} table points; a DECAM table holds 2-512"),
         ));
     }
     // 2..=512 points: the count fits u16.
     let end = u32::from(block) + offsets::block_words(points as u16);
     if end > u32::from(D_COUNT) {
-        return Err(OperationError::new(
-            CODE_SECTION_COUNT,
+        return Err(OperationError::cam(
+            CamErrorCode::SectionCount,
             format!("a table of {points} points at D{block} does not fit below D8512"),
         ));
     }
     let words = register_image::table_words(table).map_err(|e| match e {
-        TableError::ValueOutOfRange { section } => OperationError::new(
-            CODE_TABLE,
+        TableError::ValueOutOfRange { section } => OperationError::cam(
+            CamErrorCode::Table,
             format!("table point {section} does not fit 32-bit registers"),
         ),
-        other => OperationError::new(other.code(), other.to_string()),
+        other => OperationError::cam(other.kind(), other.to_string()),
     })?;
     let first = block.saturating_add(offsets::SECTIONS);
     for (i, word) in words.into_iter().enumerate() {
