@@ -57,7 +57,8 @@ use ecam_core::{
 };
 
 use crate::decam::offsets::{TABLE_END, TABLE_END_REPEAT, TABLE_END_STOP};
-use crate::devices::{D_COUNT, Devices};
+use crate::device::D_COUNT;
+use crate::devices::Devices;
 use crate::operation_error::OperationError;
 
 /// Offset of the point count in the target block (`D1 + 38`).

@@ -33,18 +33,21 @@ pub mod il;
 pub mod sim;
 pub mod special;
 
+mod device;
 mod devices;
 mod hardware;
+mod index_register;
 mod interpreter;
 mod operation_error;
 mod scan;
 mod timers;
 mod view;
 
-pub use devices::{
-    C_32BIT_FIRST, C_COUNT, C_LATCHED, D_COUNT, D_LATCHED, Device, DeviceError, Devices, M_COUNT,
-    M_LATCHED, Retention, SPECIAL_FIRST, XY_COUNT,
+pub use device::{
+    C_32BIT_FIRST, C_COUNT, C_LATCHED, D_COUNT, D_LATCHED, Device, DeviceError, M_COUNT, M_LATCHED,
+    Retention, SPECIAL_FIRST, XY_COUNT,
 };
+pub use devices::Devices;
 pub use hardware::{
     Counters, HIGH_SPEED_COUNTERS, Hardware, OutputOwner, PULSE_OUTPUTS, PulseTrain, Wire,
     WireError, record_pulses,

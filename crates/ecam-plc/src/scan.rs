@@ -9,7 +9,8 @@
 //! program resets them, so a program can test M8067 at any later scan.
 
 use crate::decam::{Decam, DecamOperands, MasterOperand};
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::hardware::Hardware;
 use crate::il::{Instruction, MasterSpec, ParseError, Program};
 use crate::interpreter::{Interpreter, LineError, Machine};

@@ -10,7 +10,7 @@
 //! that `OUT` once the value has reached it. Contacts earlier in the program
 //! see the change in the next scan, as on the PLC.
 
-use crate::devices::DeviceError;
+use crate::device::DeviceError;
 
 /// Number of timers T0…T255.
 pub const T_COUNT: u16 = 256;

@@ -7,7 +7,8 @@ use ecam_core::{PointTable, TableError, register_image};
 
 use super::block_error::BlockError;
 use super::{flags, offsets};
-use crate::devices::{D_COUNT, Devices};
+use crate::device::D_COUNT;
+use crate::devices::Devices;
 
 /// Ceiling the manual puts on the output frequency (offsets 6/7).
 pub const MAX_FREQUENCY_HZ: u32 = 200_000;

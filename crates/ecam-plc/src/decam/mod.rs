@@ -525,8 +525,8 @@ impl Decam {
 fn live_settings(block: &Block<'_>, operands: &DecamOperands) -> Result<LiveSettings, BlockError> {
     let live = block.live()?;
     if live.sync_enabled {
-        let sync = crate::devices::Device::Y(live.sync_output);
-        if sync == crate::devices::Device::Y(u16::from(operands.pulse_output))
+        let sync = crate::device::Device::Y(live.sync_output);
+        if sync == crate::device::Device::Y(u16::from(operands.pulse_output))
             || sync == operands.direction
         {
             return Err(BlockError::Parameter {

@@ -23,7 +23,8 @@ pub use pulse_output::record_pulses;
 pub use pulse_train::PulseTrain;
 pub use wire::{Wire, WireError};
 
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::special::{M_BUSY, M_STOP};
 
 /// Number of pulse outputs (Y0..Y3).

@@ -1,7 +1,8 @@
 //! Pulse bookkeeping shared by PLSY/DPLSY and DECAM.
 
 use super::{Hardware, OutputOwner};
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::special::{D_PULSE_COUNT, M_BUSY};
 
 /// Pulses that `owner` emits on output Y0..=Y3 (`output` 0..=3) this tick,

@@ -18,11 +18,12 @@ pub(crate) use flow::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
 pub(crate) use parser::BLOCK_MAX;
 pub(crate) use validate::is_output;
 
+pub use crate::index_register::{INDEX_COUNT, IndexReg};
 pub use error::ParseError;
 pub use instruction::{
-    ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, GroupKind, INDEX_COUNT, IndexBase,
-    IndexReg, Indexed, Instruction, Join, LogicOp, MasterSpec, Relation, Source, Statement, Width,
-    WordBit, WordGroup, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, GroupKind, IndexBase, Indexed,
+    Instruction, Join, LogicOp, MasterSpec, Relation, Source, Statement, Width, WordBit, WordGroup,
+    ZoneDevice,
 };
 pub use parser::parse;
 

@@ -1,8 +1,9 @@
 //! Operand tokens: devices (`D100`, `X17`, `C231`), constants (`K-5`, `H1F`)
 //! and float constants (`E1.6667`).
 
-use super::instruction::{GroupKind, INDEX_COUNT, IndexReg, WordBit, WordGroup};
-use crate::devices::{Device, DeviceError};
+use super::instruction::{GroupKind, WordBit, WordGroup};
+use crate::device::{Device, DeviceError};
+use crate::index_register::{INDEX_COUNT, IndexReg};
 
 /// A lexed operand before the instruction checks its kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -211,9 +212,9 @@ impl Operand {
             )));
         }
         let (kind, first, count) = match Device::parse(device) {
-            Ok(Device::X(n)) => (GroupKind::X, n, crate::devices::XY_COUNT),
-            Ok(Device::Y(n)) => (GroupKind::Y, n, crate::devices::XY_COUNT),
-            Ok(Device::M(n)) => (GroupKind::M, n, crate::devices::M_COUNT),
+            Ok(Device::X(n)) => (GroupKind::X, n, crate::device::XY_COUNT),
+            Ok(Device::Y(n)) => (GroupKind::Y, n, crate::device::XY_COUNT),
+            Ok(Device::M(n)) => (GroupKind::M, n, crate::device::M_COUNT),
             _ => {
                 return Some(Err(format!(
                     "`{token}` is not a word group (expected Kn and an X, Y or M device, e.g. K4M0)"

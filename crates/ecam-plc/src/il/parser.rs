@@ -4,13 +4,14 @@ use super::Program;
 use super::error::ParseError;
 use super::flow;
 use super::instruction::{
-    ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, IndexBase, IndexReg, Indexed,
-    Instruction, Join, LogicOp, MasterSpec, Relation, Source, Statement, Width, ZoneDevice,
+    ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, IndexBase, Indexed, Instruction,
+    Join, LogicOp, MasterSpec, Relation, Source, Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
 use super::operand::{Modified, Operand};
 use super::validate;
-use crate::devices::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
+use crate::device::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
+use crate::index_register::IndexReg;
 
 /// Parses and checks a program. `file` names the source in error messages
 /// (`file:line: message`). Lines after `END` are ignored, as on the PLC.

@@ -4,8 +4,8 @@ use super::operands::{
     dest_value, device_error, read_source, resolve_dest, write_bit_ref, write_group, write_word,
 };
 use super::{Machine, Memory, runs};
-use crate::devices::Device;
-use crate::devices::DeviceError;
+use crate::device::Device;
+use crate::device::DeviceError;
 use crate::hardware::{OutputOwner, PulseTrain};
 use crate::il::{ArithOp, BitRef, Dest, FloatSource, Instruction, LogicOp, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};
@@ -69,7 +69,7 @@ pub(super) fn execute(
                 .map_err(|e| device_error(format!("T{timer}"), e))
         }
         Instruction::OutCounter { counter, set_value } => {
-            let width = if counter >= crate::devices::C_32BIT_FIRST {
+            let width = if counter >= crate::device::C_32BIT_FIRST {
                 Width::Double
             } else {
                 Width::Word
@@ -555,7 +555,7 @@ fn block_start(
     match resolve_dest(devices, start, Width::Word, words)? {
         Dest::Register(n)
             if n.checked_add(words)
-                .is_some_and(|end| end <= crate::devices::D_COUNT) =>
+                .is_some_and(|end| end <= crate::device::D_COUNT) =>
         {
             Ok(n)
         }

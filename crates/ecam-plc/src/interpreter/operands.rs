@@ -1,8 +1,7 @@
 //! Reading and writing operands at run time.
 
-use crate::devices::{
-    C_32BIT_FIRST, C_COUNT, D_COUNT, Device, DeviceError, Devices, M_COUNT, XY_COUNT,
-};
+use crate::device::{C_32BIT_FIRST, C_COUNT, D_COUNT, Device, DeviceError, M_COUNT, XY_COUNT};
+use crate::devices::Devices;
 use crate::hardware::Hardware;
 use crate::il::{BitRef, Dest, GroupKind, IndexBase, IndexReg, Indexed, Source, Width, WordGroup};
 use crate::operation_error::{CODE_DEVICE_RANGE, OperationError};
