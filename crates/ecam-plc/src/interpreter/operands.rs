@@ -11,6 +11,13 @@ pub(crate) fn device_error(device: impl core::fmt::Display, err: DeviceError) ->
     OperationError::new(CODE_DEVICE_RANGE, format!("{device}: {err}"))
 }
 
+/// Sets special relay `m` (a flag such as M8020 or M8029).
+pub(crate) fn set_flag(devices: &mut Devices, m: u16, on: bool) -> Result<(), OperationError> {
+    devices
+        .set_m(m, on)
+        .map_err(|e| device_error(Device::M(m), e))
+}
+
 /// State of a bit operand: X/Y/M, or a counter's contact.
 pub(crate) fn read_bit(devices: &Devices, hardware: &Hardware, device: Device) -> bool {
     match device {
