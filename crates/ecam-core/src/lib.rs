@@ -56,6 +56,7 @@ mod kinematics;
 pub mod law;
 pub mod limits;
 pub mod register_image;
+pub mod script_line;
 pub mod table;
 
 pub use curve::{CamCurve, Cursor};
