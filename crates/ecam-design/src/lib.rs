@@ -39,10 +39,11 @@
 //! // The PLC editor's sine cam, sampled at 361 masters.
 //! let sine = ecam_design::function_table("1000*sin(2*pi*x/36000)", 0, 36000, 361)?;
 //! assert_eq!(sine.points()[90].slave, 1000);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod designer;
+mod error;
 mod expr;
 #[doc(hidden)]
 pub mod fuzz;
@@ -54,6 +55,7 @@ pub use designer::{
     DEFAULT_LAW_POINTS, MAX_LAW_POINTS, generate_json, generators_json, key_points_json,
     law_curves_json, laws_json,
 };
+pub use error::{ExprError, GenerateError, TableSourceError};
 pub use expr::{MasterFunction, number};
 pub use generate::{
     Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,
