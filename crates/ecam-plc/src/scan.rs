@@ -60,7 +60,7 @@ impl Plc {
                     .map_err(|err| ParseError {
                         file: program.file.clone(),
                         line: statement.line,
-                        message: err.to_string(),
+                        problem: crate::il::ParseProblem::Decam(err),
                     })?;
                 decams.push(Decam::new(operands));
             }

@@ -19,7 +19,10 @@ pub(crate) use parser::BLOCK_MAX;
 pub(crate) use validate::is_output;
 
 pub use crate::index_register::{INDEX_COUNT, IndexReg};
-pub use error::ParseError;
+pub use error::{
+    FlowError, OperandError, ParseError, ParseProblem, StackError, StatementError, TokenError,
+    UnknownHint,
+};
 pub use instruction::{
     ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, GroupKind, IndexBase, Indexed,
     Instruction, Join, LogicOp, MasterSpec, Relation, Source, Statement, Width, WordBit, WordGroup,

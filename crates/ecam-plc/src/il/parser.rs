@@ -1,7 +1,9 @@
 //! Mnemonics and operand checks: source text → [`Program`].
 
 use super::Program;
-use super::error::ParseError;
+use super::error::{
+    OperandError, ParseError, ParseProblem, StatementError, TokenError, UnknownHint,
+};
 use super::flow;
 use super::instruction::{
     ArithOp, BitDest, BitRef, Contact, Dest, Exec, FloatSource, IndexBase, Indexed, Instruction,
@@ -30,11 +32,12 @@ use crate::index_register::IndexReg;
 /// assert!(err.to_string().starts_with("demo.il:2: "));
 /// ```
 pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
-    let error = |line: usize, message: String| ParseError {
+    let error = |line: usize, problem: ParseProblem| ParseError {
         file: file.to_string(),
         line,
-        message,
+        problem,
     };
+    let statement_error = |line: usize, e: StatementError| error(line, ParseProblem::Statement(e));
     let mut statements = Vec::new();
     // Editors on Windows often save a UTF-8 byte-order mark; it is not part
     // of the first mnemonic.
@@ -47,44 +50,50 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
         let mnemonic = mnemonic.to_ascii_uppercase();
         if mnemonic == "END" {
             if !operand_tokens.is_empty() {
-                return Err(error(line.number, "END takes no operands".into()));
+                return Err(statement_error(
+                    line.number,
+                    StatementError::NoOperands { mnemonic },
+                ));
             }
             break;
         }
         if let Some(label) = label(&mnemonic) {
             if !operand_tokens.is_empty() {
-                return Err(error(
+                return Err(statement_error(
                     line.number,
-                    format!("a pointer label {mnemonic} stands alone on its line"),
+                    StatementError::LabelNotAlone { label: mnemonic },
                 ));
             }
             statements.push(Statement {
                 line: line.number,
-                instruction: Instruction::Label(label.map_err(|m| error(line.number, m))?),
+                instruction: Instruction::Label(
+                    label.map_err(|e| statement_error(line.number, e))?,
+                ),
             });
             continue;
         }
         if let Some(flow) = flow_instruction(&mnemonic, operand_tokens) {
             statements.push(Statement {
                 line: line.number,
-                instruction: flow.map_err(|m| error(line.number, m))?,
+                instruction: flow.map_err(|e| statement_error(line.number, e))?,
             });
             continue;
         }
         let mut operands = Vec::with_capacity(operand_tokens.len());
         for (i, token) in operand_tokens.iter().enumerate() {
             let operand = Operand::parse(token)
-                .map_err(|m| error(line.number, format!("{mnemonic} operand {}: {m}", i + 1)))?;
+                .map_err(|e| statement_error(line.number, at(&mnemonic, i, e)))?;
             operands.push(operand);
         }
-        let instruction = instruction(&mnemonic, &operands).map_err(|m| error(line.number, m))?;
+        let instruction =
+            instruction(&mnemonic, &operands).map_err(|e| statement_error(line.number, e))?;
         statements.push(Statement {
             line: line.number,
             instruction,
         });
     }
-    validate::check(&statements).map_err(|(line, message)| error(line, message))?;
-    flow::check(&statements).map_err(|(line, message)| error(line, message))?;
+    validate::check(&statements).map_err(|(line, e)| error(line, ParseProblem::Stack(e)))?;
+    flow::check(&statements).map_err(|(line, e)| error(line, ParseProblem::Flow(e)))?;
     Ok(Program {
         file: file.to_string(),
         statements,
@@ -93,48 +102,45 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
 
 /// `Some` when `mnemonic` is a pointer label `Pn` (P and digits only):
 /// its number, or why it is not a usable label.
-fn label(mnemonic: &str) -> Option<Result<u8, String>> {
+fn label(mnemonic: &str) -> Option<Result<u8, StatementError>> {
     let digits = mnemonic.strip_prefix('P')?;
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
     }
-    Some(pointer_number(mnemonic).and_then(|n| {
-        if n == flow::END_POINTER {
-            Err("P63 is the END pointer (`CJ P63` jumps to END); it cannot label a line".into())
-        } else {
-            Ok(n)
-        }
-    }))
+    Some(match pointer_number(mnemonic) {
+        Ok(n) if n == flow::END_POINTER => Err(StatementError::EndPointerLabel),
+        Ok(n) => Ok(n),
+        Err(e) => Err(StatementError::BadLabel(e)),
+    })
 }
 
 /// The n of a pointer `Pn`, n = 0–127.
-fn pointer_number(token: &str) -> Result<u8, String> {
+fn pointer_number(token: &str) -> Result<u8, TokenError> {
     let upper = token.to_ascii_uppercase();
     let number = upper
         .strip_prefix('P')
         .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
-        .ok_or_else(|| format!("expected a pointer P0–P127, found `{token}`"))?;
+        .ok_or_else(|| TokenError::PointerSyntax(token.to_string()))?;
     match number.parse::<u8>() {
         Ok(n) if usize::from(n) < flow::POINTER_COUNT => Ok(n),
-        _ => Err(format!(
-            "pointer {upper} out of range: the LX3V has P0–P{}",
-            flow::POINTER_COUNT - 1
-        )),
+        _ => Err(TokenError::PointerRange(upper)),
     }
 }
 
 /// CJ/CJP/CALL/CALLP/SRET/FEND, whose operand is a pointer rather than a
 /// device: `None` for other mnemonics.
-fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instruction, String>> {
-    let pointer = |exec: Exec, call: bool| -> Result<Instruction, String> {
+fn flow_instruction(
+    mnemonic: &str,
+    tokens: &[&str],
+) -> Option<Result<Instruction, StatementError>> {
+    let pointer = |exec: Exec, call: bool| -> Result<Instruction, StatementError> {
         match tokens {
             [token] => {
-                let pointer =
-                    pointer_number(token).map_err(|m| format!("{mnemonic} operand 1: {m}"))?;
+                let pointer = pointer_number(token).map_err(|e| at(mnemonic, 0, e))?;
                 if call && pointer == flow::END_POINTER {
-                    return Err(format!(
-                        "{mnemonic} P63: P63 is the END pointer, only CJ may use it"
-                    ));
+                    return Err(StatementError::CallEndPointer {
+                        mnemonic: mnemonic.to_string(),
+                    });
                 }
                 Ok(if call {
                     Instruction::Call { exec, pointer }
@@ -142,17 +148,19 @@ fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instructio
                     Instruction::Jump { exec, pointer }
                 })
             }
-            _ => Err(format!(
-                "{mnemonic} expects 1 operand (Pn), found {}",
-                tokens.len()
-            )),
+            _ => Err(StatementError::FlowArity {
+                mnemonic: mnemonic.to_string(),
+                found: tokens.len(),
+            }),
         }
     };
-    let bare = |instruction: Instruction| -> Result<Instruction, String> {
+    let bare = |instruction: Instruction| -> Result<Instruction, StatementError> {
         if tokens.is_empty() {
             Ok(instruction)
         } else {
-            Err(format!("{mnemonic} takes no operands"))
+            Err(StatementError::NoOperands {
+                mnemonic: mnemonic.to_string(),
+            })
         }
     };
     Some(match mnemonic {
@@ -167,32 +175,46 @@ fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instructio
 }
 
 /// Checks the operand count; the message names the expected operands.
-fn arity(mnemonic: &str, operands: &[Operand], names: &[&str]) -> Result<(), String> {
+fn arity(
+    mnemonic: &str,
+    operands: &[Operand],
+    names: &'static [&'static str],
+) -> Result<(), StatementError> {
     if operands.len() == names.len() {
         Ok(())
     } else {
-        Err(format!(
-            "{mnemonic} expects {} operand{} ({}), found {}",
-            names.len(),
-            if names.len() == 1 { "" } else { "s" },
-            names.join(" "),
-            operands.len()
-        ))
+        Err(StatementError::Arity {
+            mnemonic: mnemonic.to_string(),
+            names,
+            found: operands.len(),
+        })
     }
 }
 
-fn wrong(mnemonic: &str, index: usize, operand: &Operand, expected: &str) -> String {
-    // Say why an index-modified operand that is otherwise of the right
-    // kind (`DECAM D0Z0 …`) does not fit.
-    let note = if matches!(operand, Operand::Indexed(..)) && !expected.contains("index-modified") {
-        " (this operand cannot be index-modified)"
-    } else {
-        ""
-    };
-    format!(
-        "{mnemonic} operand {}: expected {expected}, found {}{note}",
-        index + 1,
-        operand.describe()
+/// The problem of operand `index` (from 0) of `mnemonic`.
+fn at(mnemonic: &str, index: usize, problem: impl Into<OperandError>) -> StatementError {
+    StatementError::Operand {
+        mnemonic: mnemonic.to_string(),
+        position: index + 1,
+        problem: problem.into(),
+    }
+}
+
+/// Operand `index` of `mnemonic` is of the wrong kind.
+fn wrong(
+    mnemonic: &str,
+    index: usize,
+    operand: &Operand,
+    expected: &'static str,
+) -> StatementError {
+    at(
+        mnemonic,
+        index,
+        OperandError::Wrong {
+            expected,
+            found: operand.describe(),
+            indexed: matches!(operand, Operand::Indexed(..)),
+        },
     )
 }
 
@@ -230,8 +252,8 @@ fn applied(mnemonic: &str) -> Option<(Width, &str, Exec)> {
     BASES.contains(&base).then_some((width, base, exec))
 }
 
-fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
-    let contact = || -> Result<BitRef, String> {
+fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, StatementError> {
+    let contact = || -> Result<BitRef, StatementError> {
         arity(mnemonic, ops, &["device"])?;
         bit_source(mnemonic, 0, &ops[0])
     };
@@ -304,9 +326,10 @@ fn instruction(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
         _ => match applied(mnemonic) {
             Some((width, base, exec)) => applied_instruction(mnemonic, width, base, exec, ops)?,
             None => {
-                return Err(format!(
-                    "unknown instruction `{mnemonic}` (see docs/plc-instructions.md for the supported list)"
-                ));
+                return Err(StatementError::Unknown {
+                    mnemonic: mnemonic.to_string(),
+                    hint: UnknownHint::NotListed,
+                });
             }
         },
     })
@@ -333,12 +356,15 @@ fn comparison(mnemonic: &str) -> Option<(Join, Width, Relation)> {
     Some((join, width, relation))
 }
 
-fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
+fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, StatementError> {
     let Some((join, width, relation)) = comparison(mnemonic) else {
-        return Err(format!("unknown instruction `{mnemonic}`"));
+        return Err(StatementError::Unknown {
+            mnemonic: mnemonic.to_string(),
+            hint: UnknownHint::Comparison,
+        });
     };
     arity(mnemonic, ops, &["S1", "S2"])?;
-    let operand = |index: usize| -> Result<Source, String> {
+    let operand = |index: usize| -> Result<Source, StatementError> {
         let source = source(mnemonic, index, &ops[index], width)?;
         // The FX manual: a 32-bit counter in a 16-bit comparison is an
         // error; say so at load instead of comparing its low word.
@@ -350,9 +376,13 @@ fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, Strin
                     Join::Or => "OR",
                 };
                 let relation = mnemonic.get(prefix.len()..).unwrap_or("");
-                Err(format!(
-                    "{mnemonic} operand {}: C{n} is a 32-bit counter: use the 32-bit form {prefix}D{relation}",
-                    index + 1,
+                Err(at(
+                    mnemonic,
+                    index,
+                    OperandError::Counter32 {
+                        counter: n,
+                        instead: format!("{prefix}D{relation}"),
+                    },
                 ))
             }
             other => Ok(other),
@@ -367,11 +397,9 @@ fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, Strin
     })
 }
 
-fn out(ops: &[Operand]) -> Result<Instruction, String> {
+fn out(ops: &[Operand]) -> Result<Instruction, StatementError> {
     match ops {
-        [Operand::Timer(timer)] => Err(format!(
-            "OUT T{timer} needs a set value: expected OUT T{timer} K<value> or OUT T{timer} D<n>"
-        )),
+        [Operand::Timer(timer)] => Err(StatementError::TimerNeedsSetValue(*timer)),
         [Operand::Timer(timer), set] => {
             let preset = source("OUT", 1, set, Width::Word)?;
             match preset {
@@ -382,8 +410,10 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
                     "a K/H constant or a D register (optionally index-modified, D10Z0)",
                 )),
                 // FX timers take a set value of 0-32767.
-                Source::Constant(v) if v < 0 => Err(format!(
-                    "OUT T{timer} operand 2: set value {v} is out of range for a timer (K0 to K32767)"
+                Source::Constant(v) if v < 0 => Err(at(
+                    &format!("OUT T{timer}"),
+                    1,
+                    OperandError::TimerSetValue(v),
                 )),
                 preset => Ok(Instruction::OutTimer {
                     timer: *timer,
@@ -391,9 +421,9 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
                 }),
             }
         }
-        [Operand::Device(Device::C(counter))] => Err(format!(
-            "OUT C{counter} needs a set value: expected OUT C{counter} K<value> or OUT C{counter} D<n>"
-        )),
+        [Operand::Device(Device::C(counter))] => {
+            Err(StatementError::CounterNeedsSetValue(*counter))
+        }
         [op] => Ok(Instruction::Out(coil("OUT", 0, op)?)),
         [Operand::Device(Device::C(counter)), set] => {
             let width = if *counter >= C_32BIT_FIRST {
@@ -414,8 +444,10 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             // negative one would make the contact on from the first scan.
             if let (Width::Word, Source::Constant(v)) = (width, set_value) {
                 if v < 0 {
-                    return Err(format!(
-                        "OUT C{counter} operand 2: set value {v} is out of range for a 16-bit counter (K0 to K32767)"
+                    return Err(at(
+                        &format!("OUT C{counter}"),
+                        1,
+                        OperandError::CounterSetValue(v),
                     ));
                 }
             }
@@ -430,10 +462,7 @@ fn out(ops: &[Operand]) -> Result<Instruction, String> {
             first,
             "a counter C or a timer T (two operands are only for OUT Cn/Tn K<set value>)",
         )),
-        _ => Err(format!(
-            "OUT expects 1 operand (Y/M/Dn.b) or 2 (Cn/Tn K<set value>), found {}",
-            ops.len()
-        )),
+        _ => Err(StatementError::OutArity(ops.len())),
     }
 }
 
@@ -457,21 +486,21 @@ fn applied_instruction(
     base: &str,
     exec: Exec,
     ops: &[Operand],
-) -> Result<Instruction, String> {
+) -> Result<Instruction, StatementError> {
+    let unknown = |hint| StatementError::Unknown {
+        mnemonic: mnemonic.to_string(),
+        hint,
+    };
     let no_double = || {
         if width == Width::Double {
-            Err(format!(
-                "unknown instruction `{mnemonic}` ({base} has no 32-bit D form)"
-            ))
+            Err(unknown(UnknownHint::NoDoubleForm(base.to_string())))
         } else {
             Ok(())
         }
     };
     let no_pulse = || {
         if exec == Exec::Pulse {
-            Err(format!(
-                "unknown instruction `{mnemonic}` ({base} has no P form)"
-            ))
+            Err(unknown(UnknownHint::NoPulseForm(base.to_string())))
         } else {
             Ok(())
         }
@@ -488,9 +517,7 @@ fn applied_instruction(
         }
         "EMOV" => {
             if width != Width::Double {
-                return Err(format!(
-                    "unknown instruction `{mnemonic}` (the float move is DEMOV)"
-                ));
+                return Err(unknown(UnknownHint::FloatMove));
             }
             arity(mnemonic, ops, &["S", "D"])?;
             let src = match ops[0] {
@@ -545,8 +572,10 @@ fn applied_instruction(
                     Dest::Register(n)
                 }
                 Dest::Register(n) => {
-                    return Err(format!(
-                        "{mnemonic} operand 3: the result takes {words} registers from D{n}, past D8511"
+                    return Err(at(
+                        mnemonic,
+                        2,
+                        OperandError::ResultPastEnd { words, register: n },
                     ));
                 }
                 dst @ (Dest::Group(_)
@@ -651,18 +680,15 @@ fn applied_instruction(
             arity(mnemonic, ops, &["S", "D", "n1", "n2"])?;
             let count = |i: usize| match ops[i] {
                 Operand::Decimal(n) if (1..=i64::from(SHIFT_MAX)).contains(&n) => Ok(n as u16),
-                ref other => Err(wrong(
-                    mnemonic,
-                    i,
-                    other,
-                    &format!("a K constant 1 to {SHIFT_MAX}"),
-                )),
+                ref other => Err(wrong(mnemonic, i, other, SHIFT_COUNT)),
             };
             let (length, places) = (count(2)?, count(3)?);
             if places > length {
-                return Err(format!(
-                    "{mnemonic}: n2 = {places} is more than n1 = {length} (the shift cannot be longer than the block)"
-                ));
+                return Err(StatementError::ShiftLonger {
+                    mnemonic: mnemonic.to_string(),
+                    places,
+                    length,
+                });
             }
             let src = match ops[0] {
                 Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_))) => d,
@@ -671,9 +697,10 @@ fn applied_instruction(
             let dst = bit_dest(mnemonic, 1, &ops[1])?.0;
             for (index, first, bits) in [(0, src, places), (1, dst, length)] {
                 if !bits_exist(first, bits) {
-                    return Err(format!(
-                        "{mnemonic} operand {}: {bits} bits from {first} run past the last device",
-                        index + 1
+                    return Err(at(
+                        mnemonic,
+                        index,
+                        OperandError::BitsPastEnd { bits, first },
                     ));
                 }
             }
@@ -713,17 +740,17 @@ fn applied_instruction(
                     (ZoneDevice::C, a, b)
                 }
                 _ => {
-                    return Err(format!(
-                        "{mnemonic} expects two devices of the same kind (M, Y, D or C), found {} {}",
-                        ops[0].describe(),
-                        ops[1].describe()
-                    ));
+                    return Err(StatementError::ZoneKinds {
+                        mnemonic: mnemonic.to_string(),
+                        first: ops[0].describe(),
+                        second: ops[1].describe(),
+                    });
                 }
             };
             if first > last {
-                return Err(format!(
-                    "{mnemonic}: the first device must not come after the last"
-                ));
+                return Err(StatementError::ZoneOrder {
+                    mnemonic: mnemonic.to_string(),
+                });
             }
             Instruction::ZoneReset {
                 exec,
@@ -749,9 +776,7 @@ fn applied_instruction(
         "ECAM" => {
             no_pulse()?;
             if width != Width::Double {
-                return Err(format!(
-                    "unknown instruction `{mnemonic}` (the E-cam instruction is DECAM)"
-                ));
+                return Err(unknown(UnknownHint::Ecam));
             }
             arity(
                 mnemonic,
@@ -820,7 +845,7 @@ fn applied_instruction(
     })
 }
 
-fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
+fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, StatementError> {
     match op {
         Operand::Device(d @ (Device::X(_) | Device::Y(_) | Device::M(_) | Device::C(_))) => {
             Ok(BitRef::Device(*d))
@@ -842,7 +867,7 @@ fn bit_source(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, Stri
 }
 
 /// Operand of OUT and SET: Y, M or `Dn.b`.
-fn coil(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
+fn coil(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, StatementError> {
     match op {
         Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitRef::Device(*d)),
         Operand::WordBit(b) => Ok(BitRef::WordBit(*b)),
@@ -858,7 +883,7 @@ fn coil(mnemonic: &str, index: usize, op: &Operand) -> Result<BitRef, String> {
     }
 }
 
-fn bit_dest(mnemonic: &str, index: usize, op: &Operand) -> Result<BitDest, String> {
+fn bit_dest(mnemonic: &str, index: usize, op: &Operand) -> Result<BitDest, StatementError> {
     match op {
         Operand::Device(d @ (Device::Y(_) | Device::M(_))) => Ok(BitDest(*d)),
         other => Err(wrong(mnemonic, index, other, "an output Y or a relay M")),
@@ -866,7 +891,7 @@ fn bit_dest(mnemonic: &str, index: usize, op: &Operand) -> Result<BitDest, Strin
 }
 
 /// The result bits of CMP/ZCP: M or Y, with the two bits after it.
-fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, String> {
+fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, StatementError> {
     let dst = bit_dest(mnemonic, index, op)?.0;
     let last_ok = match dst {
         Device::M(n) => n.checked_add(2).is_some_and(|l| l < M_COUNT),
@@ -876,15 +901,14 @@ fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, Stri
     if last_ok {
         Ok(dst)
     } else {
-        Err(format!(
-            "{mnemonic} operand {}: {dst} and the two bits after it must exist",
-            index + 1
-        ))
+        Err(at(mnemonic, index, OperandError::ThreeBits(dst)))
     }
 }
 
 /// Longest SFTL/SFTR block (FX3U: n1 ≤ 1024).
 const SHIFT_MAX: u16 = 1024;
+/// What n1 and n2 of SFTL/SFTR take, in a message (1 to [`SHIFT_MAX`]).
+const SHIFT_COUNT: &str = "a K constant 1 to 1024";
 
 /// Whether `bits` consecutive bit devices from `first` exist.
 fn bits_exist(first: Device, bits: u16) -> bool {
@@ -901,7 +925,7 @@ pub(crate) const BLOCK_MAX: i32 = 512;
 
 /// A block of BMOV/FMOV: the first D register, optionally index-modified
 /// (the length is checked when the instruction runs).
-fn block(mnemonic: &str, index: usize, op: &Operand) -> Result<Dest, String> {
+fn block(mnemonic: &str, index: usize, op: &Operand) -> Result<Dest, StatementError> {
     match *op {
         Operand::Device(Device::D(n)) => Ok(Dest::Register(n)),
         Operand::Indexed(Modified::Device(Device::D(n)), by) => Ok(Dest::Indexed(Indexed {
@@ -920,15 +944,12 @@ fn block(mnemonic: &str, index: usize, op: &Operand) -> Result<Dest, String> {
 /// n of BMOV/FMOV: K1–K512, or a D register read at run time (the blocks
 /// are checked against D8511 when the instruction runs, as their start
 /// may be index-modified).
-fn block_count(mnemonic: &str, index: usize, op: &Operand) -> Result<Source, String> {
+fn block_count(mnemonic: &str, index: usize, op: &Operand) -> Result<Source, StatementError> {
     match *op {
         Operand::Decimal(n) if (1..=i64::from(BLOCK_MAX)).contains(&n) => {
             Ok(Source::Constant(n as i32))
         }
-        Operand::Decimal(n) => Err(format!(
-            "{mnemonic} operand {}: n = {n} is out of range (K1 to K{BLOCK_MAX})",
-            index + 1
-        )),
+        Operand::Decimal(n) => Err(at(mnemonic, index, OperandError::BlockCount(n))),
         Operand::Device(Device::D(n)) => Ok(Source::Register(n)),
         _ => Err(wrong(
             mnemonic,
@@ -939,41 +960,48 @@ fn block_count(mnemonic: &str, index: usize, op: &Operand) -> Result<Source, Str
     }
 }
 
-fn register(mnemonic: &str, index: usize, n: u16, width: Width) -> Result<u16, String> {
+fn register(mnemonic: &str, index: usize, n: u16, width: Width) -> Result<u16, StatementError> {
     if width == Width::Double && n.checked_add(1).is_none_or(|hi| hi >= D_COUNT) {
-        return Err(format!(
-            "{mnemonic} operand {}: D{n} has no D{} for the high word",
-            index + 1,
-            u32::from(n) + 1
-        ));
+        return Err(at(mnemonic, index, OperandError::NoHighWord(n)));
     }
     Ok(n)
 }
 
-fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<Source, String> {
-    let out_of_range = |range: &str| {
-        format!(
-            "{mnemonic} operand {}: {} is out of range ({range})",
-            index + 1,
-            op.describe()
+fn source(
+    mnemonic: &str,
+    index: usize,
+    op: &Operand,
+    width: Width,
+) -> Result<Source, StatementError> {
+    let out_of_range = |range: &'static str| {
+        at(
+            mnemonic,
+            index,
+            OperandError::OutOfRange {
+                operand: op.describe(),
+                range,
+            },
         )
     };
     match (*op, width) {
         (Operand::Decimal(v), _) => constant(v, None, width)
             .map(Source::Constant)
-            .map_err(|range| out_of_range(&range)),
+            .map_err(out_of_range),
         (Operand::Hex(v), _) => constant(i64::try_from(v).unwrap_or(i64::MAX), Some(v), width)
             .map(Source::Constant)
-            .map_err(|range| out_of_range(&range)),
+            .map_err(out_of_range),
         (Operand::Device(Device::D(n)), _) => {
             Ok(Source::Register(register(mnemonic, index, n, width)?))
         }
         (Operand::Device(Device::C(n)), _) => Ok(Source::Counter(n)),
         (Operand::Timer(n), Width::Word) => Ok(Source::Timer(n)),
-        (Operand::Group(g), Width::Word) if g.digits > 4 => Err(format!(
-            "{mnemonic} operand {}: {g} has {} digits; a 16-bit instruction takes K1 to K4",
-            index + 1,
-            g.digits
+        (Operand::Group(g), Width::Word) if g.digits > 4 => Err(at(
+            mnemonic,
+            index,
+            OperandError::GroupTooWide16 {
+                group: g.to_string(),
+                digits: g.digits,
+            },
         )),
         (Operand::Group(g), _) => Ok(Source::Group(g)),
         (Operand::Index(reg), _) => Ok(Source::Index(index_register(mnemonic, index, reg, width)?)),
@@ -982,20 +1010,23 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
             let base = match base {
                 Modified::Decimal(v) => constant(v, None, width)
                     .map(IndexBase::Constant)
-                    .map_err(|range| out_of_range(&range))?,
+                    .map_err(out_of_range)?,
                 Modified::Hex(v) => constant(i64::try_from(v).unwrap_or(i64::MAX), Some(v), width)
                     .map(IndexBase::Constant)
-                    .map_err(|range| out_of_range(&range))?,
+                    .map_err(out_of_range)?,
                 Modified::Device(Device::D(n)) => {
                     IndexBase::Register(register(mnemonic, index, n, width)?)
                 }
                 Modified::Device(Device::C(n)) => IndexBase::Counter(n),
                 Modified::Timer(n) if width == Width::Word => IndexBase::Timer(n),
                 Modified::Group(g) if width == Width::Word && g.digits > 4 => {
-                    return Err(format!(
-                        "{mnemonic} operand {}: {g} has {} digits; a 16-bit instruction takes K1 to K4",
-                        index + 1,
-                        g.digits
+                    return Err(at(
+                        mnemonic,
+                        index,
+                        OperandError::GroupTooWide16 {
+                            group: g.to_string(),
+                            digits: g.digits,
+                        },
                     ));
                 }
                 Modified::Group(g) => IndexBase::Group(g),
@@ -1022,20 +1053,18 @@ fn source(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<So
 /// A K (`hex` = None) or H constant at the instruction's width: its value,
 /// or the allowed range for the message. H constants are bit patterns
 /// (HFFFF is −1 at 16 bit).
-fn constant(value: i64, hex: Option<u64>, width: Width) -> Result<i32, String> {
+fn constant(value: i64, hex: Option<u64>, width: Width) -> Result<i32, &'static str> {
     match (hex, width) {
         (None, Width::Word) => i16::try_from(value)
             .map(i32::from)
-            .map_err(|_| "K-32768 to K32767".to_string()),
-        (None, Width::Double) => {
-            i32::try_from(value).map_err(|_| "K-2147483648 to K2147483647".to_string())
-        }
+            .map_err(|_| "K-32768 to K32767"),
+        (None, Width::Double) => i32::try_from(value).map_err(|_| "K-2147483648 to K2147483647"),
         (Some(v), Width::Word) => u16::try_from(v)
             .map(|v| i32::from(v as i16))
-            .map_err(|_| "H0 to HFFFF".to_string()),
+            .map_err(|_| "H0 to HFFFF"),
         (Some(v), Width::Double) => u32::try_from(v)
             .map(|v| v as i32)
-            .map_err(|_| "H0 to HFFFFFFFF".to_string()),
+            .map_err(|_| "H0 to HFFFFFFFF"),
     }
 }
 
@@ -1046,12 +1075,9 @@ fn index_register(
     index: usize,
     reg: IndexReg,
     width: Width,
-) -> Result<IndexReg, String> {
+) -> Result<IndexReg, StatementError> {
     match (reg, width) {
-        (IndexReg::V(n), Width::Double) => Err(format!(
-            "{mnemonic} operand {}: a 32-bit instruction names the pair V{n}:Z{n} by Z{n} (Z low word, V high word)",
-            index + 1
-        )),
+        (IndexReg::V(n), Width::Double) => Err(at(mnemonic, index, OperandError::PairByV(n))),
         _ => Ok(reg),
     }
 }
@@ -1064,12 +1090,15 @@ fn modifier(
     op: &Operand,
     by: IndexReg,
     width: Width,
-) -> Result<IndexReg, String> {
+) -> Result<IndexReg, StatementError> {
     match (by, width) {
-        (IndexReg::V(n), Width::Double) => Err(format!(
-            "{mnemonic} operand {}: {}: a 32-bit instruction is modified by Z{n} (the pair V{n}:Z{n}), not by V{n}",
-            index + 1,
-            op.describe()
+        (IndexReg::V(n), Width::Double) => Err(at(
+            mnemonic,
+            index,
+            OperandError::ModifierV {
+                operand: op.describe(),
+                n,
+            },
         )),
         _ => Ok(by),
     }
@@ -1078,7 +1107,12 @@ fn modifier(
 /// The destination of a word instruction: D, C, V/Z, a word group KnM/KnY
 /// (not KnX: inputs are driven from outside), each optionally
 /// index-modified.
-fn word_dest(mnemonic: &str, index: usize, op: &Operand, width: Width) -> Result<Dest, String> {
+fn word_dest(
+    mnemonic: &str,
+    index: usize,
+    op: &Operand,
+    width: Width,
+) -> Result<Dest, StatementError> {
     let digits = if width == Width::Double { 8 } else { 4 };
     result_dest(mnemonic, index, op, width, digits)
 }
@@ -1091,20 +1125,20 @@ fn result_dest(
     op: &Operand,
     width: Width,
     max_digits: u8,
-) -> Result<Dest, String> {
-    let group = |g: crate::il::WordGroup| -> Result<crate::il::WordGroup, String> {
+) -> Result<Dest, StatementError> {
+    let group = |g: crate::il::WordGroup| -> Result<crate::il::WordGroup, StatementError> {
         if g.kind == crate::il::GroupKind::X {
-            return Err(format!(
-                "{mnemonic} operand {}: {} is an input group; inputs X are driven from outside, write KnM or KnY",
-                index + 1,
-                op.describe()
-            ));
+            return Err(at(mnemonic, index, OperandError::InputGroup(op.describe())));
         }
         if g.digits > max_digits {
-            return Err(format!(
-                "{mnemonic} operand {}: {g} has {} digits; this result takes K1 to K{max_digits}",
-                index + 1,
-                g.digits
+            return Err(at(
+                mnemonic,
+                index,
+                OperandError::GroupTooWide {
+                    group: g.to_string(),
+                    digits: g.digits,
+                    max: max_digits,
+                },
             ));
         }
         Ok(g)
@@ -1142,7 +1176,7 @@ fn result_dest(
     }
 }
 
-fn pulse_output(mnemonic: &str, index: usize, op: &Operand) -> Result<u8, String> {
+fn pulse_output(mnemonic: &str, index: usize, op: &Operand) -> Result<u8, StatementError> {
     match *op {
         Operand::Device(Device::Y(n)) if n <= 3 => Ok(n as u8),
         _ => Err(wrong(
