@@ -266,7 +266,7 @@ impl Devices {
     }
 
     /// Timers, to drive or reset.
-    pub fn timers_mut(&mut self) -> &mut Timers {
+    pub(crate) fn timers_mut(&mut self) -> &mut Timers {
         &mut self.timers
     }
 

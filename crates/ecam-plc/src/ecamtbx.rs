@@ -62,15 +62,15 @@ use crate::devices::Devices;
 use crate::operation_error::OperationError;
 
 /// Offset of the point count in the target block (`D1 + 38`).
-pub const TABLE_SECTIONS: u16 = crate::decam::offsets::SECTIONS;
+pub(crate) const TABLE_SECTIONS: u16 = crate::decam::offsets::SECTIONS;
 /// Offset of the first point (`D1 + 40`).
-pub const TABLE_START: u16 = crate::decam::offsets::TABLE;
+pub(crate) const TABLE_START: u16 = crate::decam::offsets::TABLE;
 /// Most points a DECAM table holds.
-pub const MAX_POINTS: usize = register_image::MAX_SECTIONS;
+pub(crate) const MAX_POINTS: usize = register_image::MAX_SECTIONS;
 
 /// The table kinds S1 selects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TableKind {
+pub(crate) enum TableKind {
     /// K0 / K1: S-type acceleration and deceleration.
     SCurve,
     /// K2: key points.
@@ -83,7 +83,7 @@ pub enum TableKind {
 
 impl TableKind {
     /// Decodes S1.
-    pub fn from_code(kind: i32) -> Option<Self> {
+    pub(crate) fn from_code(kind: i32) -> Option<Self> {
         match kind {
             0 | 1 => Some(Self::SCurve),
             2 => Some(Self::KeyPoints),

@@ -35,7 +35,7 @@ impl Plc {
     /// A DECAM whose operands the E-cam face refuses, with its line.
     ///
     /// ```
-    /// let program = ecam_plc::il::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
+    /// let program = ecam_plc::Program::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
     /// let mut plc = ecam_plc::Plc::new(program).unwrap();
     /// plc.scan();
     /// assert_eq!(plc.devices().word(0), Ok(7));

@@ -9,7 +9,7 @@ use crate::operation_error::OperationError;
 /// A program that cannot be loaded: `file:line: problem`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParseError {
-    /// Source file name as given to [`super::parse`].
+    /// Source file name as given to [`crate::Program::parse`].
     pub file: String,
     /// 1-based line number.
     pub line: usize,

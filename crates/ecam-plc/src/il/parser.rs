@@ -15,23 +15,8 @@ use super::validate;
 use crate::device::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
 use crate::index_register::IndexReg;
 
-/// Parses and checks a program. `file` names the source in error messages
-/// (`file:line: message`). Lines after `END` are ignored, as on the PLC.
-///
-/// # Errors
-/// The first problem found: unknown mnemonic, wrong operand count or kind,
-/// unknown or out-of-range device, constant out of range, unbalanced
-/// ANB/ORB/MPS/MRD/MPP, a CJ/CALL to a missing label, a duplicate label, a
-/// subroutine label before FEND, SRET in the main program, a subroutine
-/// without SRET, recursive or too deeply nested CALLs.
-///
-/// ```
-/// let program = ecam_plc::il::parse("LD X0\nOUT Y0\nEND\n", "demo.il").unwrap();
-/// assert_eq!(program.statements.len(), 2);
-/// let err = ecam_plc::il::parse("LD X0\nOUT Q9\n", "demo.il").unwrap_err();
-/// assert!(err.to_string().starts_with("demo.il:2: "));
-/// ```
-pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
+/// Parses and checks a program (see [`Program::parse`]).
+pub(crate) fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
     let error = |line: usize, problem: ParseProblem| ParseError {
         file: file.to_string(),
         line,

@@ -3,7 +3,8 @@
 use crate::device::{C_32BIT_FIRST, C_COUNT, D_COUNT, Device, DeviceError, M_COUNT, XY_COUNT};
 use crate::devices::Devices;
 use crate::hardware::Hardware;
-use crate::il::{BitRef, Dest, GroupKind, IndexBase, IndexReg, Indexed, Source, Width, WordGroup};
+use crate::il::{BitRef, Dest, GroupKind, IndexBase, Indexed, Source, Width, WordGroup};
+use crate::index_register::IndexReg;
 use crate::operation_error::{CODE_DEVICE_RANGE, OperationError};
 
 /// A device error at run time (the parser checks ranges, so this is rare).
