@@ -87,9 +87,6 @@ pub(crate) const NONCYCLIC_REARM_US: u64 = 5_000;
 /// [`OutputOwner`].
 static NEXT_INSTANCE: AtomicU64 = AtomicU64::new(0);
 
-/// First word of each output's pulse counter D8140, D8142, D8150, D8152.
-const PULSE_COUNTERS: [u16; 4] = [8140, 8142, 8150, 8152];
-
 /// Where the instruction is between starts; each phase holds what only it
 /// has.
 #[derive(Clone, Debug)]
@@ -363,7 +360,7 @@ impl Decam {
         let origin = Origin {
             master_raw: i64::from(block.dword(offsets::MASTER_RAW)),
             slave_zoomed: i64::from(block.dword(offsets::SLAVE_ZOOMED)),
-            output_counter: PULSE_COUNTERS
+            output_counter: crate::special::D_PULSE_COUNT
                 .get(usize::from(self.operands.pulse_output))
                 .and_then(|&d| devices.dword(d).ok())
                 .map_or(0, i64::from),
