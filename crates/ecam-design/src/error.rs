@@ -216,7 +216,10 @@ impl From<ExprError> for GenerateError {
 #[derive(Debug)]
 pub enum TableSourceError {
     /// None of the source keys.
-    NoSource,
+    NoSource {
+        /// The source keys a `[table]` may give.
+        sources: &'static [&'static str],
+    },
     /// More than one source key.
     ManySources {
         /// The source keys given.
@@ -237,7 +240,7 @@ pub enum TableSourceError {
 impl fmt::Display for TableSourceError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::NoSource => write!(f, "give one of {}", crate::table_source::SOURCES.join(", ")),
+            Self::NoSource { sources } => write!(f, "give one of {}", sources.join(", ")),
             Self::ManySources { found } => {
                 write!(
                     f,

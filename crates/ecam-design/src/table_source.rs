@@ -13,7 +13,7 @@ use serde::Deserialize;
 use crate::error::TableSourceError;
 use crate::generate;
 
-pub(crate) const SOURCES: [&str; 5] = ["points", "uniform", "file", "expr", "generator"];
+const SOURCES: [&str; 5] = ["points", "uniform", "file", "expr", "generator"];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -50,7 +50,7 @@ pub fn load(table: &toml::Table, base: &Path) -> Result<Box<dyn CamCurve>, Table
     let source = match given.as_slice() {
         [one] => *one,
         ["points", "expr"] => "expr",
-        [] => return Err(TableSourceError::NoSource),
+        [] => return Err(TableSourceError::NoSource { sources: &SOURCES }),
         many => {
             return Err(TableSourceError::ManySources {
                 found: many.to_vec(),

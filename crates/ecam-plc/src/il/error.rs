@@ -201,7 +201,7 @@ impl fmt::Display for TokenError {
             Self::PointerRange(p) => write!(
                 f,
                 "pointer {p} out of range: the LX3V has P0–P{}",
-                super::POINTER_COUNT - 1
+                super::limits::POINTER_COUNT - 1
             ),
         }
     }
@@ -330,7 +330,7 @@ impl fmt::Display for OperandError {
             Self::BlockCount(n) => write!(
                 f,
                 "n = {n} is out of range (K1 to K{})",
-                super::parser::BLOCK_MAX
+                super::limits::BLOCK_MAX
             ),
             Self::NoHighWord(n) => {
                 write!(f, "D{n} has no D{} for the high word", u32::from(*n) + 1)
@@ -594,7 +594,7 @@ impl fmt::Display for StackError {
             Self::MpsDepth => write!(
                 f,
                 "MPS nested deeper than {} levels",
-                super::validate::MPS_DEPTH
+                super::limits::MPS_DEPTH
             ),
             Self::ReadWithoutPush => f.write_str("MRD without a matching MPS before it"),
             Self::PopWithoutPush => f.write_str("MPP without a matching MPS before it"),
@@ -689,7 +689,7 @@ impl fmt::Display for FlowError {
             Self::TooDeep { pointer, levels } => write!(
                 f,
                 "CALL P{pointer}: subroutines nested deeper than {} levels ({levels} levels from here)",
-                super::CALL_DEPTH
+                super::limits::CALL_DEPTH
             ),
             Self::Recursive(inner) => write!(
                 f,

@@ -4,14 +4,7 @@
 
 use super::error::FlowError;
 use super::instruction::{Instruction, Statement};
-
-/// Pointers P0–P127 (the LX3V's range).
-pub(crate) const POINTER_COUNT: usize = 128;
-/// `CJ P63` jumps to the end of the main program; P63 labels no line.
-pub(crate) const END_POINTER: u8 = 63;
-/// CALL nesting of the FX3U: five levels (a CALL in the main program and
-/// four more inside subroutines).
-pub(crate) const CALL_DEPTH: usize = 5;
+use super::limits::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
 
 /// Returns the line and message of the first flow error.
 pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, FlowError)> {

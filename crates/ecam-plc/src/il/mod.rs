@@ -12,12 +12,12 @@ mod error;
 mod flow;
 mod instruction;
 mod lexer;
+mod limits;
 mod operand;
 mod parser;
 mod validate;
 
-pub(crate) use flow::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
-pub(crate) use parser::BLOCK_MAX;
+pub(crate) use limits::{BLOCK_MAX, CALL_DEPTH, END_POINTER, POINTER_COUNT};
 pub(crate) use validate::is_output;
 
 pub use error::{

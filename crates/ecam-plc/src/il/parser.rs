@@ -10,6 +10,7 @@ use super::instruction::{
     Join, LogicOp, MasterSpec, Relation, Source, Statement, Width, ZoneDevice,
 };
 use super::lexer::lines;
+use super::limits::{BLOCK_MAX, END_POINTER, POINTER_COUNT, SHIFT_COUNT, SHIFT_MAX};
 use super::operand::{Modified, Operand};
 use super::validate;
 use crate::device::{C_32BIT_FIRST, D_COUNT, Device, M_COUNT, XY_COUNT};
@@ -93,7 +94,7 @@ fn label(mnemonic: &str) -> Option<Result<u8, StatementError>> {
         return None;
     }
     Some(match pointer_number(mnemonic) {
-        Ok(n) if n == flow::END_POINTER => Err(StatementError::EndPointerLabel),
+        Ok(n) if n == END_POINTER => Err(StatementError::EndPointerLabel),
         Ok(n) => Ok(n),
         Err(e) => Err(StatementError::BadLabel(e)),
     })
@@ -107,7 +108,7 @@ fn pointer_number(token: &str) -> Result<u8, TokenError> {
         .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
         .ok_or_else(|| TokenError::PointerSyntax(token.to_string()))?;
     match number.parse::<u8>() {
-        Ok(n) if usize::from(n) < flow::POINTER_COUNT => Ok(n),
+        Ok(n) if usize::from(n) < POINTER_COUNT => Ok(n),
         _ => Err(TokenError::PointerRange(upper)),
     }
 }
@@ -122,7 +123,7 @@ fn flow_instruction(
         match tokens {
             [token] => {
                 let pointer = pointer_number(token).map_err(|e| at(mnemonic, 0, e))?;
-                if call && pointer == flow::END_POINTER {
+                if call && pointer == END_POINTER {
                     return Err(StatementError::CallEndPointer {
                         mnemonic: mnemonic.to_string(),
                     });
@@ -890,11 +891,6 @@ fn three_bits(mnemonic: &str, index: usize, op: &Operand) -> Result<Device, Stat
     }
 }
 
-/// Longest SFTL/SFTR block (FX3U: n1 ≤ 1024).
-const SHIFT_MAX: u16 = 1024;
-/// What n1 and n2 of SFTL/SFTR take, in a message (1 to [`SHIFT_MAX`]).
-const SHIFT_COUNT: &str = "a K constant 1 to 1024";
-
 /// Whether `bits` consecutive bit devices from `first` exist.
 fn bits_exist(first: Device, bits: u16) -> bool {
     let (n, count) = match first {
@@ -904,9 +900,6 @@ fn bits_exist(first: Device, bits: u16) -> bool {
     };
     u32::from(n) + u32::from(bits) <= u32::from(count)
 }
-
-/// Most words BMOV/FMOV move at once (FX3U: n ≤ 512).
-pub(crate) const BLOCK_MAX: i32 = 512;
 
 /// A block of BMOV/FMOV: the first D register, optionally index-modified
 /// (the length is checked when the instruction runs).

@@ -4,9 +4,7 @@
 
 use super::error::StackError;
 use super::instruction::{Instruction, Join, Statement};
-
-/// MPS depth of the FX family.
-pub(crate) const MPS_DEPTH: usize = 11;
+use super::limits::MPS_DEPTH;
 
 /// True for instructions that consume the power flow (coils and applied
 /// instructions): the next LD after one starts a new rung.

@@ -1,7 +1,7 @@
 //! The E-cam instructions: DECAM hands its power flow to its own E-cam
 //! instance (`crate::decam`), ECAMTBX generates a table (`crate::ecamtbx`).
 
-use super::Machine;
+use super::machine::Machine;
 use super::operands::read_source;
 use crate::il::{Source, Width};
 use crate::operation_error::OperationError;

@@ -1,8 +1,8 @@
 //! Coils: OUT, SET and RST on bits, PLS/PLF, the timer and counter coils,
 //! and ZRST (RST over a range).
 
+use super::machine::{Machine, Memory};
 use super::operands::{device_error, read_source, write_bit_ref};
-use super::{Machine, Memory};
 use crate::device::{C_32BIT_FIRST, Device};
 use crate::il::{BitDest, BitRef, Source, Width, ZoneDevice};
 use crate::operation_error::{CODE_OPERAND, OperationError};

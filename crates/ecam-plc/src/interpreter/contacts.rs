@@ -1,8 +1,8 @@
 //! Contacts: LD/AND/OR and their inverse and edge forms on a bit, and the
 //! comparison contacts (`LD=`, `AND<>`, `ORD>=` …).
 
+use super::machine::{Machine, Memory};
 use super::operands::{read_bit_ref, read_source};
-use super::{Machine, Memory};
 use crate::il::{BitRef, Contact, Relation, Source, Width};
 use crate::operation_error::OperationError;
 

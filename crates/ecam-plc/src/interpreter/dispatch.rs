@@ -3,8 +3,8 @@
 //! its family with its operands; applied instructions run only when their
 //! execution condition holds (`P` forms once per rising power flow).
 
+use super::machine::{Machine, Memory, runs};
 use super::power_flow::PowerFlow;
-use super::{Machine, Memory, runs};
 use super::{arithmetic, cam, coils, comparison, contacts, moves, pulse_output, shift};
 use crate::hardware::OutputOwner;
 use crate::il::{Exec, Instruction, Join};

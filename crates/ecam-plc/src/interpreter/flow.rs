@@ -2,8 +2,8 @@
 //! its SRET, FEND ends the main program (the load-time checks are in
 //! `il/flow.rs`).
 
+use super::machine::{Memory, runs};
 use super::power_flow::PowerFlow;
-use super::{Memory, runs};
 use crate::il::{CALL_DEPTH, END_POINTER, Exec, Instruction, POINTER_COUNT, Program};
 use crate::operation_error::{CODE_CALL_NESTING, OperationError};
 

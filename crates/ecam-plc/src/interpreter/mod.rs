@@ -19,6 +19,7 @@ mod comparison;
 mod contacts;
 mod dispatch;
 mod flow;
+mod machine;
 mod moves;
 mod operands;
 mod power_flow;
@@ -27,34 +28,11 @@ mod shift;
 
 use self::dispatch::{Statement, execute};
 use self::flow::{Calls, Labels};
+pub(crate) use self::machine::Machine;
+use self::machine::Memory;
 use self::power_flow::PowerFlow;
-use crate::decam::Decam;
-use crate::devices::Devices;
-use crate::hardware::Hardware;
-use crate::il::{Exec, Instruction, Program, is_output};
+use crate::il::{Instruction, Program, is_output};
 use crate::operation_error::{CODE_SCAN_LIMIT, OperationError};
-
-/// What one instruction remembers between scans (edges, PLSY latch).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct Memory {
-    /// The previous input of an edge contact, or previous power flow of a
-    /// pulse instruction (PLS/PLF, P forms, counter coil).
-    pub previous: bool,
-    /// PLSY: the pulse train was started and has not been re-armed yet.
-    pub latched: bool,
-}
-
-/// Everything an instruction may touch.
-pub struct Machine<'a> {
-    /// Device memory.
-    pub devices: &'a mut Devices,
-    /// Pulse outputs, counters, wires.
-    pub hardware: &'a mut Hardware,
-    /// One E-cam instance per DECAM instruction, in program order.
-    pub decams: &'a mut [Decam],
-    /// Simulated time of this scan.
-    pub now_us: u64,
-}
 
 /// An operation error and the source line of the instruction that raised it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -206,15 +184,4 @@ fn report(machine: &mut Machine<'_>, error: &OperationError) {
     let _ = machine
         .devices
         .set_m(crate::special::M_OPERATION_ERROR, true);
-}
-
-/// Whether an applied instruction runs this scan: continuous forms while the
-/// power flow is on, `P` forms in the scan it turns on.
-pub(crate) fn runs(exec: Exec, power: bool, memory: &mut Memory) -> bool {
-    let rising = power && !memory.previous;
-    memory.previous = power;
-    match exec {
-        Exec::Continuous => power,
-        Exec::Pulse => rising,
-    }
 }

@@ -1,7 +1,7 @@
 //! PLSY/DPLSY: a pulse train of S2 pulses at S1 Hz on Y0–Y3.
 
+use super::machine::{Machine, Memory};
 use super::operands::{read_source, set_flag};
-use super::{Machine, Memory};
 use crate::hardware::{OutputOwner, PulseTrain};
 use crate::il::{Source, Width};
 use crate::operation_error::{CODE_OPERAND, OperationError};
