@@ -61,6 +61,7 @@ mod il;
 mod index_register;
 mod interpreter;
 mod operation_error;
+mod remote_write;
 mod scan;
 mod timers;
 mod view;
@@ -87,3 +88,6 @@ pub use hardware::{Hardware, OutputOwner, Wire, WireError};
 pub use operation_error::{
     CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, CODE_SCAN_LIMIT, OperationError,
 };
+
+// Writes from outside the program into its cam blocks.
+pub use remote_write::WriteRefusal;

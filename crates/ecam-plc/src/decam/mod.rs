@@ -196,6 +196,26 @@ impl Decam {
         self.run().is_some()
     }
 
+    /// The master span (last point's master − first's, in table counts)
+    /// of the table the running cam follows: its cycle length after the
+    /// master zoom. A table written into the block meanwhile waits for the
+    /// next seam, so this is not read from the block's words. `None` while
+    /// no cam runs.
+    pub fn running_table_span(&self) -> Option<i64> {
+        self.run().map(Run::table_span)
+    }
+
+    /// Checks the table words of the block (offset 31 and the table from
+    /// offset 38) as `devices` hold them, the way a start or a seam takes
+    /// them; the rest of the block is left aside.
+    ///
+    /// # Errors
+    /// The [`BlockError`] the block would show (6781 for offset 31, 6782,
+    /// 6783).
+    pub fn check_table(&self, devices: &Devices) -> Result<(), BlockError> {
+        Block::new(devices, self.operands.block).table_check()
+    }
+
     /// The instruction at its place in the scan; `enabled` is its power flow.
     ///
     /// # Errors
