@@ -45,6 +45,7 @@ extern crate alloc;
 extern crate std;
 
 mod curve;
+pub mod drive_check;
 mod error;
 #[cfg(feature = "std")]
 #[doc(hidden)]
@@ -57,6 +58,7 @@ pub mod law;
 pub mod limits;
 pub mod register_image;
 pub mod script_line;
+pub mod segments;
 pub mod table;
 
 pub use curve::{CamCurve, Cursor};

@@ -6,7 +6,9 @@
 use core::fmt;
 
 use ecam_core::TableError;
+use ecam_core::drive_check::DriveError;
 use ecam_core::io::FileError;
+use ecam_core::segments::SegmentError;
 
 /// An expression that cannot be parsed or evaluated.
 #[derive(Clone, Debug, PartialEq)]
@@ -159,6 +161,8 @@ pub enum GenerateError {
     },
     /// The expression of a function table.
     Expr(ExprError),
+    /// The segment generator (or the segment checks) refused the design.
+    Segments(SegmentError),
 }
 
 impl fmt::Display for GenerateError {
@@ -194,11 +198,18 @@ impl fmt::Display for GenerateError {
                 ecam_core::CODE_TABLE
             ),
             Self::Expr(e) => write!(f, "{e}"),
+            Self::Segments(e) => write!(f, "{e}"),
         }
     }
 }
 
 impl std::error::Error for GenerateError {}
+
+impl From<SegmentError> for GenerateError {
+    fn from(e: SegmentError) -> Self {
+        Self::Segments(e)
+    }
+}
 
 impl From<TableError> for GenerateError {
     fn from(e: TableError) -> Self {
@@ -268,3 +279,37 @@ impl fmt::Display for TableSourceError {
 }
 
 impl std::error::Error for TableSourceError {}
+
+/// A drive file that does not read, or a cam the drive check does not take.
+#[derive(Clone, Debug, PartialEq)]
+pub enum DriveFileError {
+    /// TOML syntax, unknown or missing keys, in the author's words.
+    Keys(String),
+    /// The drive's values are out of range, or the check refuses them.
+    Drive(DriveError),
+    /// A profile that is not a valid segment cam.
+    Profile(SegmentError),
+    /// An evenly spaced table.
+    Uniform,
+}
+
+impl fmt::Display for DriveFileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Keys(message) => f.write_str(message),
+            Self::Drive(e) => write!(f, "{e}"),
+            Self::Profile(e) => write!(f, "{e}"),
+            Self::Uniform => f.write_str(
+                "the drive check takes point tables, profiles and segment cams; write the evenly spaced table as points first",
+            ),
+        }
+    }
+}
+
+impl std::error::Error for DriveFileError {}
+
+impl From<DriveError> for DriveFileError {
+    fn from(e: DriveError) -> Self {
+        Self::Drive(e)
+    }
+}
