@@ -6,7 +6,7 @@ use core::num::NonZeroU32;
 use ecam_engine::LinearMove;
 
 use super::trace::{Trace, TraceError};
-use super::{Command, DEFAULT_AXES, Report, Script, ScriptError};
+use super::{Command, DEFAULT_AXES, Problem, Report, Script, ScriptError};
 use crate::{ECamData, McError, MotionController, SingleTurn};
 
 /// Why a command was refused; it changed nothing.
@@ -143,7 +143,10 @@ impl ScriptRunner {
                     result = Err(ScriptError::at(
                         script.path(),
                         line.number,
-                        format!("{}: {refusal}", line.command.name()),
+                        Problem::Refused {
+                            command: line.command.name(),
+                            reason: refusal.to_string(),
+                        },
                     ));
                     break;
                 }
@@ -152,7 +155,7 @@ impl ScriptRunner {
         let closed = self.close_trace().map_err(|e| ScriptError {
             path: script.path().to_path_buf(),
             line: None,
-            message: e.to_string(),
+            problem: Problem::Trace(e.to_string()),
         });
         result.and(closed)
     }
