@@ -195,7 +195,7 @@ impl AccelCurve {
     }
 }
 
-super::schema::choice_serde!(AccelCurve, "acceleration curve");
+super::choice_serde::choice_serde!(AccelCurve, "acceleration curve");
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

@@ -104,7 +104,7 @@ impl CurveType {
     }
 }
 
-super::schema::choice_serde!(CurveType, "curve");
+super::choice_serde::choice_serde!(CurveType, "curve");
 
 /// One key point: where a segment ends and how the slave gets there.
 ///

@@ -9,6 +9,7 @@
 //! HTTP API, the designer page and ECAMTBX read.
 
 mod accel_curve;
+mod choice_serde;
 mod cut_params;
 mod design_curve;
 pub mod flying_saw;

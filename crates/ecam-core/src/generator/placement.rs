@@ -105,7 +105,7 @@ impl CamPlacement {
     }
 }
 
-super::schema::choice_serde!(CamPlacement, "placement");
+super::choice_serde::choice_serde!(CamPlacement, "placement");
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]

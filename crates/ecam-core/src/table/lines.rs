@@ -11,7 +11,8 @@
 
 use alloc::vec::Vec;
 
-use crate::{CamPoint, Cursor, Kinematics};
+use super::cam_point::CamPoint;
+use crate::{Cursor, Kinematics};
 
 /// One section `[points[i], points[i+1]]` in floats.
 #[derive(Clone, Copy, Debug)]

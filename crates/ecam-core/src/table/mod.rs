@@ -15,6 +15,7 @@
 //! All of them evaluate through [`crate::CamCurve`] with a [`crate::Cursor`]:
 //! O(1) when the master moves a little, a binary search after a jump.
 
+mod cam_point;
 mod cam_table;
 pub mod derivatives;
 mod function;
@@ -27,7 +28,8 @@ mod uniform;
 
 pub use cam_table::CamTable;
 pub use function::sample_function;
-pub use point::{CamPoint, PointTable};
+pub use cam_point::CamPoint;
+pub use point::PointTable;
 pub(crate) use resolution::distribute;
 pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
 pub use segment::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION, Segment, SegmentProfile};

@@ -3,25 +3,9 @@
 
 use alloc::vec::Vec;
 
+use super::cam_point::CamPoint;
 use super::lines::Lines;
 use crate::{CamCurve, Cursor, Kinematics, TableError};
-
-/// One point of a point table.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CamPoint {
-    /// Master position, in master counts.
-    pub master: i64,
-    /// Slave position, in slave pulses.
-    pub slave: i64,
-}
-
-impl CamPoint {
-    /// A point at `(master, slave)`.
-    pub const fn new(master: i64, slave: i64) -> Self {
-        Self { master, slave }
-    }
-}
 
 /// A validated point table: at least two points, master strictly increasing.
 ///
