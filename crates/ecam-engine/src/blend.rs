@@ -25,7 +25,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::coupling::round_half_away;
+use crate::rounding::round_half_away;
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::{EngineError, MasterPosition};
 

@@ -62,6 +62,7 @@ pub mod plcopen_blocks;
 mod pulse;
 mod ramp;
 mod ramp_in;
+mod rounding;
 mod scaling;
 mod speed;
 mod start;

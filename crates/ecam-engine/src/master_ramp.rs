@@ -10,7 +10,7 @@
 use core::num::NonZeroU64;
 
 use crate::MasterPosition;
-use crate::coupling::unsigned_to_f64;
+use crate::rounding::unsigned_to_f64;
 
 /// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
 /// the ends with zero slope and curvature there. The ramp-in, the offset

@@ -13,7 +13,8 @@
 
 use core::num::NonZeroU64;
 
-use crate::coupling::{Engagement, exact_f64, round_to_i128};
+use crate::coupling::Engagement;
+use crate::rounding::{exact_f64, round_to_i128};
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::{EngineError, MasterPosition};
 

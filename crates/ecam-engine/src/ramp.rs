@@ -9,7 +9,7 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
-use crate::coupling::{exact_f64, round_to_i128};
+use crate::rounding::{exact_f64, round_to_i128};
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::{MasterPosition, RampIn};
 

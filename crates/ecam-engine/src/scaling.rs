@@ -14,7 +14,8 @@
 use core::num::NonZeroU64;
 
 use crate::MasterPosition;
-use crate::coupling::{Geometry, exact_f64, round_to_i64};
+use crate::coupling::Geometry;
+use crate::rounding::{exact_f64, round_to_i64};
 use crate::master_ramp::{MasterRamp, quintic};
 
 /// A slave-scaling change being ramped in.

@@ -14,7 +14,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::coupling::{round_half_away, round_to_i64};
+use crate::rounding::{round_half_away, round_to_i64};
 
 /// The constants of one settled engagement (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,0 +1,158 @@
+//! Rounding floats to whole counts and converting exact integers to
+//! floats, the way every path of the tick does it: the same integer as
+//! `libm::round`, at a fraction of its cost where the value is of ordinary
+//! size. One home for the rule, so that the coupling law, the steady
+//! constants, the ramps and the blend round alike.
+
+/// `v` rounded to the nearest whole number, halves away from zero, as
+/// `libm::round` does (up to the sign of a zero result, which no caller
+/// can see: every result becomes an integer). Below 2^52 in magnitude,
+/// where floats can have a fraction, it truncates with one conversion and
+/// looks at the exact remainder; beyond (and for NaN or infinities)
+/// `libm::round`, whose software routine costs several times more.
+#[inline]
+pub(crate) fn round_half_away(v: f64) -> f64 {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64 as f64;
+        // Exact: both are within 2^52 and `whole` is `v` without its fraction.
+        let fraction = v - whole;
+        // Selects, not branches: the fraction is as good as random from
+        // tick to tick, and a mispredicted branch costs more than the sum.
+        let up = if fraction >= 0.5 { 1.0 } else { 0.0 };
+        let down = if fraction <= -0.5 { 1.0 } else { 0.0 };
+        whole + up - down
+    } else {
+        libm::round(v)
+    }
+}
+
+/// [`round_half_away`] as an `i64`, `None` when the result is not finite
+/// or leaves ±9.2·10^18. Below 2^52 the truncation is already the integer,
+/// so the common case needs no conversion back to a float.
+#[inline(always)]
+pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64;
+        // Exact, as in `round_half_away`; the adjustments are selects.
+        let fraction = v - whole as f64;
+        Some(whole + i64::from(fraction >= 0.5) - i64::from(fraction <= -0.5))
+    } else {
+        let r = libm::round(v);
+        // Strictly inside ±2^63, so the conversion is exact.
+        (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+    }
+}
+
+/// `v as f64`, bit for bit, without the 128-bit library routine where
+/// `v` fits 64 bits (nearly always).
+#[inline]
+pub(crate) fn exact_f64(v: i128) -> f64 {
+    match i64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => v as f64,
+    }
+}
+
+/// `v` as a float, for a count that is never negative (travel, spans):
+/// one conversion below 2^64, where every such value lies in practice.
+#[inline]
+pub(crate) fn unsigned_to_f64(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => v as f64,
+    }
+}
+
+/// `libm::round(v) as i128` (saturating, NaN as 0) with the fast rounding
+/// of [`round_to_i64`] where it applies: the same integer.
+#[inline]
+pub(crate) fn round_to_i128(v: f64) -> i128 {
+    match round_to_i64(v) {
+        Some(whole) => i128::from(whole),
+        None => libm::round(v) as i128,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pseudo-random words (xorshift64) from a non-zero seed.
+    fn xorshift(seed: u64) -> impl Iterator<Item = u64> {
+        core::iter::successors(Some(seed), |&x| {
+            let x = x ^ (x << 13);
+            let x = x ^ (x >> 7);
+            Some(x ^ (x << 17))
+        })
+        .skip(1)
+    }
+
+    #[test]
+    fn round_half_away_is_libm_round() {
+        let same = |v: f64| {
+            let (a, b) = (round_half_away(v), libm::round(v));
+            a == b || (a.is_nan() && b.is_nan())
+        };
+        for v in [
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4.5e15 - 0.5,
+            -4.5e15 + 0.5,
+            4.5e15,
+            1e300,
+            -0.0,
+            f64::INFINITY,
+            f64::NAN,
+        ] {
+            assert!(same(v), "{v}");
+        }
+        for x in xorshift(0x9E37_79B9_7F4A_7C15).take(100_000) {
+            let v = f64::from_bits(x);
+            let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e6 - 5e5;
+            assert!(same(v) && same(scaled), "{v} {scaled}");
+        }
+    }
+
+    #[test]
+    fn round_to_i64_is_the_rounded_float_converted() {
+        let reference = |v: f64| {
+            let r = round_half_away(v);
+            (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+        };
+        for v in [
+            0.5,
+            -0.5,
+            2.5,
+            -2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4.5e15 - 0.5,
+            -4.5e15 + 0.5,
+            4.5e15 + 0.5,
+            -4.5e15 - 0.5,
+            9.2e18,
+            -9.2e18,
+            9.1e18,
+            1e300,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert_eq!(round_to_i64(v), reference(v), "{v}");
+        }
+        for x in xorshift(0x2545_F491_4F6C_DD1D).take(100_000) {
+            let v = f64::from_bits(x);
+            let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e7 - 5e6;
+            let near = 4.5e15 + ((x % 4096) as f64 - 2048.0) * 0.5;
+            for w in [v, scaled, near, -near] {
+                assert_eq!(round_to_i64(w), reference(w), "{w}");
+            }
+        }
+    }
+}
