@@ -25,8 +25,8 @@
 
 use core::num::NonZeroU64;
 
-use crate::rounding::round_half_away;
 use crate::master_ramp::{MasterRamp, quintic};
+use crate::rounding::round_half_away;
 use crate::{EngineError, MasterPosition};
 
 /// One way out of the blend (the master may leave it forwards or backwards).

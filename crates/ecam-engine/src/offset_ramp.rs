@@ -14,8 +14,8 @@
 use core::num::NonZeroU64;
 
 use crate::coupling::Engagement;
-use crate::rounding::{exact_f64, round_to_i128};
 use crate::master_ramp::{MasterRamp, quintic};
+use crate::rounding::{exact_f64, round_to_i128};
 use crate::{EngineError, MasterPosition};
 
 /// A change of offsets for [`crate::CamAxis::change_offsets`].

@@ -9,8 +9,8 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
-use crate::rounding::{exact_f64, round_to_i128};
 use crate::master_ramp::{MasterRamp, quintic};
+use crate::rounding::{exact_f64, round_to_i128};
 use crate::{MasterPosition, RampIn};
 
 /// A ramp in progress.

@@ -15,8 +15,8 @@ use core::num::NonZeroU64;
 
 use crate::MasterPosition;
 use crate::coupling::Geometry;
-use crate::rounding::{exact_f64, round_to_i64};
 use crate::master_ramp::{MasterRamp, quintic};
+use crate::rounding::{exact_f64, round_to_i64};
 
 /// A slave-scaling change being ramped in.
 #[derive(Clone, Copy, Debug, PartialEq)]

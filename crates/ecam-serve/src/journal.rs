@@ -38,7 +38,8 @@ use std::path::{Path, PathBuf};
 use ecam_plc::Devices;
 
 use crate::retain;
-use crate::state_file::{self, Damage, Dropped, Format, Replay};
+use crate::state_error::{Damage, JournalError, io_error};
+use crate::state_file::{self, Dropped, Format, Replay};
 use crate::write::{Slot, WriteBatch};
 
 /// Journal file name inside the state directory.
@@ -52,61 +53,6 @@ pub const COMPACT_AFTER: usize = 4096;
 /// Journal size after which it is compacted whatever its record count: a
 /// save of latched values can be one long line every second.
 pub const COMPACT_AFTER_BYTES: u64 = 8 << 20;
-
-/// Why the state directory cannot be used.
-#[derive(Debug)]
-pub enum JournalError {
-    /// A file operation failed.
-    Io {
-        /// The file or directory.
-        path: PathBuf,
-        /// The operating system's error.
-        source: io::Error,
-    },
-    /// A damaged state file (not a torn last journal line).
-    Corrupt {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: usize,
-        /// What is wrong there.
-        damage: Damage,
-    },
-    /// An earlier append failed and could not be undone: the journal's end
-    /// is unknown, so no more writes are accepted until a restart.
-    Broken,
-    /// The compaction at start failed (see [`Journal::read_only`]): the
-    /// old files were left as they were, and no write is accepted until a
-    /// restart.
-    ReadOnly,
-}
-
-impl std::fmt::Display for JournalError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
-            Self::Corrupt { path, line, damage } => {
-                write!(f, "{}:{line}: {damage}", path.display())
-            }
-            Self::Broken => f.write_str(
-                "an earlier journal write failed and could not be undone; restart the server",
-            ),
-            Self::ReadOnly => f.write_str(
-                "the state directory is read-only: its compaction at start failed \
-                 (free some space and restart the server)",
-            ),
-        }
-    }
-}
-
-impl std::error::Error for JournalError {}
-
-fn io_error(path: &Path) -> impl FnOnce(io::Error) -> JournalError + '_ {
-    move |source| JournalError::Io {
-        path: path.to_path_buf(),
-        source,
-    }
-}
 
 /// What [`Journal::open_with`] does with a damaged state file.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

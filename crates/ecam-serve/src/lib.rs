@@ -66,8 +66,10 @@ mod live;
 mod map;
 mod mbap;
 mod pdu;
+mod periodic_save;
 mod retain;
 mod state;
+mod state_error;
 mod state_file;
 mod table_load;
 mod write;
@@ -80,8 +82,8 @@ pub use bus::{
 pub use clock::{BusTicks, MAX_LAG, Step, next_step, scan_loop, scan_on_bus_ticks, scan_period};
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{
-    COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
-    OnDamage, Recovery, SNAPSHOT_FILE,
+    COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, OnDamage, Recovery,
+    SNAPSHOT_FILE,
 };
 pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
@@ -93,10 +95,10 @@ pub use pdu::{
     Exception, MAX_READ_BITS, MAX_READ_REGISTERS, MAX_WRITE_BITS, MAX_WRITE_REGISTERS, Request,
     Response, encode_response, parse_request,
 };
-pub use retain::{
-    LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
-};
+pub use periodic_save::save_latched_periodically;
+pub use retain::{LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden};
 pub use state::{Event, ServeInfo, Shared, Stats, WriteError};
-pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
+pub use state_error::{Damage, JournalError};
+pub use state_file::{Dropped, SNAPSHOT_HEADER};
 pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use write::{LineError, Slot, WriteBatch};

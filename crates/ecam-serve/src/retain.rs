@@ -21,12 +21,10 @@
 //! (client writes and saved images interleaved) decides which value wins.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use ecam_plc::{C_COUNT, C_LATCHED, D_LATCHED, Device, Devices, M_LATCHED, Retention};
 
-use crate::state::{Event, Shared};
 use crate::write::{Slot, WriteBatch};
 
 /// How often the latched values the program wrote are saved: a crash loses
@@ -154,38 +152,6 @@ pub fn overridden(restored: &BTreeMap<Slot, i32>, devices: &Devices) -> Vec<Over
             })
         })
         .collect()
-}
-
-/// Saves the latched values every [`SAVE_PERIOD`] until `stop` is set
-/// (the caller saves once more after the scan loop has stopped), on the
-/// calling thread. A failing save is reported once as
-/// [`Event::LatchedSaveFailing`], and [`Event::LatchedSavesResumed`] when
-/// saves work again.
-pub fn save_latched_periodically(shared: &Shared, stop: &AtomicBool) {
-    let mut image = LatchedImage::new();
-    let mut next = Instant::now() + SAVE_PERIOD;
-    let mut failing = false;
-    while !stop.load(Ordering::Relaxed) {
-        let now = Instant::now();
-        if now < next {
-            // Short naps keep `stop` responsive.
-            std::thread::sleep((next - now).min(Duration::from_millis(50)));
-            continue;
-        }
-        next = now + SAVE_PERIOD;
-        match shared.save_latched(&mut image) {
-            Ok(_) if failing => {
-                failing = false;
-                shared.report(Event::LatchedSavesResumed);
-            }
-            Ok(_) => {}
-            Err(err) if !failing => {
-                failing = true;
-                shared.report(Event::LatchedSaveFailing(err));
-            }
-            Err(_) => {}
-        }
-    }
 }
 
 #[cfg(test)]

@@ -22,9 +22,10 @@ use ecam_plc::WriteRefusal;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
-use crate::journal::{Journal, JournalError};
+use crate::journal::Journal;
 use crate::pdu::{Exception, Response};
 use crate::retain::LatchedImage;
+use crate::state_error::JournalError;
 use crate::write::WriteBatch;
 
 /// How the server was started (for `GET /api/status`).

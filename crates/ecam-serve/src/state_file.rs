@@ -18,85 +18,13 @@ use core::fmt;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use crate::journal::JournalError;
 use crate::retain;
-use crate::write::{LineError, Slot, WriteBatch};
+use crate::state_error::{Damage, JournalError};
+use crate::write::{Slot, WriteBatch};
 
 /// First line of a snapshot in the checksummed format.
 pub const SNAPSHOT_HEADER: &str =
     "# ecam serve snapshot v2: @SEQ CRC32 RECORD lines, then end COUNT CRC32";
-
-/// What is wrong with a line of a state file.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Damage {
-    /// The snapshot is missing beside a journal (the server writes the
-    /// snapshot first, so only a deleted one is missing).
-    Missing,
-    /// The snapshot is empty (it always holds a header and an end marker).
-    Empty,
-    /// The snapshot's first line is not a snapshot header.
-    NoHeader,
-    /// The snapshot's last line has no newline: the file was cut short.
-    CutShort,
-    /// The snapshot has no end marker: the file was cut short.
-    NoEndMarker,
-    /// Text after the snapshot's end marker.
-    AfterEnd,
-    /// The end marker is not `end COUNT CRC`.
-    BadEndMarker,
-    /// The end marker counts another number of records than the file holds.
-    EndCount {
-        /// The count the marker gives.
-        marker: u64,
-        /// The records in the file.
-        found: u64,
-    },
-    /// The end marker's checksum over the file does not match.
-    FileChecksumMismatch,
-    /// A line that is not a record `@SEQ CRC RECORD`.
-    NotARecord,
-    /// A record whose checksum does not match its content.
-    ChecksumMismatch,
-    /// A record out of sequence: one removed, repeated or moved.
-    Sequence {
-        /// The sequence number due.
-        expected: u64,
-        /// The one found.
-        found: u64,
-    },
-    /// A record (or, in an old-format file, a line) that cannot be read.
-    Unreadable(LineError),
-}
-
-impl fmt::Display for Damage {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Missing => f.write_str("missing, though the journal is there"),
-            Self::Empty => f.write_str("empty file (a snapshot holds a header and an end marker)"),
-            Self::NoHeader => f.write_str("not an ecam snapshot header"),
-            Self::CutShort => f.write_str("cut short (no newline at the end of the file)"),
-            Self::NoEndMarker => f.write_str("no end marker: the file was cut short"),
-            Self::AfterEnd => f.write_str("text after the end marker"),
-            Self::BadEndMarker => f.write_str("not an end marker `end COUNT CRC`"),
-            Self::EndCount { marker, found } => write!(
-                f,
-                "the end marker counts {marker} records, the file holds {found}"
-            ),
-            Self::FileChecksumMismatch => f.write_str("checksum mismatch over the whole file"),
-            Self::NotARecord => f.write_str("not a record `@SEQ CRC RECORD`"),
-            Self::ChecksumMismatch => f.write_str("checksum mismatch"),
-            Self::Sequence { expected, found } if found < expected => write!(
-                f,
-                "record {found} where {expected} was due: a record repeated or moved"
-            ),
-            Self::Sequence { expected, found } => write!(
-                f,
-                "record {found} where {expected} was due: a record removed or moved"
-            ),
-            Self::Unreadable(err) => write!(f, "unreadable record: {err}"),
-        }
-    }
-}
 
 /// Damage that `--recover-state` stepped over, and what it cost.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -464,7 +392,7 @@ mod tests {
 
     use super::*;
     use crate::journal::{
-        DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError, OnDamage, Recovery, SNAPSHOT_FILE,
+        DAMAGED_SUFFIX, JOURNAL_FILE, Journal, OnDamage, Recovery, SNAPSHOT_FILE,
     };
 
     /// A snapshot of two records (D0–D39) and a journal of three.

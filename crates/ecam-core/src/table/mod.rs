@@ -26,9 +26,9 @@ mod segment;
 mod summary;
 mod uniform;
 
+pub use cam_point::CamPoint;
 pub use cam_table::CamTable;
 pub use function::sample_function;
-pub use cam_point::CamPoint;
 pub use point::PointTable;
 pub(crate) use resolution::distribute;
 pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
