@@ -16,7 +16,8 @@
 //! build on [`CamAxis`]; Rust users may prefer the PLCopen-shaped
 //! [`plcopen`] module. Use something else when you need a trajectory
 //! generator (point-to-point moves): this crate couples axes, and its
-//! [`LinearMove`] is only the faces' constant-velocity `MoveTo`.
+//! [`LinearMove`] is only the faces' constant-velocity `MoveTo` (and the
+//! simulator's master moves).
 //!
 //! ```
 //! use ecam_core::PointTable;

@@ -10,8 +10,8 @@ use std::path::Path;
 
 use ecam_core::CamCurve;
 use ecam_engine::{
-    AxisConfig, Compare, Coupling, MasterAlign, MasterFilter, SlaveAlign, StartMode, StopKind,
-    SwitchAt, SyncWindow, Zoom,
+    AxisConfig, Compare, Coupling, LinearMove, MasterAlign, MasterFilter, SlaveAlign, StartMode,
+    StopKind, SwitchAt, SyncWindow, Zoom,
 };
 use serde::Deserialize;
 
@@ -558,7 +558,8 @@ impl Scenario {
         for m in &self.moves {
             let end = begin.saturating_add(m.duration_us);
             if t_us < end {
-                return along(from, m.target, t_us - begin, m.duration_us.max(1));
+                let span = NonZeroU64::new(m.duration_us).unwrap_or(NonZeroU64::MIN);
+                return LinearMove::position_after(from, m.target, t_us - begin, span);
             }
             from = m.target;
             begin = end;
@@ -584,30 +585,6 @@ impl Scenario {
             None => master,
         }
     }
-}
-
-/// The master `elapsed` µs into a move from `from` to `to` lasting `span`
-/// µs (> 0), truncated toward `from`. One 64-bit multiply and division
-/// per tick when the product fits (every realistic move); the exact
-/// 128-bit route otherwise, with the same result.
-#[inline]
-fn along(from: i64, to: i64, elapsed: u64, span: u64) -> i64 {
-    let narrow = (
-        to.checked_sub(from),
-        i64::try_from(elapsed),
-        i64::try_from(span),
-    );
-    if let (Some(delta), Ok(elapsed), Ok(span)) = narrow
-        && let Some(step) = delta.checked_mul(elapsed).map(|p| p / span)
-        && let Some(master) = from.checked_add(step)
-    {
-        return master;
-    }
-    let delta = i128::from(to) - i128::from(from);
-    delta
-        .checked_mul(i128::from(elapsed))
-        .and_then(|p| i64::try_from(i128::from(from) + p / i128::from(span)).ok())
-        .unwrap_or(to)
 }
 
 /// Refuses keys that the chosen `kind`/`mode`/alignment never reads: like a
@@ -802,39 +779,6 @@ fn zoom(ratio: Option<[u16; 2]>, what: &'static str) -> Result<Zoom, ScenarioErr
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_move_is_the_same_in_64_and_128_bits() {
-        let wide = |from: i64, to: i64, elapsed: u64, span: u64| {
-            let delta = i128::from(to) - i128::from(from);
-            i64::try_from(i128::from(from) + delta * i128::from(elapsed) / i128::from(span))
-                .unwrap_or(to)
-        };
-        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
-        for _ in 0..20_000 {
-            let scale = next() % 64;
-            let from = (next() as i64) >> scale;
-            let to = (next() as i64) >> (next() % 64);
-            let span = (next() >> (next() % 64)).max(1);
-            let elapsed = next() % span;
-            // Keep the reference itself inside i128.
-            if (i128::from(to) - i128::from(from)).unsigned_abs() < 1 << 64 {
-                assert_eq!(
-                    along(from, to, elapsed, span),
-                    wide(from, to, elapsed, span)
-                );
-            }
-        }
-        assert_eq!(along(-5, 5, 1, 3), -2, "truncates toward the start");
-        // A product beyond even 128 bits: the move's target (one count off).
-        assert_eq!(along(i64::MIN, i64::MAX, u64::MAX - 1, u64::MAX), i64::MAX);
-    }
 
     const DOC001: &str = r#"
 tick_us = 100
