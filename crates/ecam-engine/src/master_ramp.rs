@@ -19,6 +19,13 @@ pub(crate) fn quintic(u: f64) -> f64 {
     u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
 }
 
+/// The smooth-step's slope `w'(u) = 30u²(1 − u)²`: what a ratio ramped
+/// along [`quintic`] adds to the velocity (the slave-scaling ramp).
+#[inline]
+pub(crate) fn quintic_slope(u: f64) -> f64 {
+    30.0 * u * u * (1.0 - u) * (1.0 - u)
+}
+
 /// A stretch of master travel from where a change began, either way.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct MasterRamp {

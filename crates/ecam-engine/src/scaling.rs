@@ -15,7 +15,7 @@ use core::num::NonZeroU64;
 
 use crate::MasterPosition;
 use crate::coupling::Geometry;
-use crate::master_ramp::{MasterRamp, quintic};
+use crate::master_ramp::{MasterRamp, quintic, quintic_slope};
 use crate::rounding::{exact_f64, round_to_i64};
 
 /// A slave-scaling change being ramped in.
@@ -24,10 +24,6 @@ pub(crate) struct ScalingRamp {
     span: MasterRamp,
     /// The geometry with the new slave scaling.
     pub(crate) target: Geometry,
-}
-
-fn quintic_slope(u: f64) -> f64 {
-    30.0 * u * u * (1.0 - u) * (1.0 - u)
 }
 
 impl ScalingRamp {
