@@ -418,11 +418,13 @@ impl<C: CamCurve> CamAxis<C> {
                 cursor,
                 ..
             } = self;
+            // A table waiting is the general tick's (it may switch): not
+            // even a call into the lane for it.
             let lane = match phase {
-                Phase::Running(engaged) => {
+                Phase::Running(engaged) if !engaged.underway.table_waits() => {
                     engaged.follow_lane(geometry, curve, cursor, None, master)
                 }
-                Phase::Stopping(engaged, end) => {
+                Phase::Stopping(engaged, end) if !engaged.underway.table_waits() => {
                     engaged.follow_lane(geometry, curve, cursor, Some(end), master)
                 }
                 _ => None,
@@ -769,8 +771,13 @@ impl<C: CamCurve> Coupled<'_, C> {
             // Cycle indices restart with the new table.
             engaged.place = here.place;
         }
-        engaged.end_blend(at)?;
-        if here.stopped.is_none() && stop_at.is_none() {
+        // A table waiting alone for the seam (a queued table's every tick
+        // until the seam takes it): no blend to end, no switch to fire.
+        let seam_wait = engaged.underway.waits_alone_for_seam();
+        if !seam_wait {
+            engaged.end_blend(at)?;
+        }
+        if !seam_wait && here.stopped.is_none() && stop_at.is_none() {
             let blending = engaged.blend().is_some();
             let previous = engaged.followed;
             let now = (i128::from(master) << 32) | i128::from(fraction);

@@ -110,6 +110,20 @@ impl<C> Underway<C> {
         }
     }
 
+    /// Only a table waits, for the next seam: no ramp-in, ramp, blend or
+    /// switch beside it.
+    #[inline(always)]
+    pub(super) fn waits_alone_for_seam(&self) -> bool {
+        matches!(self, Self::Changing(Change::Waiting(Next::Seam(_))))
+    }
+
+    /// A table waits (for the seam or a switch), beside a ramp or blend or
+    /// alone.
+    #[inline(always)]
+    pub(super) fn table_waits(&self) -> bool {
+        self.change().is_some_and(Change::waiting)
+    }
+
     /// Nothing is under way.
     pub(super) fn is_settled(&self) -> bool {
         matches!(self, Self::Settled | Self::Steady(_))
