@@ -63,6 +63,8 @@ mod output;
 mod phasing;
 pub mod plcopen;
 pub mod plcopen_blocks;
+pub mod plcopen_slave;
+pub mod plcopen_slave_blocks;
 mod pulse;
 mod ramp;
 mod ramp_in;
