@@ -193,9 +193,11 @@ impl DigitalCamSwitch {
         let modulo = self.modulo;
         for s in switches {
             let t = usize::from(s.track);
-            let (Some(want), Some(options), Some(track)) =
-                (wanted.get_mut(t), self.options.get(t), self.tracks.get_mut(t))
-            else {
+            let (Some(want), Some(options), Some(track)) = (
+                wanted.get_mut(t),
+                self.options.get(t),
+                self.tracks.get_mut(t),
+            ) else {
                 continue;
             };
             let active = match s.direction {

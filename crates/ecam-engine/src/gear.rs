@@ -289,7 +289,12 @@ impl Gear {
     }
 
     /// `MC_GearOut` at master `x`.
-    pub(crate) fn gear_out(&mut self, c: &GearOut, x: i128, speed: f64) -> Result<(), CouplingError> {
+    pub(crate) fn gear_out(
+        &mut self,
+        c: &GearOut,
+        x: i128,
+        speed: f64,
+    ) -> Result<(), CouplingError> {
         self.change_ratio(None, c.ramp, x, speed)
     }
 
@@ -499,8 +504,15 @@ mod tests {
     fn gear_out_brings_the_ratio_to_zero_and_holds() {
         let mut g = Gear::new();
         let ratio = Zoom::signed(1, 1).unwrap();
-        g.gear_in(&GearIn { ratio, ramp: GearRamp::Immediate }, 0, 0.0)
-            .unwrap();
+        g.gear_in(
+            &GearIn {
+                ratio,
+                ramp: GearRamp::Immediate,
+            },
+            0,
+            0.0,
+        )
+        .unwrap();
         assert_eq!(g.at(fixed(1000)), 1000);
         g.gear_out(
             &GearOut {

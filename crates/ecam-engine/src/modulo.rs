@@ -148,10 +148,13 @@ impl ModuloAxis {
         let wanted = match self.start {
             ModuloStart::Absolute | ModuloStart::Relative => return 0,
             ModuloStart::EndlessPositive => r,
-            ModuloStart::EndlessNegative => match r {
-                r if r == 0.0 => 0.0,
-                r => r - m,
-            },
+            ModuloStart::EndlessNegative => {
+                if r > 0.0 {
+                    r - m
+                } else {
+                    0.0
+                }
+            }
             ModuloStart::Nearest => match r {
                 r if 2.0 * r > m => r - m,
                 r => r,
@@ -228,8 +231,17 @@ mod tests {
     #[test]
     fn locate_and_bad_modulo() {
         let a = axis(ModuloStart::Absolute);
-        assert_eq!(a.locate(725), ModuloPosition { position: 5, turns: 2 });
-        assert_eq!(ModuloAxis::new(0, ModuloStart::Absolute), Err(CouplingError::BadModulo));
+        assert_eq!(
+            a.locate(725),
+            ModuloPosition {
+                position: 5,
+                turns: 2
+            }
+        );
+        assert_eq!(
+            ModuloAxis::new(0, ModuloStart::Absolute),
+            Err(CouplingError::BadModulo)
+        );
         assert!(ModuloAxis::new(1 << 63, ModuloStart::Absolute).is_err());
     }
 }

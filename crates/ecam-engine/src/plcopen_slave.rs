@@ -216,18 +216,14 @@ impl<C: CamCurve> McSlaveAxis<C> {
     /// One cycle with every input (a touch-probe latch included).
     pub fn tick_input(&mut self, input: &SlaveInput) -> SlaveStatus {
         let axis = *self.axis.tick(input);
-        let mut cam = self
-            .axis
-            .cam_status()
-            .copied()
-            .unwrap_or(CamStatus {
-                in_sync: false,
-                end_of_profile: false,
-                busy: false,
-                active: false,
-                error: None,
-                output: axis.cam,
-            });
+        let mut cam = self.axis.cam_status().copied().unwrap_or(CamStatus {
+            in_sync: false,
+            end_of_profile: false,
+            busy: false,
+            active: false,
+            error: None,
+            output: axis.cam,
+        });
         // The cam's own pulse fields are not the axis': InSync counts the
         // axis' backlog.
         cam.in_sync = cam.output.following && axis.backlog == 0;

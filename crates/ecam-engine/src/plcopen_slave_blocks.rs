@@ -143,7 +143,9 @@ impl GearInPosBlock {
         status: &SlaveStatus,
     ) -> GearInPosOutputs {
         if self.latch.edge(execute) {
-            let issued = axis.gear_in_pos(command).map(|()| axis.axis().commands().gear);
+            let issued = axis
+                .gear_in_pos(command)
+                .map(|()| axis.axis().commands().gear);
             self.latch.issued(issued);
         }
         self.latch.follow(axis.axis().commands().gear);
@@ -198,7 +200,9 @@ impl PhasingBlock {
             self.done = false;
         }
         if self.latch.edge(execute) {
-            let issued = axis.phasing(command).map(|()| axis.axis().commands().phasing);
+            let issued = axis
+                .phasing(command)
+                .map(|()| axis.axis().commands().phasing);
             self.latch.issued(issued);
         }
         self.latch.follow(axis.axis().commands().phasing);
@@ -261,7 +265,9 @@ impl MoveSuperimposedBlock {
             self.done = false;
         }
         if self.latch.edge(execute) {
-            let issued = axis.move_superimposed(command).map(|()| axis.axis().commands().superimposed);
+            let issued = axis
+                .move_superimposed(command)
+                .map(|()| axis.axis().commands().superimposed);
             self.latch.issued(issued);
         }
         self.latch.follow(axis.axis().commands().superimposed);

@@ -194,9 +194,8 @@ impl Registration {
     pub(crate) fn watch(&mut self, position: i128) {
         let position = position + self.target;
         let cycle = i128::from(self.config.cycle.get()) * ONE;
-        let close = i128::from(self.config.expected)
-            .saturating_add(i128::try_from(self.config.window).unwrap_or(i128::MAX))
-            * ONE;
+        let close =
+            i128::from(self.config.expected).saturating_add(i128::from(self.config.window)) * ONE;
         let index = (position - close).div_euclid(cycle);
         match self.window {
             None => self.window = Some(index),

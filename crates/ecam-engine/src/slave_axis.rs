@@ -451,8 +451,8 @@ impl<K: CamPart> SlaveAxis<K> {
     fn seam_jump(&self, forward: bool) -> f64 {
         let engine = self.cam.engine();
         let curve = engine.curve();
-        let step = (curve.slave_first() - curve.slave_last()) as f64
-            * engine.config().slave_zoom.ratio();
+        let step =
+            (curve.slave_first() - curve.slave_last()) as f64 * engine.config().slave_zoom.ratio();
         if forward { step } else { -step }
     }
 
@@ -563,9 +563,7 @@ impl<K: CamPart> SlaveAxis<K> {
         }
         let hz = effective_frequency(self.config.max_frequency_hz);
         self.commanded = sum;
-        let pulses = self
-            .pulse
-            .step(sum, t.output_enabled, hz, t.dt_us);
+        let pulses = self.pulse.step(sum, t.output_enabled, hz, t.dt_us);
         if self.turns != 0 && !cam.state.is_active() {
             // Hand the seams' whole turns to the idle cam, so that its
             // next start picks its turn from where the slave really is.

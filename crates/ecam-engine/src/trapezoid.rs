@@ -106,10 +106,7 @@ impl Trapezoid {
 
     /// The time-optimal profile from velocity `v0` to rest `distance` away.
     pub(crate) fn plan(distance: f64, v0: f64, limits: MoveLimits) -> Self {
-        let mut p = Self {
-            v0,
-            ..Self::REST
-        };
+        let mut p = Self { v0, ..Self::REST };
         let sign = if distance >= 0.0 { 1.0 } else { -1.0 };
         let mut d = distance.abs();
         let mut u = sign * v0;
@@ -184,7 +181,10 @@ mod tests {
                 "speed {}",
                 now.1
             );
-            assert!(a.abs() <= l.acceleration().max(l.deceleration()) + 1e-3, "acc {a}");
+            assert!(
+                a.abs() <= l.acceleration().max(l.deceleration()) + 1e-3,
+                "acc {a}"
+            );
             last = now;
         }
     }

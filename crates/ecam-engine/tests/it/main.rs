@@ -3,6 +3,8 @@
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 mod cam_out;
+mod couplings;
+mod couplings_safe_motion;
 mod doc001_repeat;
 mod doc002_profile;
 mod doc003_decam;
