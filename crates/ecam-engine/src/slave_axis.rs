@@ -538,6 +538,9 @@ impl<K: CamPart> SlaveAxis<K> {
         self.last_cycle = cam.cycle;
         let mut fault = None;
         if let Some(command) = self.pending_gear.take() {
+            // The change starts from where the gear is at this master, with
+            // the ratio it has here: no tick stands still in between.
+            self.gear.at(seen);
             let (speed, velocity) = (self.speed.bound(), self.speed.velocity());
             let done = match command {
                 GearCommand::In(c) => self.gear.gear_in(&c, seen, speed),

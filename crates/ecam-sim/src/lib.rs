@@ -46,12 +46,18 @@
 //! # Ok::<(), anyhow::Error>(())
 //! ```
 
+mod coupled;
+mod couplings;
 #[doc(hidden)]
 pub mod fuzz;
 mod scenario;
 mod simulate;
+mod steps;
 mod trace;
 
+pub use coupled::{CouplingTick, simulate_couplings};
+pub use couplings::{CamSwitches, Couplings, Marks, SwitchAxis};
 pub use scenario::{MasterMove, Scenario, StopAt, StopTrigger};
 pub use simulate::{Summary, simulate};
+pub use steps::{Block, PlcopenStep};
 pub use trace::{Row, state_name};

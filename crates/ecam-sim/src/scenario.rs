@@ -37,6 +37,12 @@ struct RawScenario {
     master: RawMaster,
     #[serde(default)]
     switch: Vec<RawSwitch>,
+    modulo: Option<crate::couplings::RawModulo>,
+    direction_guard: Option<crate::couplings::RawGuard>,
+    registration: Option<crate::couplings::RawRegistration>,
+    cam_switches: Option<crate::couplings::RawCamSwitches>,
+    #[serde(default)]
+    plcopen: Vec<crate::steps::RawStep>,
 }
 
 /// `[[switch]]`: another table takes over at the next seam once the
@@ -289,6 +295,25 @@ pub struct Scenario {
     pub stop: Option<StopAt>,
     /// Table switches, in the order they are requested.
     pub switches: Vec<TableSwitch>,
+    /// The couplings beyond the cam (`[modulo]`, `[direction_guard]`,
+    /// `[registration]`, `[cam_switches]`, `[[plcopen]]`): the scenario
+    /// then runs on a slave axis.
+    pub couplings: Option<crate::couplings::Couplings>,
+}
+
+/// The one trigger of a `[stop]`, `[[switch]]` or `[[plcopen]]` entry.
+pub(crate) fn trigger(
+    at_s: Option<f64>,
+    master_at_least: Option<i64>,
+    master_at_most: Option<i64>,
+    what: &str,
+) -> anyhow::Result<StopTrigger> {
+    Ok(match (at_s, master_at_least, master_at_most) {
+        (Some(t), None, None) => StopTrigger::Time(micros(t, &format!("{what} at_s"))?),
+        (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
+        (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
+        _ => bail!("{what} needs exactly one of at_s, master_at_least, master_at_most"),
+    })
 }
 
 /// Seconds → microseconds, refusing negatives, NaN and absurd lengths.
@@ -385,12 +410,7 @@ impl Scenario {
         let stop = raw
             .stop
             .map(|s| -> anyhow::Result<StopAt> {
-                let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
-                    (Some(t), None, None) => StopTrigger::Time(micros(t, "[stop] at_s")?),
-                    (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
-                    (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-                    _ => bail!("[stop] needs exactly one of at_s, master_at_least, master_at_most"),
-                };
+                let trigger = trigger(s.at_s, s.master_at_least, s.master_at_most, "[stop]")?;
                 Ok(StopAt {
                     trigger,
                     kind: match s.kind {
@@ -406,12 +426,7 @@ impl Scenario {
             .enumerate()
             .map(|(i, s)| -> anyhow::Result<TableSwitch> {
                 let what = format!("[[switch]] {}", i + 1);
-                let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
-                    (Some(t), None, None) => StopTrigger::Time(micros(t, &format!("{what} at_s"))?),
-                    (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
-                    (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-                    _ => bail!("{what} needs exactly one of at_s, master_at_least, master_at_most"),
-                };
+                let trigger = trigger(s.at_s, s.master_at_least, s.master_at_most, &what)?;
                 let curve = ecam_design::load_table(&s.table, base)
                     .with_context(|| format!("in {what} table"))?;
                 let blend = match s.blend {
@@ -447,7 +462,23 @@ impl Scenario {
             }
             *slot = SyncWindow::new(w.low, w.high);
         }
-        let config = AxisConfig {
+        let plcopen = !raw.plcopen.is_empty();
+        if plcopen {
+            crate::couplings::plcopen_reads_no_cam_keys(
+                raw.cam.kind != CamKind::Periodic
+                    || raw.cam.master_zoom.is_some()
+                    || raw.cam.slave_zoom.is_some()
+                    || raw.cam.ramp_in.is_some()
+                    || raw.cam.single_turn.is_some()
+                    || raw.cam.max_master_step.is_some()
+                    || !raw.sync.is_empty(),
+                !matches!(raw.start.mode, StartKind::Immediate)
+                    || raw.start.master_align.is_some()
+                    || raw.start.slave_align.is_some(),
+                !raw.switch.is_empty(),
+            )?;
+        }
+        let mut config = AxisConfig {
             coupling: coupling(&raw.cam),
             start: start_mode(&raw.start)?,
             master_align: master_align(&raw.start)?,
@@ -487,6 +518,17 @@ impl Scenario {
                 None => None,
             },
         };
+        let couplings = crate::couplings::assemble(
+            crate::couplings::RawCouplings {
+                modulo: raw.modulo.as_ref(),
+                guard: raw.direction_guard.as_ref(),
+                registration: raw.registration.as_ref(),
+                cam_switches: raw.cam_switches.as_ref(),
+                steps: &raw.plcopen,
+            },
+            &mut config,
+            base,
+        )?;
         let master_update_us = match raw.master.update_us {
             Some(us) => Some(NonZeroU64::new(us).context("[master] update_us must be at least 1")?),
             None => None,
@@ -504,6 +546,7 @@ impl Scenario {
             start_input,
             stop,
             switches,
+            couplings,
         })
     }
 
