@@ -187,7 +187,7 @@ int move_superimposed(bool halt)
     std::printf("cycle,slave,covered_distance,done,busy,active\n");
     move.execute = true;
     move.call();
-    for(int cycle = 1; cycle <= 90; ++cycle) {
+    for(int cycle = 1; cycle <= 160; ++cycle) {
         if(halt && cycle == 30) {
             stop.execute = true;
             stop.call();
