@@ -13,6 +13,7 @@ mod missed_activation;
 mod offsets_on_the_fly;
 mod plcopen;
 mod plcopen_peer;
+mod plcopen_peer_couplings;
 mod plcopen_reference;
 mod properties;
 mod ramp_in_limits;
