@@ -14,7 +14,11 @@
 //!
 //! The PLC (document 003 `DECAM`) and motion-processor (document 002) faces
 //! build on [`CamAxis`]; Rust users may prefer the PLCopen-shaped
-//! [`plcopen`] module. Use something else when you need a trajectory
+//! [`plcopen`] module. Beyond the documents, [`SlaveAxis`] sums a cam, a
+//! gear and a superimposed move on one slave, with phasing, print-mark
+//! registration, a direction guard and a modulo (rotary) slave, and
+//! [`DigitalCamSwitch`] drives cam-switch tracks; [`plcopen_slave`] is
+//! their PLCopen face. Use something else when you need a trajectory
 //! generator (point-to-point moves): this crate only couples axes.
 //!
 //! ```

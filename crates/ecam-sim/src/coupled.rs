@@ -216,6 +216,10 @@ fn run<'s>(
         };
         let in_sync = view.in_sync || tracks != 0;
         let row = tally.take(k, t_us, master, master_input, &view, in_sync);
+        if let Some(fault) = out.fault {
+            // A gear command the next tick could not carry out.
+            tally.summary.fault.get_or_insert_with(|| fault.to_string());
+        }
         let tick = CouplingTick {
             axis: out,
             tracks,

@@ -7,6 +7,12 @@
 //! hands each tick's [`Row`] and engine output to the caller (to write a
 //! trace, draw a plot, or check an invariant) and returns a [`Summary`].
 //!
+//! A scenario with couplings beyond the cam (`[modulo]`,
+//! `[direction_guard]`, `[registration]`, `[cam_switches]`, `[[plcopen]]`
+//! steps) runs on an [`ecam_engine::SlaveAxis`]; [`simulate`] hands the
+//! caller the axis' sum as a cam's output, [`simulate_couplings`] every
+//! coupling's status.
+//!
 //! This is what `ecam simulate` runs; the command line only reads its
 //! arguments and writes the summary, trace CSV and plot.
 //!

@@ -198,3 +198,116 @@ proptest! {
         prop_assert_eq!(back.backlog, 0);
     }
 }
+
+/// A knife table of one turn (`modulo` pulses) per cycle, monotonic.
+fn any_knife(modulo: i64) -> impl Strategy<Value = PointTable> {
+    prop::collection::vec(1i64..100, 1..6).prop_map(move |weights| {
+        let total: i64 = weights.iter().sum();
+        let mut points = vec![(0i64, 0i64)];
+        let (mut m, mut s) = (0i64, 0i64);
+        for w in &weights {
+            m += 400;
+            s += w * modulo / total;
+            points.push((m, s));
+        }
+        points.last_mut().unwrap().1 = modulo;
+        PointTable::from_pairs(&points).unwrap()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(crate::cases(48)))]
+
+    #[test]
+    fn an_endless_positive_knife_never_turns_back(
+        table in any_knife(36_000),
+        start in 0i64..200_000,
+        ramp in prop::option::of(1u64..3000),
+        motion in any_motion(false),
+    ) {
+        use ecam_engine::{ModuloAxis, ModuloStart, RampIn};
+        let modulo = ModuloAxis::new(36_000, ModuloStart::EndlessPositive).unwrap();
+        let config = AxisConfig {
+            coupling: Coupling::Periodic,
+            slave_align: SlaveAlign::Modulo { axis: modulo, offset: 0 },
+            ramp_in: ramp.map(|d| RampIn { distance: NonZeroU64::new(d).unwrap() }),
+            ..AxisConfig::default()
+        };
+        let mut axis = SlaveAxis::with_cam(
+            table,
+            config,
+            SlaveConfig { modulo: Some(modulo), ..SlaveConfig::default() },
+        )
+        .unwrap();
+        axis.set_slave_position(start).unwrap();
+        axis.cam_mut().arm().unwrap();
+        let (outs, _) = run(&mut axis, &motion, 3000);
+        for (i, o) in outs.iter().enumerate() {
+            prop_assert!(o.pulses >= 0, "tick {i}: the knife turned back");
+            let m = o.modulo.unwrap();
+            prop_assert!((0..36_000).contains(&m.position));
+            prop_assert_eq!(i128::from(m.turns) * 36_000 + i128::from(m.position), i128::from(o.slave));
+        }
+        let first = outs.first().unwrap().slave;
+        prop_assert!(first >= start && first < start + 36_000, "engaged ahead, within a turn");
+    }
+
+    #[test]
+    fn registration_never_exceeds_its_limit_nor_turns_the_knife_back(
+        late in -700i64..700,
+        stretch in -20i64..20,
+        max in 10u64..200,
+        extra_ramp in 0u64..3000,
+    ) {
+        use ecam_engine::{LatchSource, RegistrationConfig};
+        let max_i = i64::try_from(max).unwrap();
+        let config = RegistrationConfig {
+            source: LatchSource::Master,
+            cycle: NonZeroU64::new(10_000).unwrap(),
+            expected: 2000,
+            window: 800,
+            max_correction: max,
+            ramp: NonZeroU64::new(2 * max + extra_ramp).unwrap(),
+        };
+        let knife = PointTable::from_pairs(&[(0, 0), (3000, 6000), (7000, 30_000), (10_000, 36_000)])
+            .unwrap();
+        let mut axis = SlaveAxis::with_cam(
+            knife,
+            AxisConfig { coupling: Coupling::Repeat { min_stroke: 1 }, ..AxisConfig::default() },
+            SlaveConfig { registration: Some(config), ..SlaveConfig::default() },
+        )
+        .unwrap();
+        axis.cam_mut().arm().unwrap();
+        let marks: Vec<i64> = (0..30).map(|i| 2000 + late + (10_000 + stretch) * i).collect();
+        let mut next = 0;
+        let mut corrections = Vec::new();
+        for m in (0..310_000).step_by(13) {
+            let latch = match marks.get(next) {
+                Some(&mark) if mark <= m => {
+                    next += 1;
+                    Some(mark)
+                }
+                _ => None,
+            };
+            let o = *axis.tick(&SlaveInput { tick: TickInput::at(m, TICK_US), latch });
+            prop_assert!(o.pulses >= 0, "the knife turned back at {m}");
+            if let Some(r) = o.registration.filter(|r| r.mark) {
+                prop_assert!(r.last_correction.abs() <= max_i);
+                corrections.push(r);
+            }
+        }
+        prop_assert_eq!(corrections.len(), 30);
+        // While the material stretches less per cycle than a mark may
+        // correct, each mark gains `max − |stretch|` on the error: converged
+        // within ceil(|late| / (max − |stretch|)) + 1 marks, then only the
+        // stretch is left at each mark.
+        if stretch.unsigned_abs() >= max {
+            return Ok(());
+        }
+        let gain = max - stretch.unsigned_abs();
+        let settle = usize::try_from(late.unsigned_abs().div_ceil(gain) + 1).unwrap();
+        for r in corrections.iter().skip(settle) {
+            prop_assert!(r.last_error.abs() <= stretch.abs(), "{r:?}");
+        }
+    }
+}
