@@ -112,7 +112,7 @@ fn gear_in_pos_meets_the_sync_point_where_the_peer_does() {
         last = s.axis.slave;
         // Both wait until 8000 before the sync position, both are in sync
         // from it on, exactly on 16 000 + 2 × (master − 20 000).
-        if master < 12_000 || master >= 20_000 {
+        if !(12_000..20_000).contains(&master) {
             assert!(gap <= 0.5, "{row:?}: {}", s.axis.slave);
         } else {
             approach = approach.max(gap);
