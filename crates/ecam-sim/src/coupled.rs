@@ -12,8 +12,8 @@ use ecam_engine::{
 };
 
 use crate::couplings::{Couplings, SwitchAxis};
-use crate::simulate::{Summary, Tally};
 use crate::steps::Block;
+use crate::summary::{Summary, Tally};
 use crate::{Row, Scenario};
 
 /// What one tick of a slave axis' run reports.

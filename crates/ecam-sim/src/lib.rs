@@ -59,11 +59,15 @@ pub mod fuzz;
 mod scenario;
 mod simulate;
 mod steps;
+mod summary;
 mod trace;
+mod trigger;
 
 pub use coupled::{CouplingTick, simulate_couplings};
 pub use couplings::{CamSwitches, Couplings, Marks, SwitchAxis};
-pub use scenario::{MasterMove, Scenario, StopAt, StopTrigger};
-pub use simulate::{Summary, simulate};
+pub use scenario::{MasterMove, Scenario, StopAt};
+pub use simulate::simulate;
 pub use steps::{Block, PlcopenStep};
+pub use summary::Summary;
 pub use trace::{Row, state_name};
+pub use trigger::StopTrigger;

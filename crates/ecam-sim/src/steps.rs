@@ -18,8 +18,7 @@ use ecam_engine::{
 };
 use serde::Deserialize;
 
-use crate::StopTrigger;
-use crate::scenario::trigger;
+use crate::trigger::{StopTrigger, trigger};
 
 /// One `[[plcopen]]` step: when, and which block with which inputs.
 pub struct PlcopenStep {
