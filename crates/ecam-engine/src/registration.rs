@@ -15,8 +15,9 @@
 //! acceleration continuous) and ends exactly on its whole count.
 //!
 //! A master latch corrects the phase of the master the cam sees (a shift
-//! in master counts, like `MC_Phasing`); a slave latch corrects the slave
-//! itself (an offset in pulses). The ramp must be at least twice the
+//! in master counts, like `MC_Phasing`: a late mark delays the tool); a
+//! slave latch corrects the slave itself (an offset in pulses: a late mark
+//! on what the slave carries takes the slave on by the error). The ramp must be at least twice the
 //! largest correction: the shift's extra speed is then at most
 //! `1.875 × max / ramp < 1` master count per count, so a correction never
 //! turns the master the cam sees (nor the slave) back.
@@ -84,7 +85,8 @@ pub struct RegistrationStatus {
     /// The last mark's error (latched minus expected, corrections asked
     /// for counted as done), source units.
     pub last_error: i64,
-    /// The last correction (at most `max_correction` either way).
+    /// The last correction (at most `max_correction` either way): −error
+    /// for a master latch, +error for a slave latch.
     pub last_correction: i64,
     /// The correction in force now (master counts or pulses, with its
     /// fraction while a ramp runs).
@@ -174,7 +176,15 @@ impl Registration {
             return;
         }
         let max = i128::from(self.config.max_correction);
-        let correction = (-error).clamp(-max, max);
+        // A master latch moves the tool to the mark: a late mark delays
+        // the phase. A slave latch moves what the slave carries: a late
+        // mark takes the slave on (the frame is the command without the
+        // correction, so the mark shows up earlier by what it adds).
+        let correction = match self.config.source {
+            LatchSource::Master => -error,
+            LatchSource::Slave => error,
+        }
+        .clamp(-max, max);
         self.status.marks += 1;
         self.status.mark = true;
         self.status.last_error = clamp(error);

@@ -474,3 +474,58 @@ fn cam_switch_tracks_through_the_block() {
         Some(CouplingError::BadTrack)
     );
 }
+
+#[test]
+fn a_slave_latch_corrects_the_slave_itself() {
+    // A feed roll geared 1:1 to the master carries the material; the marks
+    // are on it, every 1000 pulses, the first 50 late; a slave latch
+    // corrects the slave by at most 20 per mark, ramped over 100 counts.
+    let flat = PointTable::from_pairs(&[(0, 0), (1000, 0)]).unwrap();
+    let config = RegistrationConfig {
+        source: LatchSource::Slave,
+        cycle: nz(1000),
+        expected: 200,
+        window: 300,
+        max_correction: 20,
+        ramp: nz(100),
+    };
+    let mut axis = SlaveAxis::with_cam(
+        flat,
+        AxisConfig::default(),
+        SlaveConfig {
+            registration: Some(config),
+            ..SlaveConfig::default()
+        },
+    )
+    .unwrap();
+    axis.gear_in(&GearIn {
+        ratio: Zoom::signed(1, 1).unwrap(),
+        ramp: GearRamp::Immediate,
+    })
+    .unwrap();
+    let marks: Vec<i64> = (0..20).map(|i| 250 + 1000 * i).collect();
+    let mut latch = None;
+    let mut last = axis.tick(&input(0)).slave;
+    let mut errors = Vec::new();
+    for m in 1..=20_500 {
+        let out = *axis.tick(&SlaveInput {
+            tick: TickInput::at(m, TICK_US),
+            latch: latch.take(),
+        });
+        assert!(out.pulses >= 0);
+        // The probe latches where the slave passed a mark (given next tick).
+        latch = marks.iter().copied().find(|&p| last < p && p <= out.slave);
+        last = out.slave;
+        if let Some(r) = out.registration.filter(|r| r.mark) {
+            assert!(r.last_correction.abs() <= 20);
+            errors.push(r.last_error);
+        }
+    }
+    // 50 late, 20 a mark: 50, 30, 10, then in place; the slave is taken
+    // on by 50 so that the marks it carries pass where expected.
+    assert_eq!(&errors[..4], &[50, 30, 10, 0]);
+    assert!(errors[4..].iter().all(|&e| e == 0));
+    let r = axis.status().registration.unwrap();
+    assert_eq!(r.correction, 50.0);
+    assert_eq!(axis.status().slave, axis.status().gear.slave + 50);
+}
