@@ -77,6 +77,7 @@ mod scaling;
 mod slave_axis;
 mod speed;
 mod start;
+mod start_rule;
 mod steady;
 mod stop;
 mod superimposed;
