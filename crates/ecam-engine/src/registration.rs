@@ -158,12 +158,25 @@ impl Registration {
         self.current
     }
 
-    /// A latch at `position` (fixed point) in the source's frame without
-    /// any registration correction; `g` is the guarded master where a
-    /// correction ramp starts. The corrections asked for so far count as
-    /// done.
+    /// Where a position of the source lies in the frame the marks are
+    /// expected in, the corrections asked for so far counted as done. A
+    /// master position (`position` = the master the cam would see without
+    /// a correction) is shifted by them; a slave position (the slave as
+    /// commanded, correction included) is taken back by them, to where the
+    /// command without a correction would be.
+    fn frame(&self, position: i128) -> i128 {
+        match self.config.source {
+            LatchSource::Master => position + self.target,
+            LatchSource::Slave => position - self.target,
+        }
+    }
+
+    /// A latch at `position` (fixed point; for a master latch the master
+    /// the cam would see without a correction, for a slave latch the slave
+    /// position as latched); `g` is the guarded master where a correction
+    /// ramp starts.
     pub(crate) fn latch(&mut self, position: i128, g: i128) {
-        let position = position + self.target;
+        let position = self.frame(position);
         let cycle = i128::from(self.config.cycle.get()) * ONE;
         let expected = i128::from(self.config.expected) * ONE;
         let mut error = (position - expected).rem_euclid(cycle);
@@ -199,10 +212,10 @@ impl Registration {
         }
     }
 
-    /// Watches the source's position `position` (fixed point, without any
-    /// registration correction): a window left without a mark is missed.
+    /// Watches the source's position `position` (fixed point, as for
+    /// [`Registration::latch`]): a window left without a mark is missed.
     pub(crate) fn watch(&mut self, position: i128) {
-        let position = position + self.target;
+        let position = self.frame(position);
         let cycle = i128::from(self.config.cycle.get()) * ONE;
         let close =
             i128::from(self.config.expected).saturating_add(i128::from(self.config.window)) * ONE;

@@ -495,10 +495,7 @@ impl<K: CamPart> SlaveAxis<K> {
                         };
                         reg.latch(latch * ONE + (g - m) + phase, g);
                     }
-                    LatchSource::Slave => {
-                        let current = whole(reg.current());
-                        reg.latch((i128::from(latch) - current) * ONE, g);
-                    }
+                    LatchSource::Slave => reg.latch(i128::from(latch) * ONE, g),
                 }
             }
             let correction = reg.correction_at(g);
@@ -561,7 +558,7 @@ impl<K: CamPart> SlaveAxis<K> {
         if let Some(reg) = &mut self.registration {
             match reg.source() {
                 LatchSource::Master => reg.watch(g + phase),
-                LatchSource::Slave => reg.watch((i128::from(sum) - slave_correction) * ONE),
+                LatchSource::Slave => reg.watch(i128::from(sum) * ONE),
             }
         }
         let hz = effective_frequency(self.config.max_frequency_hz);
