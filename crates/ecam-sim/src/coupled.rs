@@ -12,6 +12,7 @@ use ecam_engine::{
 };
 
 use crate::couplings::{Couplings, SwitchAxis};
+use crate::error::SimulateError;
 use crate::steps::Block;
 use crate::summary::{Summary, Tally};
 use crate::{Row, Scenario};
@@ -99,44 +100,40 @@ impl<'s> Driven<'s> for McSlaveAxis<&'s dyn CamCurve> {
 /// A scenario without couplings, a cam or configuration the engine
 /// refuses, a `[[plcopen]]` step it refuses (naming the step), or an
 /// error of `record`.
-pub fn simulate_couplings(
+pub fn simulate_couplings<E>(
     scenario: &Scenario,
-    record: impl FnMut(&Row, &CouplingTick, bool) -> anyhow::Result<()>,
-) -> anyhow::Result<Summary> {
+    record: impl FnMut(&Row, &CouplingTick, bool) -> Result<(), E>,
+) -> Result<Summary, SimulateError<E>> {
     let Some(couplings) = &scenario.couplings else {
-        anyhow::bail!("the scenario has no couplings: run it with `simulate`");
+        return Err(SimulateError::NoCouplings);
     };
     let curve: &dyn CamCurve = scenario.curve.as_ref();
-    let refused = |e: CouplingError| {
-        anyhow::anyhow!(
-            "the engine refuses the scenario: {e} (table master {} .. {})",
-            curve.master_first(),
-            curve.master_last()
-        )
+    let refused = |error: CouplingError| SimulateError::Refused {
+        error,
+        master_range: (curve.master_first(), curve.master_last()),
+        single_turn: scenario.config.single_turn.map(|t| t.get()),
     };
     if couplings.steps.is_empty() {
         let mut axis =
             SlaveAxis::with_cam(curve, scenario.config, couplings.slave).map_err(refused)?;
         axis.set_slave_position(scenario.slave_start)
-            .map_err(|e| anyhow::anyhow!("cannot set the start slave position: {e}"))?;
-        axis.cam_mut()
-            .arm()
-            .map_err(|e| anyhow::anyhow!("cannot arm the cam: {e}"))?;
+            .map_err(SimulateError::SlaveStart)?;
+        axis.cam_mut().arm().map_err(SimulateError::Arm)?;
         run(scenario, couplings, axis, record)
     } else {
         let mut axis = McSlaveAxis::new(curve, couplings.slave).map_err(refused)?;
         axis.set_slave_position(scenario.slave_start)
-            .map_err(|e| anyhow::anyhow!("cannot set the start slave position: {e}"))?;
+            .map_err(SimulateError::SlaveStart)?;
         run(scenario, couplings, axis, record)
     }
 }
 
-fn run<'s>(
+fn run<'s, E>(
     scenario: &'s Scenario,
     couplings: &'s Couplings,
     mut axis: impl Driven<'s>,
-    mut record: impl FnMut(&Row, &CouplingTick, bool) -> anyhow::Result<()>,
-) -> anyhow::Result<Summary> {
+    mut record: impl FnMut(&Row, &CouplingTick, bool) -> Result<(), E>,
+) -> Result<Summary, SimulateError<E>> {
     let tick_us = u64::from(scenario.tick_us);
     let ticks = scenario.ticks();
     let mut stop_pending = scenario.stop;
@@ -159,9 +156,12 @@ fn run<'s>(
             stop_pending = None;
         }
         while let Some((i, step)) = steps.next_if(|(_, s)| s.trigger.fires(t_us, master)) {
-            axis.apply(&step.block).map_err(|e| {
-                anyhow::anyhow!("[[plcopen]] {} {}: refused: {e}", i + 1, step.block.name())
-            })?;
+            axis.apply(&step.block)
+                .map_err(|error| SimulateError::Step {
+                    number: i + 1,
+                    block: step.block.name(),
+                    error,
+                })?;
             done_steps += 1;
         }
         let master_input = scenario.master_input(master);
@@ -225,7 +225,8 @@ fn run<'s>(
             tracks,
             view,
         };
-        record(&row, &tick, k % scenario.trace_every == 0 || k == ticks)?;
+        record(&row, &tick, k % scenario.trace_every == 0 || k == ticks)
+            .map_err(SimulateError::Record)?;
         last = Some(out);
     }
     let mut summary = tally.summary;

@@ -9,7 +9,6 @@
 use std::num::NonZeroU64;
 use std::path::Path;
 
-use anyhow::{Context, bail};
 use ecam_engine::{
     AxisConfig, CamSwitch, DigitalCamSwitch, DirectionGuard, GuardDirection, GuardResume,
     LatchSource, MasterFilter, ModuloAxis, ModuloStart, RegistrationConfig, SlaveAlign,
@@ -17,6 +16,8 @@ use ecam_engine::{
 };
 use serde::Deserialize;
 
+use crate::couplings_error::CouplingsError;
+use crate::error::ScenarioError;
 use crate::steps::{PlcopenStep, RawStep};
 
 /// `[modulo]`.
@@ -229,21 +230,15 @@ pub(crate) fn plcopen_reads_no_cam_keys(
     cam: bool,
     start: bool,
     switch: bool,
-) -> anyhow::Result<()> {
+) -> Result<(), CouplingsError> {
     if cam {
-        bail!(
-            "with [[plcopen]] steps the cam is read as MC_CamTableSelect and MC_CamIn say: set kind, zooms and ramp-in there, not in [cam]; single_turn, max_master_step and [[sync]] are not offered with them"
-        );
+        return Err(CouplingsError::PlcopenCamKeys);
     }
     if start {
-        bail!(
-            "with [[plcopen]] steps MC_CamIn starts the cam: [start] takes only master and slave (the positions at t = 0)"
-        );
+        return Err(CouplingsError::PlcopenStartKeys);
     }
     if switch {
-        bail!(
-            "with [[plcopen]] steps a table change is MC_CamTableSelect then MC_CamIn (buffer_mode, activation, blend), not [[switch]]"
-        );
+        return Err(CouplingsError::PlcopenSwitch);
     }
     Ok(())
 }
@@ -254,7 +249,7 @@ pub(crate) fn assemble(
     raw: RawCouplings<'_>,
     config: &mut AxisConfig,
     base: &Path,
-) -> anyhow::Result<Option<Couplings>> {
+) -> Result<Option<Couplings>, ScenarioError> {
     if raw.modulo.is_none()
         && raw.guard.is_none()
         && raw.registration.is_none()
@@ -270,9 +265,7 @@ pub(crate) fn assemble(
         config.slave_align = match config.slave_align {
             SlaveAlign::Absolute => SlaveAlign::Modulo { axis, offset: 0 },
             SlaveAlign::Offset(offset) => SlaveAlign::Modulo { axis, offset },
-            _ => bail!(
-                "[modulo] places an absolute cam in the turn its start mode picks: [start] slave_align must be \"absolute\" or \"offset\" (start = \"relative\" in [modulo] adds the table to the slave)"
-            ),
+            _ => return Err(CouplingsError::ModuloAlign.into()),
         };
     }
     let (registration, marks) = match raw.registration.map(registration).transpose()? {
@@ -296,7 +289,15 @@ pub(crate) fn assemble(
     }))
 }
 
-pub(crate) fn modulo(raw: &RawModulo) -> anyhow::Result<ModuloAxis> {
+/// The engine refused the setting of `place`.
+fn refused(place: &str) -> impl FnOnce(ecam_engine::CouplingError) -> CouplingsError + '_ {
+    move |error| CouplingsError::Refused {
+        place: place.to_string(),
+        error,
+    }
+}
+
+pub(crate) fn modulo(raw: &RawModulo) -> Result<ModuloAxis, CouplingsError> {
     let start = match raw.start {
         RawModuloStart::Absolute => ModuloStart::Absolute,
         RawModuloStart::Relative => ModuloStart::Relative,
@@ -304,7 +305,7 @@ pub(crate) fn modulo(raw: &RawModulo) -> anyhow::Result<ModuloAxis> {
         RawModuloStart::EndlessNegative => ModuloStart::EndlessNegative,
         RawModuloStart::Nearest => ModuloStart::Nearest,
     };
-    ModuloAxis::new(raw.modulo, start).map_err(|e| anyhow::anyhow!("[modulo] modulo: {e}"))
+    ModuloAxis::new(raw.modulo, start).map_err(refused("[modulo] modulo"))
 }
 
 pub(crate) fn guard(raw: &RawGuard) -> DirectionGuard {
@@ -320,9 +321,14 @@ pub(crate) fn guard(raw: &RawGuard) -> DirectionGuard {
     }
 }
 
-pub(crate) fn registration(raw: &RawRegistration) -> anyhow::Result<(RegistrationConfig, Marks)> {
+pub(crate) fn registration(
+    raw: &RawRegistration,
+) -> Result<(RegistrationConfig, Marks), ScenarioError> {
     let nz = |v: u64, key: &str| {
-        NonZeroU64::new(v).with_context(|| format!("[registration] {key} must be at least 1"))
+        NonZeroU64::new(v).ok_or_else(|| ScenarioError::AtLeastOne {
+            key: format!("[registration] {key}"),
+            unit: "",
+        })
     };
     let config = RegistrationConfig {
         source: match raw.source {
@@ -335,9 +341,7 @@ pub(crate) fn registration(raw: &RawRegistration) -> anyhow::Result<(Registratio
         max_correction: raw.max_correction,
         ramp: nz(raw.ramp, "ramp")?,
     };
-    config
-        .check()
-        .map_err(|e| anyhow::anyhow!("[registration]: {e}"))?;
+    config.check().map_err(refused("[registration]"))?;
     let marks = Marks {
         first: raw.marks.first,
         spacing: nz(raw.marks.spacing, "marks.spacing")?,
@@ -346,18 +350,18 @@ pub(crate) fn registration(raw: &RawRegistration) -> anyhow::Result<(Registratio
     Ok((config, marks))
 }
 
-pub(crate) fn cam_switches(raw: &RawCamSwitches) -> anyhow::Result<CamSwitches> {
+pub(crate) fn cam_switches(raw: &RawCamSwitches) -> Result<CamSwitches, ScenarioError> {
     let mut options = [TrackOptions::default(); TRACKS];
-    let micros = |s: f64, what: &str| -> anyhow::Result<i32> {
-        if !(-1.0..=1.0).contains(&s) {
-            bail!("[cam_switches] {what} = {s:?} s: must be between -1 and 1 seconds");
+    let micros = |seconds: f64, key: &'static str| -> Result<i32, CouplingsError> {
+        if !(-1.0..=1.0).contains(&seconds) {
+            return Err(CouplingsError::Compensation { key, seconds });
         }
-        Ok((s * 1e6).round() as i32)
+        Ok((seconds * 1e6).round() as i32)
     };
     for t in &raw.track {
         let slot = options
             .get_mut(usize::from(t.track))
-            .with_context(|| format!("[[cam_switches.track]] track = {}: must be 0–31", t.track))?;
+            .ok_or(CouplingsError::Track { track: t.track })?;
         *slot = TrackOptions {
             on_compensation_us: micros(t.on_compensation_s, "on_compensation_s")?,
             off_compensation_us: micros(t.off_compensation_s, "off_compensation_s")?,
@@ -368,17 +372,17 @@ pub(crate) fn cam_switches(raw: &RawCamSwitches) -> anyhow::Result<CamSwitches> 
         .switch
         .iter()
         .enumerate()
-        .map(|(i, s)| -> anyhow::Result<CamSwitch> {
+        .map(|(i, s)| -> Result<CamSwitch, CouplingsError> {
             let what = format!("[[cam_switches.switch]] {}", i + 1);
             let mode = match (s.last_on, s.duration_s) {
                 (Some(last_on), None) => SwitchMode::Position { last_on },
                 (None, Some(d)) if (0.0..=3600.0).contains(&d) => SwitchMode::Time {
                     duration_us: (d * 1e6).round() as u64,
                 },
-                (None, Some(d)) => bail!("{what}: duration_s = {d:?} must be 0 to 3600 seconds"),
-                _ => bail!(
-                    "{what} needs exactly one of last_on (position cam) or duration_s (time cam)"
-                ),
+                (None, Some(seconds)) => {
+                    return Err(CouplingsError::TimeCamDuration { what, seconds });
+                }
+                _ => return Err(CouplingsError::CamSwitchMode { what }),
             };
             Ok(CamSwitch {
                 track: s.track,
@@ -391,10 +395,13 @@ pub(crate) fn cam_switches(raw: &RawCamSwitches) -> anyhow::Result<CamSwitches> 
                 },
             })
         })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    DigitalCamSwitch::check(&switches).map_err(|e| anyhow::anyhow!("[cam_switches]: {e}"))?;
+        .collect::<Result<Vec<_>, _>>()?;
+    DigitalCamSwitch::check(&switches).map_err(refused("[cam_switches]"))?;
     let modulo = match raw.modulo {
-        Some(m) => Some(NonZeroU64::new(m).context("[cam_switches] modulo must be at least 1")?),
+        Some(m) => Some(NonZeroU64::new(m).ok_or_else(|| ScenarioError::AtLeastOne {
+            key: "[cam_switches] modulo".to_string(),
+            unit: "",
+        })?),
         None => None,
     };
     Ok(CamSwitches {

@@ -44,16 +44,18 @@
 //! let mut rows = 0;
 //! let summary = simulate(&scenario, |_row, _out, _traced| {
 //!     rows += 1;
-//!     Ok(())
+//!     Ok::<(), std::io::Error>(())
 //! })?;
 //! assert_eq!((summary.final_master, summary.final_slave), (101, 202));
 //! assert_eq!(summary.state, "running");
 //! assert_eq!(rows, summary.ticks);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod coupled;
 mod couplings;
+mod couplings_error;
+mod error;
 #[doc(hidden)]
 pub mod fuzz;
 mod scenario;
@@ -65,6 +67,8 @@ mod trigger;
 
 pub use coupled::{CouplingTick, simulate_couplings};
 pub use couplings::{CamSwitches, Couplings, Marks, SwitchAxis};
+pub use couplings_error::CouplingsError;
+pub use error::{ScenarioError, SimulateError};
 pub use scenario::{MasterMove, Scenario, StopAt};
 pub use simulate::simulate;
 pub use steps::{Block, PlcopenStep};

@@ -7,7 +7,6 @@
 use std::num::NonZeroU64;
 use std::path::Path;
 
-use anyhow::{Context, bail};
 use ecam_core::CamCurve;
 use ecam_engine::plcopen::{
     ActivationMode, BufferMode, CamIn, CamInStartMode, CamOut, CamTableSelect, DEFAULT_BLEND,
@@ -18,6 +17,8 @@ use ecam_engine::{
 };
 use serde::Deserialize;
 
+use crate::couplings_error::CouplingsError;
+use crate::error::ScenarioError;
 use crate::trigger::{StopTrigger, trigger};
 
 /// One `[[plcopen]]` step: when, and which block with which inputs.
@@ -257,22 +258,33 @@ struct RawHalt {
     deceleration: f64,
 }
 
-fn ratio(r: [i32; 2], what: &str) -> anyhow::Result<Zoom> {
+fn ratio(r: [i32; 2], what: &str) -> Result<Zoom, CouplingsError> {
     let [num, den] = r;
     let den16 = u16::try_from(den).ok();
     den16
         .and_then(|d| Zoom::signed(num, d).ok())
-        .with_context(|| {
-            format!("{what} = [{num}, {den}]: the numerator must be ±1 to ±65535, the denominator 1 to 65535")
+        .ok_or_else(|| CouplingsError::Ratio {
+            what: what.to_string(),
+            num,
+            den,
         })
 }
 
-fn nonzero(v: Option<u64>, what: &str) -> anyhow::Result<Option<NonZeroU64>> {
-    v.map(|d| NonZeroU64::new(d).with_context(|| format!("{what} must be at least 1")))
-        .transpose()
+fn nonzero(v: Option<u64>, what: &str) -> Result<Option<NonZeroU64>, ScenarioError> {
+    v.map(|d| {
+        NonZeroU64::new(d).ok_or_else(|| ScenarioError::AtLeastOne {
+            key: what.to_string(),
+            unit: "",
+        })
+    })
+    .transpose()
 }
 
-fn ramp(distance: Option<u64>, acceleration: Option<f64>, what: &str) -> anyhow::Result<GearRamp> {
+fn ramp(
+    distance: Option<u64>,
+    acceleration: Option<f64>,
+    what: &str,
+) -> Result<GearRamp, ScenarioError> {
     Ok(
         match (
             nonzero(distance, &format!("{what} distance"))?,
@@ -281,22 +293,45 @@ fn ramp(distance: Option<u64>, acceleration: Option<f64>, what: &str) -> anyhow:
             (None, None) => GearRamp::Immediate,
             (Some(d), None) => GearRamp::Distance(d),
             (None, Some(a)) if a.is_finite() && a > 0.0 => GearRamp::Acceleration(a),
-            (None, Some(a)) => bail!("{what} acceleration = {a:?}: must be a number above zero"),
-            (Some(_), Some(_)) => bail!("{what}: give distance or acceleration, not both"),
+            (None, Some(value)) => {
+                return Err(CouplingsError::AboveZero {
+                    key: format!("{what} acceleration"),
+                    value,
+                }
+                .into());
+            }
+            (Some(_), Some(_)) => {
+                return Err(CouplingsError::DistanceOrAcceleration {
+                    what: what.to_string(),
+                }
+                .into());
+            }
         },
     )
 }
 
-fn limits(v: f64, a: f64, d: Option<f64>, what: &str) -> anyhow::Result<MoveLimits> {
-    MoveLimits::new(v, a, d.unwrap_or(a)).map_err(|e| anyhow::anyhow!("{what}: {e}"))
+fn limits(v: f64, a: f64, d: Option<f64>, what: &str) -> Result<MoveLimits, CouplingsError> {
+    MoveLimits::new(v, a, d.unwrap_or(a)).map_err(|error| CouplingsError::Refused {
+        place: what.to_string(),
+        error,
+    })
 }
 
-fn cam_in(raw: &RawCamIn, what: &str) -> anyhow::Result<CamIn> {
-    let only = |given: bool, key: &str, when: &str| -> anyhow::Result<()> {
+fn cam_in(raw: &RawCamIn, what: &str) -> Result<CamIn, ScenarioError> {
+    let only = |given: bool, key: &'static str, when: &'static str| {
         if given {
-            bail!("{what} {key} only applies {when}");
+            return Err(CouplingsError::UnusedKey {
+                what: what.to_string(),
+                key,
+                when,
+            });
         }
         Ok(())
+    };
+    let needs = |setting: &'static str, needs: &'static str| CouplingsError::Needs {
+        what: what.to_string(),
+        setting,
+        needs,
     };
     only(
         raw.start_mode != RawStartMode::RampIn && raw.ramp_distance.is_some(),
@@ -314,7 +349,7 @@ fn cam_in(raw: &RawCamIn, what: &str) -> anyhow::Result<CamIn> {
         RawStartMode::Bumpless => CamInStartMode::Bumpless,
         RawStartMode::RampIn => CamInStartMode::RampIn {
             distance: nonzero(raw.ramp_distance, &format!("{what} ramp_distance"))?
-                .with_context(|| format!("{what} start_mode = \"ramp-in\" needs ramp_distance"))?,
+                .ok_or_else(|| needs("start_mode = \"ramp-in\"", "ramp_distance"))?,
         },
     };
     let activation = match raw.activation {
@@ -322,18 +357,25 @@ fn cam_in(raw: &RawCamIn, what: &str) -> anyhow::Result<CamIn> {
         RawActivation::NextCycle => ActivationMode::NextCycle,
         RawActivation::AtPosition => ActivationMode::AtMasterPosition(
             raw.position
-                .with_context(|| format!("{what} activation = \"at-position\" needs position"))?,
+                .ok_or_else(|| needs("activation = \"at-position\"", "position"))?,
         ),
     };
     let sync_at = match (raw.sync_position, raw.start_distance) {
         (None, None) => None,
         (Some(position), Some(d)) => Some(SyncAt {
             position,
-            start_distance: NonZeroU64::new(d)
-                .with_context(|| format!("{what} start_distance must be at least 1"))?,
+            start_distance: NonZeroU64::new(d).ok_or_else(|| ScenarioError::AtLeastOne {
+                key: format!("{what} start_distance"),
+                unit: "",
+            })?,
             forward: true,
         }),
-        _ => bail!("{what}: sync_position and start_distance go together"),
+        _ => {
+            return Err(CouplingsError::SyncTogether {
+                what: what.to_string(),
+            }
+            .into());
+        }
     };
     let scaling = |r: Option<[i32; 2]>, key: &str| match r {
         Some(r) => ratio(r, &format!("{what} {key}")),
@@ -357,7 +399,7 @@ fn cam_in(raw: &RawCamIn, what: &str) -> anyhow::Result<CamIn> {
 }
 
 /// Checks the `[[plcopen]]` steps and turns them into blocks.
-pub(crate) fn steps(raw: &[RawStep], base: &Path) -> anyhow::Result<Vec<PlcopenStep>> {
+pub(crate) fn steps(raw: &[RawStep], base: &Path) -> Result<Vec<PlcopenStep>, ScenarioError> {
     raw.iter()
         .enumerate()
         .map(|(i, s)| {
@@ -366,10 +408,12 @@ pub(crate) fn steps(raw: &[RawStep], base: &Path) -> anyhow::Result<Vec<PlcopenS
             let mut blocks = Vec::new();
             if let Some(r) = &s.cam_table_select {
                 let table = match &r.table {
-                    Some(t) => Some(
-                        ecam_design::load_table(t, base)
-                            .with_context(|| format!("in {what} MC_CamTableSelect table"))?,
-                    ),
+                    Some(t) => Some(ecam_design::load_table(t, base).map_err(|error| {
+                        ScenarioError::Table {
+                            place: format!("{what} MC_CamTableSelect table"),
+                            error,
+                        }
+                    })?),
                     None => None,
                 };
                 blocks.push(Block::CamTableSelect {
@@ -447,21 +491,22 @@ pub(crate) fn steps(raw: &[RawStep], base: &Path) -> anyhow::Result<Vec<PlcopenS
             }
             if let Some(r) = &s.halt_superimposed {
                 if !(r.deceleration.is_finite() && r.deceleration > 0.0) {
-                    bail!("{what} MC_HaltSuperimposed deceleration must be a number above zero");
+                    return Err(CouplingsError::AboveZero {
+                        key: format!("{what} MC_HaltSuperimposed deceleration"),
+                        value: r.deceleration,
+                    }
+                    .into());
                 }
                 blocks.push(Block::HaltSuperimposed(r.deceleration));
             }
             if s.stop.is_some() {
                 blocks.push(Block::Stop);
             }
-            if blocks.len() != 1 {
-                bail!(
-                    "{what} needs exactly one block (MC_CamTableSelect, MC_CamIn, MC_CamOut, MC_GearIn, MC_GearInPos, MC_GearOut, MC_Phasing, MC_MoveSuperimposed, MC_HaltSuperimposed, MC_Stop); it has {}",
-                    blocks.len()
-                );
+            let got = blocks.len();
+            match (blocks.pop(), got) {
+                (Some(block), 1) => Ok(PlcopenStep { trigger, block }),
+                _ => Err(CouplingsError::OneBlock { what, got }.into()),
             }
-            let block = blocks.pop().context("one block")?;
-            Ok(PlcopenStep { trigger, block })
         })
         .collect()
 }

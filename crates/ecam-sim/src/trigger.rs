@@ -2,7 +2,7 @@
 //! reaching a position (`[stop]`, `[[switch]]`, `[[plcopen]]`), and
 //! seconds read as microseconds.
 
-use anyhow::bail;
+use crate::error::ScenarioError;
 
 /// What requests a stop, a table switch or a PLCopen step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,20 +33,27 @@ pub(crate) fn trigger(
     master_at_least: Option<i64>,
     master_at_most: Option<i64>,
     what: &str,
-) -> anyhow::Result<StopTrigger> {
+) -> Result<StopTrigger, ScenarioError> {
     Ok(match (at_s, master_at_least, master_at_most) {
         (Some(t), None, None) => StopTrigger::Time(micros(t, &format!("{what} at_s"))?),
         (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
         (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-        _ => bail!("{what} needs exactly one of at_s, master_at_least, master_at_most"),
+        _ => {
+            return Err(ScenarioError::Trigger {
+                what: what.to_string(),
+            });
+        }
     })
 }
 
 /// Seconds → microseconds, refusing negatives, NaN and absurd lengths.
-pub(crate) fn micros(seconds: f64, what: &str) -> anyhow::Result<u64> {
+pub(crate) fn micros(seconds: f64, what: &str) -> Result<u64, ScenarioError> {
     // A year of simulated time is far beyond any useful scenario.
     if !(0.0..=3.2e7).contains(&seconds) {
-        bail!("{what} = {seconds:?} s: must be between 0 and 3.2e7 seconds");
+        return Err(ScenarioError::Seconds {
+            what: what.to_string(),
+            seconds,
+        });
     }
     Ok((seconds * 1e6).round() as u64)
 }

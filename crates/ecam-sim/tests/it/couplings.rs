@@ -24,7 +24,7 @@ fn run_text(text: &str) -> (Summary, Vec<(Row, CouplingTick)>) {
     let mut ticks = Vec::new();
     let summary = simulate_couplings(&scenario, |row, tick, _| {
         ticks.push((*row, *tick));
-        Ok(())
+        Ok::<(), std::convert::Infallible>(())
     })
     .unwrap();
     (summary, ticks)
@@ -230,7 +230,7 @@ fn coupling_scenarios_also_run_through_simulate() {
     let summary = simulate(&scenario, |row, out, _| {
         assert_eq!(row.slave, out.slave);
         last = out.slave;
-        Ok(())
+        Ok::<(), std::convert::Infallible>(())
     })
     .unwrap();
     assert_eq!(summary.final_slave, last);
@@ -282,6 +282,11 @@ fn a_step_the_engine_refuses_names_the_step() {
     // A superimposed velocity above the axis' 50 kHz.
     let fast = base.replace("velocity = 8000,", "velocity = 80000,");
     let scenario = Scenario::parse(&fast, &path("")).unwrap();
-    let err = format!("{:#}", simulate(&scenario, |_, _, _| Ok(())).err().unwrap());
+    let err = format!(
+        "{:#}",
+        simulate(&scenario, |_, _, _| Ok::<(), std::convert::Infallible>(()))
+            .err()
+            .unwrap()
+    );
     assert!(err.contains("[[plcopen]] 4 MC_MoveSuperimposed"), "{err}");
 }
