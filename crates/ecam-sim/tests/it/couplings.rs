@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use ecam_core::PointTable;
 use ecam_engine::{AxisConfig, CamAxis, Coupling, GearState, TickInput};
-use ecam_sim::{CouplingTick, Row, Scenario, Summary, simulate, simulate_couplings};
+use ecam_sim::{CouplingTick, Row, Scenario, SimulateError, Summary, simulate, simulate_couplings};
 
 fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -289,4 +289,27 @@ fn a_step_the_engine_refuses_names_the_step() {
             .unwrap()
     );
     assert!(err.contains("[[plcopen]] 4 MC_MoveSuperimposed"), "{err}");
+}
+
+#[test]
+fn a_step_refused_and_a_scenario_without_couplings_are_typed_errors() {
+    let base = text("gear-cam-superimposed.toml");
+    let fast = base.replace("velocity = 8000,", "velocity = 80000,");
+    let scenario = Scenario::parse(&fast, &path("")).unwrap();
+    let err = simulate_couplings(&scenario, |_, _, _| Ok::<(), std::convert::Infallible>(()));
+    assert!(
+        matches!(
+            err,
+            Err(SimulateError::Step {
+                number: 4,
+                block: "MC_MoveSuperimposed",
+                ..
+            })
+        ),
+        "{err:?}"
+    );
+    // A plain cam scenario is `simulate`'s, not the slave axis'.
+    let plain = Scenario::parse(&text("001-repeat.toml"), &path("")).unwrap();
+    let err = simulate_couplings(&plain, |_, _, _| Ok::<(), std::convert::Infallible>(()));
+    assert!(matches!(err, Err(SimulateError::NoCouplings)), "{err:?}");
 }
