@@ -25,7 +25,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::master_ramp::{MasterRamp, quintic};
+use crate::master_ramp::{MasterRamp, quintic, smoothstep_integral};
 use crate::rounding::round_half_away;
 use crate::{EngineError, MasterPosition};
 
@@ -55,11 +55,6 @@ pub(crate) struct Blend {
 pub(crate) struct BlendEnd {
     pub(crate) slave: i64,
     pub(crate) velocity_ratio: f64,
-}
-
-/// `∫₀ᵘ (3t² − 2t³) dt`.
-fn smoothstep_integral(u: f64) -> f64 {
-    u * u * u * (1.0 - 0.5 * u)
 }
 
 /// What the blend commands at one master position.

@@ -14,9 +14,17 @@ use crate::rounding::unsigned_to_f64;
 
 /// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
 /// the ends with zero slope and curvature there. The ramp-in, the offset
-/// and scaling ramps and a blend's end fraction all move along it.
+/// and scaling ramps and a blend's end fraction all move along it, and so
+/// do the gear's and registration's corrections.
 pub(crate) fn quintic(u: f64) -> f64 {
     u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
+}
+
+/// `∫₀ᵘ (3t² − 2t³) dt`: the distance a velocity blended along the cubic
+/// smooth-step covers (a switch's blend, a gear's ratio blend).
+#[inline]
+pub(crate) fn smoothstep_integral(u: f64) -> f64 {
+    u * u * u * (1.0 - 0.5 * u)
 }
 
 /// The smooth-step's slope `w'(u) = 30u²(1 − u)²`: what a ratio ramped
