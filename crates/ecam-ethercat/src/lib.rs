@@ -48,6 +48,7 @@ pub mod monitor;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
+pub mod startup;
 pub mod summary;
 pub mod supervisor;
 
