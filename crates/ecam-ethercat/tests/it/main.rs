@@ -4,6 +4,7 @@
 
 mod bring_up;
 mod bus_master;
+mod coe;
 mod faults;
 mod follow;
 mod rotary_knife;
