@@ -648,6 +648,10 @@ impl Esc {
         };
         put(&mut self.memory, REG_AL_STATUS, &status.to_le_bytes());
         put(&mut self.memory, REG_AL_STATUS_CODE, &code.to_le_bytes());
+        if status & 0x0F != 8 {
+            // The watchdog starts again with the first outputs in OP.
+            self.last_outputs_ns = None;
+        }
         if status & 0x0F == 1 {
             self.reset_mailbox();
         }
