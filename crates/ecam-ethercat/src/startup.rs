@@ -275,9 +275,17 @@ where
         Err(Error::Mailbox(MailboxError::NoReadMailbox | MailboxError::NoWriteMailbox)) => {
             return Err(StartupError::NoCoe);
         }
-        other => other.map_err(sdo_error("setting CSP (0x6060 = 8)", 0x6060, 0))?,
+        Ok(()) => check_mode(drive).await?,
+        // Some drives take the mode only from the process data: then CSP
+        // must be among the modes it supports (0x6502 bit 7).
+        Err(e) if abort_of(&e).is_some() => {
+            let modes = drive.sdo_read::<u32>(0x6502, 0).await;
+            if !modes.is_ok_and(|m| m & (1 << 7) != 0) {
+                return Err(sdo_error("setting CSP (0x6060 = 8)", 0x6060, 0)(e));
+            }
+        }
+        Err(e) => return Err(sdo_error("setting CSP (0x6060 = 8)", 0x6060, 0)(e)),
     }
-    check_mode(drive).await?;
     let (layout, fixed_mapping) = map_process_data(drive).await?;
     let sync_parameters = synchronise(drive, cycle).await?;
     if let Some((value, index)) = interpolation_period(cycle) {
@@ -442,6 +450,8 @@ where
     for index in [0x1C32u16, 0x1C33] {
         match drive.sdo_write(index, 1, 2u16).await {
             Err(e) if abort_of(&e) == Some(SdoAbort::NO_OBJECT.0) => return Ok(false),
+            // A drive that keeps :01 read-only: what it shows decides.
+            Err(e) if abort_of(&e).is_some() => {}
             other => other.map_err(sdo_error(DOING, index, 1))?,
         }
         // Many drives take the cycle from SYNC0 and keep :02 read-only.
