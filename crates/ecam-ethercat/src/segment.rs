@@ -311,6 +311,10 @@ impl Segment {
                 // EEPROM reads happen at bring-up only; a loaded host must
                 // not fail them (ethercrab's default is 10 ms).
                 eeprom: config.state_timeout,
+                // Mailbox waits likewise (ethercrab's 100 ms for the
+                // request mailbox to empty fails on a stalled host).
+                mailbox_echo: config.state_timeout,
+                mailbox_response: config.state_timeout,
                 ..Timeouts::default()
             },
             MainDeviceConfig {
