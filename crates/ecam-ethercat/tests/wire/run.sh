@@ -25,7 +25,10 @@ skip() {
 [ "$(id -u)" = 0 ] || skip "they need root (network namespaces, raw sockets)"
 command -v ip >/dev/null 2>&1 || skip "ip (iproute2) is not installed"
 
-tag="ecw$$"
+# The namespaces' and interfaces' prefix (ECAM_WIRE_TAG lets developers
+# sharing a machine tell theirs apart; at most 5 characters, interface
+# names are short).
+tag="${ECAM_WIRE_TAG:-ecw}$$"
 master_ns="${tag}m"
 bridge_ns="${tag}x"
 drives_ns="${tag}d"
