@@ -9,7 +9,7 @@ mod abort;
 mod emergency;
 
 pub use abort::{SdoAbort, abort_text};
-pub use emergency::{Emergency, error_register_text};
+pub use emergency::{EMERGENCY_BYTES, Emergency, error_register_text};
 
 /// Bytes of the mailbox header (length, address, channel and priority,
 /// type and counter).
