@@ -31,6 +31,17 @@ fn test_config() -> SegmentConfig {
     }
 }
 
+/// Timing for the tests that require every cycle answered (exactness over
+/// thousands of cycles): a reply waited for 5 s, so that only a dead link,
+/// not a busy shared host that stalls the test thread for a few hundred
+/// milliseconds, loses a cycle. A reply that comes back is not held up.
+fn exact_config() -> SegmentConfig {
+    SegmentConfig {
+        reply_timeout: Duration::from_secs(5),
+        ..test_config()
+    }
+}
+
 /// A segment of `drives` emulated drives brought to OP, and the handle
 /// to the emulation.
 fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
