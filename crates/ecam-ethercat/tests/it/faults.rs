@@ -21,7 +21,8 @@ type Line = CamLine<ecam_core::PointTable>;
 type Emulation = std::sync::Arc<std::sync::Mutex<EmulatedSegment>>;
 
 pub(crate) fn running_line(drives: usize, behaviour: DriveBehaviour) -> (Line, Emulation) {
-    let (segment, emulation) = emulated(drives, behaviour);
+    // The fault tests lose replies on purpose: each waits 250 ms, not 5 s.
+    let (segment, emulation) = crate::emulated_with(drives, behaviour, crate::test_config());
     let axes = (0..drives)
         .map(|drive| CamDrive {
             axis: knife_axis(),

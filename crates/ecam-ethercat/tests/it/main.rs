@@ -19,7 +19,8 @@ use ecam_ethercat::{Segment, SegmentConfig, Transport};
 /// Lost cycles in a row a test line allows before it faults.
 const LOST: u32 = 5;
 
-/// Timing for tests that call `cycle` back to back (no real-time clock).
+/// Timing for tests that call `cycle` back to back (no real-time clock)
+/// and lose replies on purpose (each lost one is waited for).
 fn test_config() -> SegmentConfig {
     SegmentConfig {
         // Generous: a loaded CI host must not turn a slow reply into a
@@ -42,10 +43,10 @@ fn exact_config() -> SegmentConfig {
     }
 }
 
-/// A segment of `drives` emulated drives brought to OP, and the handle
-/// to the emulation.
+/// A segment of `drives` emulated drives brought to OP that answers every
+/// cycle (the [`exact_config`] timing), and the handle to the emulation.
 fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
-    emulated_with(drives, behaviour, test_config())
+    emulated_with(drives, behaviour, exact_config())
 }
 
 /// As [`emulated`], with this timing. The ESCs' watchdog is off: these

@@ -26,7 +26,7 @@ fn ten_thousand_cycles_on_eight_drives_are_exact() {
         lag_cycles: LAG,
         ..DriveBehaviour::default()
     };
-    let (segment, emulation) = crate::emulated_with(8, behaviour, crate::exact_config());
+    let (segment, emulation) = crate::emulated(8, behaviour);
     let axes = (0..8)
         .map(|drive| CamDrive {
             axis: knife_axis(),
@@ -111,7 +111,7 @@ fn sixty_four_drives_over_two_frames_stay_exact() {
         lag_cycles: 1,
         ..DriveBehaviour::default()
     };
-    let (segment, emulation) = crate::emulated_with(64, behaviour, crate::exact_config());
+    let (segment, emulation) = crate::emulated(64, behaviour);
     let axes = (0..64)
         .map(|drive| CamDrive {
             axis: knife_axis(),
