@@ -57,9 +57,9 @@ pub(crate) struct Geometry {
     /// The integers in 64 bits when they all fit (nearly always), for the
     /// 64-bit routes (`locate`, the steady constants).
     narrow: Option<NarrowGeometry>,
-    /// The table moves the slave both ways inside a cycle (for the start
-    /// rule, `start_rule.rs`).
-    turns_back: bool,
+    /// What the start rule needs of the cycle (`start_rule.rs`), taken
+    /// once here rather than at every engage.
+    strokes: start_rule::StrokeGeometry,
 }
 
 /// A geometry's integers in 64 bits.
@@ -180,17 +180,32 @@ impl Geometry {
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
-            turns_back: curve.turns_back(),
             floats: ZoomFloats::of(mnum, mden, snum, sden),
             narrow: None,
+            strokes: start_rule::StrokeGeometry {
+                per_stroke: 0.0,
+                forward: 0,
+                turns_back: curve.turns_back(),
+            },
         };
-        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry.derive();
         Ok(geometry)
+    }
+
+    /// Takes what follows from the integers: their 64-bit copies and the
+    /// start rule's figures.
+    fn derive(&mut self) {
+        self.narrow = NarrowGeometry::of(self);
+        self.strokes = start_rule::StrokeGeometry {
+            per_stroke: to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden),
+            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
+            turns_back: self.strokes.turns_back,
+        };
     }
 
     /// One stroke in output pulses (0 for a cam that does not accumulate).
     pub(crate) fn stroke_pulses(&self) -> f64 {
-        to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+        self.strokes.per_stroke
     }
 
     /// What the start rule needs of the cycle: a stroke in pulses, which
@@ -198,11 +213,7 @@ impl Geometry {
     /// never turns back (the sign of stroke × both zooms, 0 without a
     /// stroke), and whether the table turns back.
     pub(crate) fn strokes(&self) -> start_rule::StrokeGeometry {
-        start_rule::StrokeGeometry {
-            per_stroke: self.stroke_pulses(),
-            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
-            turns_back: self.turns_back,
-        }
+        self.strokes
     }
 
     /// The master zoom's denominator (the unit of table-input offsets).
@@ -220,7 +231,7 @@ impl Geometry {
             floats: ZoomFloats::of(self.mnum, self.mden, snum, sden),
             ..*self
         };
-        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry.derive();
         geometry
     }
 
@@ -328,13 +339,12 @@ impl Geometry {
     /// value leaves them (the 128-bit route then decides).
     #[inline]
     fn zoomed_narrow(&self, strokes: i64, table: f64) -> Option<i64> {
-        let narrow = |v: i128| i64::try_from(v).ok();
-        let accumulated = strokes
-            .checked_mul(narrow(self.stroke)?)?
-            .checked_mul(narrow(self.snum)?)?;
-        let sden = narrow(self.sden)?;
-        let whole = accumulated.div_euclid(sden);
-        let rem = accumulated.rem_euclid(sden);
+        // `strokes × (stroke × snum)`: where it fits it is the product
+        // in either order (the 128-bit route decides where it does not).
+        let n = self.narrow.as_ref()?;
+        let accumulated = strokes.checked_mul(n.stroke_snum)?;
+        let whole = accumulated.div_euclid(n.sden);
+        let rem = accumulated.rem_euclid(n.sden);
         let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
         whole.checked_add(fraction)
     }

@@ -24,7 +24,7 @@ use crate::{EngineError, SlaveAlign};
 
 /// What the start rule needs to know of a cam's cycle (the coupling works
 /// it out; kept to plain numbers so the rule depends on nothing else).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct StrokeGeometry {
     /// One stroke in output pulses after the slave zoom (signed; 0 for a
     /// cam that does not accumulate one).

@@ -43,6 +43,8 @@ impl<C: CamCurve> CamAxis<C> {
             scaling: None,
             followed: i128::from(at) << 32,
             steady: None,
+            lane: None,
+            plan: None,
         });
         Ok(())
     }
