@@ -253,10 +253,13 @@ impl Geometry {
                     k: 0,
                     r_num: i128::from(u.clamp(0, n.period_num)),
                 },
-                Extent::Cyclic | Extent::Cycles(_) => Place {
-                    k: i128::from(u.div_euclid(n.period_num)),
-                    r_num: i128::from(u.rem_euclid(n.period_num)),
-                },
+                Extent::Cyclic | Extent::Cycles(_) => {
+                    let (k, r_num) = floor_div_rem(u, n.period_num);
+                    Place {
+                        k: i128::from(k),
+                        r_num: i128::from(r_num),
+                    }
+                }
             };
         }
         let u = t_num.saturating_sub(self.origin_num);
@@ -343,11 +346,20 @@ impl Geometry {
         // in either order (the 128-bit route decides where it does not).
         let n = self.narrow.as_ref()?;
         let accumulated = strokes.checked_mul(n.stroke_snum)?;
-        let whole = accumulated.div_euclid(n.sden);
-        let rem = accumulated.rem_euclid(n.sden);
+        let (whole, rem) = floor_div_rem(accumulated, n.sden);
         let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
         whole.checked_add(fraction)
     }
+}
+
+/// `(a.div_euclid(b), a.rem_euclid(b))` for `b > 0`, from one hardware
+/// division (the two library calls take one each, and are not always
+/// inlined): the same pair (tested).
+#[inline(always)]
+pub(crate) fn floor_div_rem(a: i64, b: i64) -> (i64, i64) {
+    debug_assert!(b > 0);
+    let (q, r) = (a.wrapping_div(b), a.wrapping_rem(b));
+    if r < 0 { (q - 1, r + b) } else { (q, r) }
 }
 
 /// Floor division and its non-negative remainder for `b > 0`. Cycle
@@ -357,7 +369,10 @@ impl Geometry {
 #[inline]
 fn div_floor(a: i128, b: i128) -> (i128, i128) {
     match (i64::try_from(a), i64::try_from(b)) {
-        (Ok(a), Ok(b)) if b > 0 => (i128::from(a.div_euclid(b)), i128::from(a.rem_euclid(b))),
+        (Ok(a), Ok(b)) if b > 0 => {
+            let (q, r) = floor_div_rem(a, b);
+            (i128::from(q), i128::from(r))
+        }
         _ => (a.div_euclid(b), a.rem_euclid(b)),
     }
 }
@@ -518,6 +533,18 @@ impl Engagement {
         master_at: i64,
         slave_now: i64,
     ) -> Result<Self, EngineError> {
+        Self::placed(geo, config, curve, cursor, master_at, slave_now).map(|(e, _)| e)
+    }
+
+    /// [`Engagement::new`], and the place of `master_at` under it.
+    pub(crate) fn placed<C: CamCurve + ?Sized>(
+        geo: &Geometry,
+        config: &AxisConfig,
+        curve: &C,
+        cursor: &mut Cursor,
+        master_at: i64,
+        slave_now: i64,
+    ) -> Result<(Self, Place), EngineError> {
         let zoomed = geo.zoomed_master(master_at);
         let t_engage = match config.master_align {
             MasterAlign::Absolute => zoomed,
@@ -553,13 +580,16 @@ impl Engagement {
             )),
             Extent::Cyclic | Extent::Single => None,
         };
-        Ok(Self {
-            input_offset_num: t_engage.saturating_sub(zoomed),
-            shift,
-            output_offset,
-            k_engage: place.k,
-            span,
-        })
+        Ok((
+            Self {
+                input_offset_num: t_engage.saturating_sub(zoomed),
+                shift,
+                output_offset,
+                k_engage: place.k,
+                span,
+            },
+            place,
+        ))
     }
 
     /// Table input (× den units) for a master position.
@@ -848,6 +878,18 @@ mod tests {
             Some(x ^ (x << 17))
         })
         .skip(1)
+    }
+
+    #[test]
+    fn floor_div_rem_is_div_euclid_and_rem_euclid() {
+        let mut words = xorshift(0x1234_5678_9ABC_DEF1);
+        for _ in 0..100_000 {
+            let a = words.next().unwrap_or(1) as i64;
+            let b = (words.next().unwrap_or(1) >> (words.next().unwrap_or(1) % 63)) as i64;
+            for (a, b) in [(a, b.max(1)), (a >> 40, (b >> 50).max(1)), (i64::MIN, b.max(1))] {
+                assert_eq!(floor_div_rem(a, b), (a.div_euclid(b), a.rem_euclid(b)), "{a} {b}");
+            }
+        }
     }
 
     #[test]

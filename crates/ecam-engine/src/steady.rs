@@ -14,7 +14,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::coupling::{round_half_away, round_to_i64};
+use crate::coupling::{floor_div_rem, round_half_away, round_to_i64};
 
 /// The constants of one settled engagement (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,7 +147,7 @@ impl Steady {
         let u = master
             .checked_mul(self.mnum)?
             .checked_add(self.offset_num)?;
-        Some((u.div_euclid(self.period_num), u.rem_euclid(self.period_num)))
+        Some(floor_div_rem(u, self.period_num))
     }
 
     /// The table value and slope at offset `r_num` into a cycle (the
@@ -187,8 +187,7 @@ impl Steady {
     pub(crate) fn zoom(&self, k: i64, r_num: i64, kin: Table) -> Option<SteadySample> {
         let strokes = k.checked_add(self.shift)?;
         let accumulated = strokes.checked_mul(self.stroke_snum)?;
-        let whole = accumulated.div_euclid(self.sden);
-        let rem = accumulated.rem_euclid(self.sden);
+        let (whole, rem) = floor_div_rem(accumulated, self.sden);
         let fraction = round_to_i64((rem as f64 + kin.s * self.snum_f) / self.sden_f)?;
         let slave = whole
             .checked_add(fraction)?

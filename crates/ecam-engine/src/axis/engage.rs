@@ -16,7 +16,9 @@ use super::phase::{Engaged, Phase};
 impl<C: CamCurve> CamAxis<C> {
     /// Engages the cam at master `at` from the slave where it stands.
     pub(super) fn engage(&mut self, at: i64) -> Result<(), EngineError> {
-        let mut engagement = Engagement::new(
+        // The place of `at` comes with it (the table input there is the
+        // one the engagement fixed).
+        let (mut engagement, place) = Engagement::placed(
             &self.geometry,
             &self.config,
             &self.curve,
@@ -24,9 +26,6 @@ impl<C: CamCurve> CamAxis<C> {
             at,
             self.commanded,
         )?;
-        let place = self
-            .geometry
-            .locate(engagement.table_input(&self.geometry, at));
         let ramp_in = match self.ramp_limits {
             Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
             None => self.config.ramp_in,

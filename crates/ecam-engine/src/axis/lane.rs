@@ -14,11 +14,13 @@
 //! steps and their order are the general tick's (`Coupled::follow`), and
 //! the steady-vs-general property test compares the two.
 
-use ecam_core::CamCurve;
+use ecam_core::{CamCurve, Cursor};
 
 use crate::coupling::{Geometry, Place};
 use crate::steady::Steady;
+use crate::coupling::Engagement;
 use crate::stop::CycleEnd;
+use crate::switch::Takeover;
 use crate::{Events, MasterPosition};
 
 use super::phase::Engaged;
@@ -47,9 +49,6 @@ impl<C: CamCurve> Coupled<'_, C> {
         stop_at: Option<&CycleEnd>,
         master: i64,
     ) -> Option<Followed> {
-        if engaged.queued.is_some() {
-            return None;
-        }
         let at = MasterPosition {
             counts: master,
             fraction: 0,
@@ -135,10 +134,36 @@ impl<C: CamCurve> Coupled<'_, C> {
             r_num = i64::try_from(place.r_num).ok()?;
             stopped = Some(forward);
         }
-        // A switch waiting for its position: looked at, not yet taken.
-        let mut trigger = None;
-        let mut missed = false;
+        // A table queued for the seam takes over where the master crosses
+        // one, a waiting switch where it fires: both prepared when they
+        // were asked for (`plan.rs`), so here they are only looked up.
+        let mut events = Events::default();
+        let mut landing = None;
         if stopped.is_none()
+            && engaged.queued.is_some()
+            && engaged.place.k != i128::from(k)
+            && engaged.blend.is_none()
+            && offsets.is_none()
+            && scaling.is_none()
+        {
+            // The general tick's seam switch (`switch_at_seam`).
+            if stop_at.is_some() {
+                return None;
+            }
+            let forward = i128::from(k) > engaged.place.k;
+            let (i, prepared) =
+                engaged
+                    .plan
+                    .as_ref()?
+                    .seam_landing(base_c, engaged.place.k, forward)?;
+            let (curve, _) = engaged.queued.as_ref()?;
+            landing = Some((Landed::Seam, i, prepared, curve));
+            events.table_switched = true;
+            events.cycle_completed = true;
+        }
+        let mut trigger = None;
+        if landing.is_none()
+            && stopped.is_none()
             && stop_at.is_none()
             && let Some(pending) = &engaged.pending
         {
@@ -149,13 +174,54 @@ impl<C: CamCurve> Coupled<'_, C> {
                 self.missed_policy,
                 self.config.single_turn,
             );
-            if fired.at.is_some() {
-                return None;
-            }
-            missed = fired.missed;
+            events.activation_missed = fired.missed;
             trigger = Some(next);
+            if let Some(switch_at) = fired.at {
+                let (i, prepared) = engaged.plan.as_ref()?.switch_landing(base_c, switch_at)?;
+                let curve = match &pending.takeover {
+                    Takeover::Table(curve) => curve,
+                    Takeover::MasterScaling(_) => &*self.curve,
+                };
+                landing = Some((Landed::Switch, i, prepared, curve));
+                events.table_switched = true;
+            }
         }
-        let kin = now_c.table(r_num, &*self.curve, self.cursor)?;
+        // After a switch: the new cam from this master on (its blend may
+        // be over already, a master past its whole distance).
+        let mut landed = None;
+        let mut landed_cursor = Cursor::new();
+        let landed_c = match &landing {
+            Some((kind, i, prepared, _)) => {
+                let shift = prepared.blend.as_ref().and_then(|b| b.finished_at(at));
+                let mut engagement = None;
+                let constants = match shift {
+                    Some(shift) => {
+                        let mut shifted = prepared.engagement;
+                        shifted.shift_output(shift).ok()?;
+                        engagement = Some(shifted);
+                        prepared.constants.shifted(0, shift)?
+                    }
+                    None => prepared.constants,
+                };
+                (k, r_num) = constants.place(master)?;
+                landed = Some((*kind, *i, engagement, shift.is_some()));
+                landed_cursor = prepared.cursor;
+                Some(constants)
+            }
+            None => None,
+        };
+        let (geo, now_c, base_c, blend, curve, cursor) = match (&landing, &landed_c, &landed) {
+            (Some((_, _, prepared, curve)), Some(constants), Some((_, _, _, blend_ended))) => (
+                &prepared.geometry,
+                constants,
+                constants,
+                prepared.blend.as_ref().filter(|_| !blend_ended),
+                *curve,
+                &mut landed_cursor,
+            ),
+            _ => (geo, now_c, base_c, blend, &*self.curve, &mut *self.cursor),
+        };
+        let kin = now_c.table(r_num, curve, cursor)?;
         let cam = now_c.zoom(k, r_num, kin)?;
         let (slave, ratio) = match (blend, scaling, target_c) {
             (Some(blend), _, _) => {
@@ -199,11 +265,7 @@ impl<C: CamCurve> Coupled<'_, C> {
         };
         let jumps_at_seam = geo.jumps_at_seam;
         let scaling_runs = scaling.is_some();
-        let mut events = Events {
-            activation_missed: missed,
-            ..Events::default()
-        };
-        if engaged.place.k != k_wide {
+        if landed.is_none() && engaged.place.k != k_wide {
             events.cycle_completed = true;
             events.seam_jump |= jumps_at_seam;
         }
@@ -233,6 +295,9 @@ impl<C: CamCurve> Coupled<'_, C> {
                 }
             }
         }
+        if let (Some((kind, i, engagement, blend_ended)), Some(constants)) = (landed, landed_c) {
+            self.land_prepared(engaged, kind, i, engagement, blend_ended, constants, landed_cursor);
+        }
         engaged.followed = i128::from(master) << 32;
         engaged.place = Place {
             k: k_wide,
@@ -250,5 +315,59 @@ impl<C: CamCurve> Coupled<'_, C> {
             events.stopped = true;
         }
         Some((stopped.is_some(), sample, events))
+    }
+}
+
+/// What a switch in the lane came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Landed {
+    /// The table queued for the seam.
+    Seam,
+    /// The switch waiting for its position or the next tick.
+    Switch,
+}
+
+impl<C: CamCurve> Coupled<'_, C> {
+    /// Puts prepared landing `i` in place (the lane has looked it up and
+    /// followed the new cam with `constants`, the cursor left at `cursor`):
+    /// the new table (the old one retired) or scaling, engagement
+    /// (`engagement` when its blend is over already, then without the
+    /// blend), geometry and constants.
+    #[allow(clippy::too_many_arguments)]
+    fn land_prepared(
+        &mut self,
+        engaged: &mut Engaged<C>,
+        kind: Landed,
+        i: usize,
+        engagement: Option<Engagement>,
+        blend_ended: bool,
+        constants: Steady,
+        cursor: Cursor,
+    ) {
+        let takeover = match kind {
+            Landed::Seam => {
+                engaged.seam_blend = None;
+                engaged.queued.take().map(|(curve, _)| Takeover::Table(curve))
+            }
+            Landed::Switch => engaged.pending.take().map(|pending| pending.takeover),
+        };
+        // Copied field by field where they go, the plan dropped after.
+        if let Some(prepared) = engaged.plan.as_ref().and_then(|plan| plan.landing(i)) {
+            if let Some(zoom) = prepared.master_zoom {
+                self.config.master_zoom = zoom;
+            }
+            engaged.engagement = engagement.unwrap_or(prepared.engagement);
+            engaged.blend = prepared.blend.filter(|_| !blend_ended);
+            *self.geometry = prepared.geometry;
+        }
+        engaged.plan = None;
+        if let Some(Takeover::Table(curve)) = takeover {
+            *self.retired = Some(core::mem::replace(self.curve, curve));
+        }
+        *self.cursor = cursor;
+        engaged.lane = Some(LaneConstants {
+            cam: constants,
+            target: None,
+        });
     }
 }

@@ -26,7 +26,7 @@ use crate::switch::{Takeover, Trigger};
 use crate::{Zoom, turn_position};
 
 use super::CamAxis;
-use super::landing::{Landing, Old};
+use super::landing::{Landing, Old, resolve_on};
 use super::phase::{Engaged, Phase};
 
 /// A prepared switch: for the switch waiting in `Engaged::pending` or
@@ -114,11 +114,11 @@ impl Plan {
         }
     }
 
-    /// Takes landing `i` out of the plan.
-    pub(super) fn into_landing(self, i: usize) -> Option<Prepared> {
+    /// Landing `i` of the plan.
+    pub(super) fn landing(&self, i: usize) -> Option<&Prepared> {
         match self {
-            Self::Switch { landings, .. } => landings.into_iter().nth(i)?.map(|(_, p)| p),
-            Self::Seam { landings, .. } => landings.into_iter().nth(i)?,
+            Self::Switch { landings, .. } => landings.get(i)?.as_ref().map(|(_, p)| p),
+            Self::Seam { landings, .. } => landings.get(i)?.as_ref(),
         }
     }
 }
@@ -182,7 +182,17 @@ fn plan<C: CamCurve>(
         )
         .map(|at| {
             let at = at?;
-            let landing = from.switch_at(cursor, &pending.takeover, pending.blend, at);
+            let mut landing = from.switch_at(cursor, &pending.takeover, pending.blend, at);
+            if let Ok(landing) = &mut landing {
+                // The cursor where the new cam starts (the blend's ends
+                // left it elsewhere): the switch tick's lookup is a hit.
+                let curve = match &pending.takeover {
+                    Takeover::Table(curve) => curve,
+                    Takeover::MasterScaling(_) => from.curve,
+                };
+                let place = resolve_on(&landing.geometry, &landing.engagement, at);
+                curve.eval(landing.geometry.table_x(place), &mut landing.cursor);
+            }
             Some((at, Prepared::of(landing)?))
         });
         return Some(Plan::Switch { old, landings });
@@ -190,14 +200,19 @@ fn plan<C: CamCurve>(
     let (curve, then) = engaged.queued.as_ref()?;
     let from_k = engaged.place.k;
     let landings = [true, false].map(|forward| {
-        Prepared::of(from.switch_at_seam(
-            cursor,
-            curve,
-            *then,
-            engaged.seam_blend,
-            from_k,
-            forward,
-        ))
+        let mut landing =
+            from.switch_at_seam(cursor, curve, *then, engaged.seam_blend, from_k, forward);
+        if let Ok(landing) = &mut landing {
+            // The cursor where the new table's cycle starts, seen from the
+            // side the master comes from.
+            let place = if forward {
+                Geometry::cycle_start(0)
+            } else {
+                landing.geometry.cycle_end(-1)
+            };
+            curve.eval(landing.geometry.table_x(place), &mut landing.cursor);
+        }
+        Prepared::of(landing)
     });
     Some(Plan::Seam {
         old,
