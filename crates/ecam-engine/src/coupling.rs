@@ -886,8 +886,16 @@ mod tests {
         for _ in 0..100_000 {
             let a = words.next().unwrap_or(1) as i64;
             let b = (words.next().unwrap_or(1) >> (words.next().unwrap_or(1) % 63)) as i64;
-            for (a, b) in [(a, b.max(1)), (a >> 40, (b >> 50).max(1)), (i64::MIN, b.max(1))] {
-                assert_eq!(floor_div_rem(a, b), (a.div_euclid(b), a.rem_euclid(b)), "{a} {b}");
+            for (a, b) in [
+                (a, b.max(1)),
+                (a >> 40, (b >> 50).max(1)),
+                (i64::MIN, b.max(1)),
+            ] {
+                assert_eq!(
+                    floor_div_rem(a, b),
+                    (a.div_euclid(b), a.rem_euclid(b)),
+                    "{a} {b}"
+                );
             }
         }
     }

@@ -78,6 +78,35 @@ pub(crate) struct SteadySample {
 }
 
 impl Steady {
+    /// The same constants, bit for bit (floats by their bits), in one
+    /// pass without branches: what a prepared switch checks that it was
+    /// prepared from (`axis/plan.rs`).
+    #[inline]
+    pub(crate) fn same(&self, other: &Self) -> bool {
+        let ints = [
+            self.mnum ^ other.mnum,
+            self.offset_num ^ other.offset_num,
+            self.period_num ^ other.period_num,
+            self.origin ^ other.origin,
+            self.mden ^ other.mden,
+            self.shift ^ other.shift,
+            self.stroke ^ other.stroke,
+            self.stroke_snum ^ other.stroke_snum,
+            self.sden ^ other.sden,
+            self.output_offset ^ other.output_offset,
+            self.k_engage ^ other.k_engage,
+            self.input_offset ^ other.input_offset,
+        ];
+        let floats = [
+            self.origin_f.to_bits() ^ other.origin_f.to_bits(),
+            self.mden_f.to_bits() ^ other.mden_f.to_bits(),
+            self.snum_f.to_bits() ^ other.snum_f.to_bits(),
+            self.sden_f.to_bits() ^ other.sden_f.to_bits(),
+            self.zoom_factor.to_bits() ^ other.zoom_factor.to_bits(),
+        ];
+        ints.iter().fold(0, |a, v| a | v) == 0 && floats.iter().fold(0, |a, v| a | v) == 0
+    }
+
     /// The same constants with `input` added to the table input (×
     /// master-zoom-denominator units) and `output` to the output, as
     /// `Engagement::shifted` moves an engagement; `None` when a value
@@ -85,9 +114,7 @@ impl Steady {
     #[inline]
     pub(crate) fn shifted(&self, input: i128, output: i128) -> Option<Self> {
         Some(Self {
-            offset_num: self
-                .offset_num
-                .checked_add(i64::try_from(input).ok()?)?,
+            offset_num: self.offset_num.checked_add(i64::try_from(input).ok()?)?,
             output_offset: self
                 .output_offset
                 .checked_add(i64::try_from(output).ok()?)?,
@@ -165,19 +192,6 @@ impl Steady {
             return None;
         }
         Some(Table { s: kin.s, v: kin.v })
-    }
-
-    /// The cam at place (`k`, `r_num`): `Engagement::sample` there, in 64 bits.
-    #[inline(always)]
-    pub(crate) fn at_place<C: CamCurve + ?Sized>(
-        &self,
-        k: i64,
-        r_num: i64,
-        curve: &C,
-        cursor: &mut Cursor,
-    ) -> Option<SteadySample> {
-        let kin = self.table(r_num, curve, cursor)?;
-        self.zoom(k, r_num, kin)
     }
 
     /// The cam at place (`k`, `r_num`) for the table's kinematics `kin`

@@ -83,7 +83,12 @@ impl CycleEnd {
     /// [`CycleEnd::reached`] for the place (`k`, `r_num`) of the table
     /// input, in 64 bits (the lane's): the same answer, the end as a place.
     #[inline]
-    pub(crate) fn reached_place(&self, geo: &Geometry, k: i64, r_num: i64) -> Option<(Place, bool)> {
+    pub(crate) fn reached_place(
+        &self,
+        geo: &Geometry,
+        k: i64,
+        r_num: i64,
+    ) -> Option<(Place, bool)> {
         // t ≥ the forward boundary: a later cycle; t ≤ the backward one:
         // an earlier cycle, or this one's start itself.
         let k = i128::from(k);

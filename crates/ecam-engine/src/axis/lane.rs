@@ -16,9 +16,9 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::coupling::Engagement;
 use crate::coupling::{Geometry, Place};
 use crate::steady::Steady;
-use crate::coupling::Engagement;
 use crate::stop::CycleEnd;
 use crate::switch::Takeover;
 use crate::{Events, MasterPosition};
@@ -125,46 +125,15 @@ impl<C: CamCurve> Coupled<'_, C> {
             }
             None => base_c,
         };
-        let (mut k, mut r_num) = now_c.place(master)?;
-        let mut stopped = None;
-        if let Some(end) = stop_at
-            && let Some((place, forward)) = end.reached_place(geo, k, r_num)
-        {
-            k = i64::try_from(place.k).ok()?;
-            r_num = i64::try_from(place.r_num).ok()?;
-            stopped = Some(forward);
-        }
-        // A table queued for the seam takes over where the master crosses
-        // one, a waiting switch where it fires: both prepared when they
-        // were asked for (`plan.rs`), so here they are only looked up.
+        // A waiting switch where it fires, a table queued for the seam
+        // where the master crosses one: both prepared when they were asked
+        // for (`plan.rs`), so here they are only looked up. The switch is
+        // looked at first: when it fires, the old cam's place is not needed.
+        // (Never with a stop: a switch is refused while one runs.)
         let mut events = Events::default();
         let mut landing = None;
-        if stopped.is_none()
-            && engaged.queued.is_some()
-            && engaged.place.k != i128::from(k)
-            && engaged.blend.is_none()
-            && offsets.is_none()
-            && scaling.is_none()
-        {
-            // The general tick's seam switch (`switch_at_seam`).
-            if stop_at.is_some() {
-                return None;
-            }
-            let forward = i128::from(k) > engaged.place.k;
-            let (i, prepared) =
-                engaged
-                    .plan
-                    .as_ref()?
-                    .seam_landing(base_c, engaged.place.k, forward)?;
-            let (curve, _) = engaged.queued.as_ref()?;
-            landing = Some((Landed::Seam, i, prepared, curve));
-            events.table_switched = true;
-            events.cycle_completed = true;
-        }
         let mut trigger = None;
-        if landing.is_none()
-            && stopped.is_none()
-            && stop_at.is_none()
+        if stop_at.is_none()
             && let Some(pending) = &engaged.pending
         {
             let (fired, next) = pending.trigger().fires(
@@ -186,39 +155,71 @@ impl<C: CamCurve> Coupled<'_, C> {
                 events.table_switched = true;
             }
         }
+        let (mut k, mut r_num) = (0, 0);
+        let mut stopped = None;
+        if landing.is_none() {
+            (k, r_num) = now_c.place(master)?;
+            if let Some(end) = stop_at
+                && let Some((place, forward)) = end.reached_place(geo, k, r_num)
+            {
+                k = i64::try_from(place.k).ok()?;
+                r_num = i64::try_from(place.r_num).ok()?;
+                stopped = Some(forward);
+            }
+        }
+        if landing.is_none()
+            && stopped.is_none()
+            && engaged.queued.is_some()
+            && engaged.place.k != i128::from(k)
+            && engaged.blend.is_none()
+            && offsets.is_none()
+            && scaling.is_none()
+        {
+            // The general tick's seam switch (`switch_at_seam`).
+            if stop_at.is_some() {
+                return None;
+            }
+            let forward = i128::from(k) > engaged.place.k;
+            let (i, prepared) =
+                engaged
+                    .plan
+                    .as_ref()?
+                    .seam_landing(base_c, engaged.place.k, forward)?;
+            let (curve, _) = engaged.queued.as_ref()?;
+            landing = Some((Landed::Seam, i, prepared, curve));
+            events.table_switched = true;
+            events.cycle_completed = true;
+        }
         // After a switch: the new cam from this master on (its blend may
         // be over already, a master past its whole distance).
         let mut landed = None;
         let mut landed_cursor = Cursor::new();
-        let landed_c = match &landing {
-            Some((kind, i, prepared, _)) => {
-                let shift = prepared.blend.as_ref().and_then(|b| b.finished_at(at));
-                let mut engagement = None;
-                let constants = match shift {
-                    Some(shift) => {
-                        let mut shifted = prepared.engagement;
-                        shifted.shift_output(shift).ok()?;
-                        engagement = Some(shifted);
-                        prepared.constants.shifted(0, shift)?
-                    }
-                    None => prepared.constants,
-                };
-                (k, r_num) = constants.place(master)?;
-                landed = Some((*kind, *i, engagement, shift.is_some()));
-                landed_cursor = prepared.cursor;
-                Some(constants)
+        let mut shifted = None;
+        if let Some((kind, i, prepared, _)) = &landing {
+            let shift = prepared.blend.as_ref().and_then(|b| b.finished_at(at));
+            let mut engagement = None;
+            if let Some(shift) = shift {
+                let mut moved = prepared.engagement;
+                moved.shift_output(shift).ok()?;
+                engagement = Some(moved);
+                shifted = Some(prepared.constants.shifted(0, shift)?);
             }
-            None => None,
-        };
-        let (geo, now_c, base_c, blend, curve, cursor) = match (&landing, &landed_c, &landed) {
-            (Some((_, _, prepared, curve)), Some(constants), Some((_, _, _, blend_ended))) => (
-                &prepared.geometry,
-                constants,
-                constants,
-                prepared.blend.as_ref().filter(|_| !blend_ended),
-                *curve,
-                &mut landed_cursor,
-            ),
+            landed = Some((*kind, *i, engagement, shift.is_some()));
+            landed_cursor = prepared.cursor;
+        }
+        let (geo, now_c, base_c, blend, curve, cursor) = match (&landing, &landed) {
+            (Some((_, _, prepared, curve)), Some((_, _, _, blend_ended))) => {
+                let constants = shifted.as_ref().unwrap_or(&prepared.constants);
+                (k, r_num) = constants.place(master)?;
+                (
+                    &prepared.geometry,
+                    constants,
+                    constants,
+                    prepared.blend.as_ref().filter(|_| !blend_ended),
+                    *curve,
+                    &mut landed_cursor,
+                )
+            }
             _ => (geo, now_c, base_c, blend, &*self.curve, &mut *self.cursor),
         };
         let kin = now_c.table(r_num, curve, cursor)?;
@@ -283,9 +284,7 @@ impl<C: CamCurve> Coupled<'_, C> {
         }
         if let Some((base, constants)) = changed {
             engaged.engagement = base;
-            if scaling_end
-                && let Some(ramp) = engaged.scaling.take()
-            {
+            if scaling_end && let Some(ramp) = engaged.scaling.take() {
                 *self.geometry = ramp.target;
             }
             if let Some(lane) = engaged.lane.as_mut() {
@@ -295,8 +294,16 @@ impl<C: CamCurve> Coupled<'_, C> {
                 }
             }
         }
-        if let (Some((kind, i, engagement, blend_ended)), Some(constants)) = (landed, landed_c) {
-            self.land_prepared(engaged, kind, i, engagement, blend_ended, constants, landed_cursor);
+        if let Some((kind, i, engagement, blend_ended)) = landed {
+            self.land_prepared(
+                engaged,
+                kind,
+                i,
+                engagement,
+                shifted,
+                blend_ended,
+                landed_cursor,
+            );
         }
         engaged.followed = i128::from(master) << 32;
         engaged.place = Place {
@@ -340,14 +347,17 @@ impl<C: CamCurve> Coupled<'_, C> {
         kind: Landed,
         i: usize,
         engagement: Option<Engagement>,
+        constants: Option<Steady>,
         blend_ended: bool,
-        constants: Steady,
         cursor: Cursor,
     ) {
         let takeover = match kind {
             Landed::Seam => {
                 engaged.seam_blend = None;
-                engaged.queued.take().map(|(curve, _)| Takeover::Table(curve))
+                engaged
+                    .queued
+                    .take()
+                    .map(|(curve, _)| Takeover::Table(curve))
             }
             Landed::Switch => engaged.pending.take().map(|pending| pending.takeover),
         };
@@ -359,15 +369,23 @@ impl<C: CamCurve> Coupled<'_, C> {
             engaged.engagement = engagement.unwrap_or(prepared.engagement);
             engaged.blend = prepared.blend.filter(|_| !blend_ended);
             *self.geometry = prepared.geometry;
+            match engaged.lane.as_mut() {
+                Some(lane) => {
+                    lane.cam = constants.unwrap_or(prepared.constants);
+                    lane.target = None;
+                }
+                None => {
+                    engaged.lane = Some(LaneConstants {
+                        cam: constants.unwrap_or(prepared.constants),
+                        target: None,
+                    });
+                }
+            }
         }
         engaged.plan = None;
         if let Some(Takeover::Table(curve)) = takeover {
             *self.retired = Some(core::mem::replace(self.curve, curve));
         }
         *self.cursor = cursor;
-        engaged.lane = Some(LaneConstants {
-            cam: constants,
-            target: None,
-        });
     }
 }

@@ -85,7 +85,7 @@ impl Plan {
             Self::Switch {
                 old: from,
                 landings,
-            } if from == old => landings
+            } if from.same(old) => landings
                 .iter()
                 .enumerate()
                 .find_map(|(i, l)| l.as_ref().filter(|(a, _)| *a == at).map(|(_, p)| (i, p))),
@@ -106,7 +106,7 @@ impl Plan {
                 old: from,
                 from_k: k,
                 landings,
-            } if from == old && *k == from_k => {
+            } if *k == from_k && from.same(old) => {
                 let i = usize::from(!forward);
                 landings.get(i)?.as_ref().map(|p| (i, p))
             }
@@ -175,26 +175,22 @@ fn plan<C: CamCurve>(
     old: Steady,
 ) -> Option<Plan> {
     if let Some(pending) = &engaged.pending {
-        let landings = candidates(
-            engaged.followed,
-            pending.trigger(),
-            from.config.single_turn,
-        )
-        .map(|at| {
-            let at = at?;
-            let mut landing = from.switch_at(cursor, &pending.takeover, pending.blend, at);
-            if let Ok(landing) = &mut landing {
-                // The cursor where the new cam starts (the blend's ends
-                // left it elsewhere): the switch tick's lookup is a hit.
-                let curve = match &pending.takeover {
-                    Takeover::Table(curve) => curve,
-                    Takeover::MasterScaling(_) => from.curve,
-                };
-                let place = resolve_on(&landing.geometry, &landing.engagement, at);
-                curve.eval(landing.geometry.table_x(place), &mut landing.cursor);
-            }
-            Some((at, Prepared::of(landing)?))
-        });
+        let landings = candidates(engaged.followed, pending.trigger(), from.config.single_turn)
+            .map(|at| {
+                let at = at?;
+                let mut landing = from.switch_at(cursor, &pending.takeover, pending.blend, at);
+                if let Ok(landing) = &mut landing {
+                    // The cursor where the new cam starts (the blend's ends
+                    // left it elsewhere): the switch tick's lookup is a hit.
+                    let curve = match &pending.takeover {
+                        Takeover::Table(curve) => curve,
+                        Takeover::MasterScaling(_) => from.curve,
+                    };
+                    let place = resolve_on(&landing.geometry, &landing.engagement, at);
+                    curve.eval(landing.geometry.table_x(place), &mut landing.cursor);
+                }
+                Some((at, Prepared::of(landing)?))
+            });
         return Some(Plan::Switch { old, landings });
     }
     let (curve, then) = engaged.queued.as_ref()?;
