@@ -555,14 +555,17 @@ impl Engagement {
         let place = geo.locate(t_engage);
         let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
-        let strokes =
+        let (strokes, valued) =
             start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
                 geo.zoomed(n, table)
             })?;
         // The stroke count of the cycle the master is in is `strokes`:
         // cycles count from there, not from the table's origin.
         let shift = strokes.saturating_sub(place.k);
-        let on_table = geo.zoomed(strokes, table)?;
+        let on_table = match valued {
+            Some(value) => value,
+            None => geo.zoomed(strokes, table)?,
+        };
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
             SlaveAlign::Offset(o) => i128::from(o),

@@ -300,7 +300,7 @@ impl<C: CamCurve> Coupled<'_, C> {
                 kind,
                 i,
                 engagement,
-                shifted,
+                shifted.as_ref(),
                 blend_ended,
                 landed_cursor,
             );
@@ -347,7 +347,7 @@ impl<C: CamCurve> Coupled<'_, C> {
         kind: Landed,
         i: usize,
         engagement: Option<Engagement>,
-        constants: Option<Steady>,
+        constants: Option<&Steady>,
         blend_ended: bool,
         cursor: Cursor,
     ) {
@@ -369,16 +369,14 @@ impl<C: CamCurve> Coupled<'_, C> {
             engaged.engagement = engagement.unwrap_or(prepared.engagement);
             engaged.blend = prepared.blend.filter(|_| !blend_ended);
             *self.geometry = prepared.geometry;
+            let cam = *constants.unwrap_or(&prepared.constants);
             match engaged.lane.as_mut() {
                 Some(lane) => {
-                    lane.cam = constants.unwrap_or(prepared.constants);
+                    lane.cam = cam;
                     lane.target = None;
                 }
                 None => {
-                    engaged.lane = Some(LaneConstants {
-                        cam: constants.unwrap_or(prepared.constants),
-                        target: None,
-                    });
+                    engaged.lane = Some(LaneConstants { cam, target: None });
                 }
             }
         }
