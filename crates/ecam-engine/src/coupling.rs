@@ -444,8 +444,18 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
 pub(crate) fn exact_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_to_f64(v),
     }
+}
+
+/// The 128-bit conversion, out of line: inlined, the compiler sees that
+/// both arms of [`exact_f64`] give the same float and keeps only this
+/// one, the library routine, for every value (about 45 instructions
+/// instead of one).
+#[cold]
+#[inline(never)]
+fn wide_to_f64(v: i128) -> f64 {
+    v as f64
 }
 
 /// `v` as a float, for a count that is never negative (travel, spans):
@@ -454,8 +464,34 @@ pub(crate) fn exact_f64(v: i128) -> f64 {
 pub(crate) fn unsigned_to_f64(v: u128) -> f64 {
     match u64::try_from(v) {
         Ok(small) => small as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_unsigned_to_f64(v),
     }
+}
+
+/// [`wide_to_f64`] for [`unsigned_to_f64`].
+#[cold]
+#[inline(never)]
+fn wide_unsigned_to_f64(v: u128) -> f64 {
+    v as f64
+}
+
+/// `v.ceil() as i128` (saturating, NaN as 0) with one conversion where
+/// the result fits 64 bits; the same integer.
+#[inline]
+pub(crate) fn ceil_to_i128(v: f64) -> i128 {
+    let up = libm::ceil(v);
+    if up > -9.2e18 && up < 9.2e18 {
+        i128::from(up as i64)
+    } else {
+        wide_from_f64(up)
+    }
+}
+
+/// The 128-bit conversion of [`ceil_to_i128`], out of line (see [`wide_to_f64`]).
+#[cold]
+#[inline(never)]
+fn wide_from_f64(v: f64) -> i128 {
+    v as i128
 }
 
 /// `libm::round(v) as i128` (saturating, NaN as 0) with the fast rounding
@@ -900,6 +936,49 @@ mod tests {
                     "{a} {b}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn conversions_give_the_plain_casts_values() {
+        let wide = [
+            0i128,
+            1,
+            -1,
+            (1 << 53) + 1,
+            -(1 << 53) - 1,
+            i128::from(i64::MAX),
+            i128::from(i64::MIN),
+            i128::from(i64::MAX) + 1,
+            i128::from(i64::MIN) - 1,
+            i128::MAX,
+            i128::MIN,
+            12_345_678_901_234_567_890_123,
+        ];
+        for v in wide {
+            assert_eq!(exact_f64(v).to_bits(), (v as f64).to_bits(), "{v}");
+            let u = v.unsigned_abs();
+            assert_eq!(unsigned_to_f64(u).to_bits(), (u as f64).to_bits(), "{u}");
+        }
+        for v in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0000001,
+            9.1e18,
+            -9.1e18,
+            9.3e18,
+            -9.3e18,
+            1e30,
+            -1e30,
+            1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert_eq!(ceil_to_i128(v), libm::ceil(v) as i128, "{v}");
         }
     }
 

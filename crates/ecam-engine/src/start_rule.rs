@@ -20,6 +20,7 @@
 //! table's first value, whenever that lies within one stroke ahead of 0:
 //! the documents' own examples start exactly as before.
 
+use crate::coupling::{ceil_to_i128, exact_f64};
 use crate::{EngineError, SlaveAlign};
 
 /// What the start rule needs to know of a cam's cycle (the coupling works
@@ -80,11 +81,11 @@ fn equivalent(
             .ok_or(EngineError::SlaveOverflow)
     };
     let origin = travel(0)?;
-    let estimate = -(origin.0 as f64) / geo.per_stroke.abs();
+    let estimate = -exact_f64(origin.0) / geo.per_stroke.abs();
     if !estimate.is_finite() || estimate.abs() > 1e30 {
         return Err(EngineError::SlaveOverflow);
     }
-    let guess = libm::ceil(estimate) as i128;
+    let guess = ceil_to_i128(estimate);
     let at_guess = if guess == 0 { origin } else { travel(guess)? };
     // Bracket the first `m` with travel >= 0 around the guess (a rounding
     // away, or a stroke below one pulse), then halve: bounded work.

@@ -5,7 +5,7 @@ use core::num::NonZeroU64;
 
 use ecam_core::CamCurve;
 
-use crate::coupling::{Engagement, Place};
+use crate::coupling::{Engagement, Place, exact_f64};
 use crate::ramp::Ramp;
 use crate::ramp_in::{RampDirection, RampInLimits};
 use crate::{EngineError, RampIn};
@@ -71,7 +71,7 @@ impl<C: CamCurve> CamAxis<C> {
             if stroke == 0.0 {
                 return Err(EngineError::RampDirection);
             }
-            let gap = (i128::from(cam.slave) - hold) as f64;
+            let gap = exact_f64(i128::from(cam.slave) - hold);
             let strokes = libm::ceil(libm::fabs(gap / stroke));
             let toward = match limits.direction {
                 RampDirection::Negative => -1.0,
@@ -86,7 +86,7 @@ impl<C: CamCurve> CamAxis<C> {
                 cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
             }
         }
-        let gap = (i128::from(cam.slave) - hold) as f64;
+        let gap = exact_f64(i128::from(cam.slave) - hold);
         let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
         let configured = self.config.ramp_in.map(|r| r.distance.get());
         Ok(match (needed, configured) {
