@@ -369,7 +369,7 @@ impl LineMonitor {
         let mut attempt = 0u32;
         loop {
             let before = self.seq.load(Ordering::Acquire);
-            if before % 2 == 0 {
+            if before.is_multiple_of(2) {
                 let out = self.read();
                 fence(Ordering::Acquire);
                 if self.seq.load(Ordering::Relaxed) == before {
