@@ -44,8 +44,10 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod budget;
 mod curve;
 mod error;
+pub mod excerpt;
 #[cfg(feature = "std")]
 #[doc(hidden)]
 pub mod fuzz;
