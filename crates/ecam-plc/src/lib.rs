@@ -32,6 +32,7 @@ pub mod fuzz;
 pub mod il;
 pub mod sim;
 pub mod special;
+pub mod watchdog;
 
 mod devices;
 mod hardware;
@@ -49,9 +50,8 @@ pub use hardware::{
     Counters, HIGH_SPEED_COUNTERS, Hardware, OutputOwner, PULSE_OUTPUTS, PulseTrain, Wire,
     WireError, record_pulses,
 };
-pub use interpreter::MAX_STEPS_PER_SCAN;
 pub use operation_error::{
-    CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, CODE_SCAN_LIMIT, OperationError,
+    CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, OperationError,
 };
 pub use scan::Plc;
 pub use timers::{T_COUNT, Timers, timer_clock};

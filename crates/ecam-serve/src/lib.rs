@@ -61,12 +61,14 @@ mod clock;
 mod device_json;
 #[doc(hidden)]
 pub mod fuzz;
+mod image;
 mod journal;
 mod live;
 mod map;
 mod mbap;
 mod pdu;
 mod retain;
+mod scan_time;
 mod state;
 mod state_file;
 mod table_load;
@@ -78,6 +80,8 @@ pub use bus::{
     ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
 };
 pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
+pub use image::Image;
+pub use scan_time::ThreadCpuTime;
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,

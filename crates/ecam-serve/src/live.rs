@@ -5,7 +5,9 @@
 //! holds and how often one may be asked for.
 
 use ecam_plc::decam::{flags, offsets};
-use ecam_plc::{D_COUNT, Device, Plc};
+use ecam_plc::{D_COUNT, Device};
+
+use crate::image::Image;
 use serde_json::{Value, json};
 
 /// Samples per second when the client names none.
@@ -93,9 +95,10 @@ pub struct LiveSample {
 }
 
 impl LiveSample {
-    /// Reads block `block` of `plc`. Registers that cannot be read (never,
-    /// for a block [`LiveRequest::parse`] accepted) read as 0.
-    pub fn read(plc: &Plc, block: u16) -> Self {
+    /// Reads block `block` of the PLC as clients see it. Registers that
+    /// cannot be read (never, for a block [`LiveRequest::parse`] accepted)
+    /// read as 0.
+    pub fn read(plc: &Image, block: u16) -> Self {
         let d = plc.devices();
         let word = |offset: u16| {
             d.word(block.saturating_add(offset))
@@ -261,8 +264,8 @@ mod tests {
 
     #[test]
     fn a_block_of_an_idle_plc_reads_stopped() {
-        let plc = Plc::new(ecam_plc::il::parse("", "empty.il").unwrap()).unwrap();
-        let s = LiveSample::read(&plc, 2000);
+        let plc = ecam_plc::Plc::new(ecam_plc::il::parse("", "empty.il").unwrap()).unwrap();
+        let s = LiveSample::read(&Image::of(&plc), 2000);
         assert!(!s.running);
         assert_eq!(s.to_json(2000, None)["mode"], "stopped");
     }

@@ -297,6 +297,7 @@ fn report(event: Event) {
         Event::LatchedSavesResumed => {
             tracing::info!(target: "ecam::journal", "latched values saved again")
         }
+        Event::ProgramStopped(text) => tracing::error!(target: "ecam::plc", "{text}"),
     }
 }
 

@@ -365,7 +365,7 @@ async fn table_load(State(shared): State<Arc<Shared>>, body: Bytes) -> Response 
         Ok(load) => load,
         Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
-    let running = shared.with_plc(|plc| plc.cam_running(load.block));
+    let running = shared.image(|plc| plc.cam_running(load.block));
     if running && load.while_running == ecam_serve::WhileRunning::Refuse {
         return error(
             StatusCode::CONFLICT,

@@ -59,7 +59,7 @@ async fn stream(mut socket: WebSocket, shared: Arc<Shared>, request: LiveRequest
             },
             _ = ticks.tick() => {}
         }
-        let sample = shared.with_plc(|plc| LiveSample::read(plc, request.block));
+        let sample = shared.image(|plc| LiveSample::read(plc, request.block));
         let text = sample.to_json(request.block, previous.as_ref()).to_string();
         previous = Some(sample);
         match tokio::time::timeout(SEND_DEADLINE, socket.send(Message::text(text))).await {

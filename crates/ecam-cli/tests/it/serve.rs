@@ -723,7 +723,8 @@ async fn writes_to_special_devices_act_live_but_are_not_restored() {
     );
     assert_eq!(
         server.get_json("/api/devices?names=D100,D300,M10,M600,D7999,D8000"),
-        json!({"D100": 42, "D300": 77, "M10": 1, "M600": 1, "D7999": 5, "D8000": 0})
+        // D8000 is the watchdog time the PLC sets at power-on (200 ms).
+        json!({"D100": 42, "D300": 77, "M10": 1, "M600": 1, "D7999": 5, "D8000": 200})
     );
     cam_moves(&mut ctx).await;
     assert!(!stderr.contains("skipped"), "{stderr}");
