@@ -58,11 +58,14 @@
 mod answer;
 mod bus;
 mod clock;
+mod connections;
+mod design_pool;
 mod device_json;
 #[doc(hidden)]
 pub mod fuzz;
 mod image;
 mod journal;
+mod limits;
 mod live;
 mod map;
 mod mbap;
@@ -80,12 +83,19 @@ pub use bus::{
     ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
 };
 pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
+pub use connections::{Activity, Busy as RequestBusy, Caps, Connections, Kind, Registration};
+pub use design_pool::{Busy, DesignPool, Outcome, Ticket};
 pub use image::Image;
 pub use scan_time::ThreadCpuTime;
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
     OnDamage, Recovery, SNAPSHOT_FILE,
+};
+pub use limits::{
+    BODY, DEFAULT_DESIGN_DEADLINE, DEFAULT_IDLE, DEFAULT_MAX_CONNECTIONS, DESIGN_QUEUE,
+    DESIGN_WORKERS, LIVE_IDLE, LIVE_SEND, Limits, MAX_BODY_BYTES, MAX_DESIGN_POINTS,
+    MAX_LIVE_VIEWS, PARTIAL,
 };
 pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
