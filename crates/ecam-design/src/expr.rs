@@ -70,6 +70,13 @@ impl MasterFunction {
         })
     }
 
+    /// Work units one evaluation costs (`ecam_core::budget`): one per
+    /// operator, function call or bracket of the expression, and one more.
+    pub fn cost(&self) -> u64 {
+        let terms = self.text.bytes().filter(|b| b"+-*/^(".contains(b)).count();
+        u64::try_from(terms).unwrap_or(u64::MAX).saturating_add(1)
+    }
+
     /// Value and first three derivatives in `x` (velocity ratio,
     /// acceleration, jerk) by central differences with a step of `h` counts
     /// on the exact function (not on the rounded table). Symbolic

@@ -6,6 +6,7 @@
 //! generator's `Params` in `ecam_core::generator`); the values given
 //! override what they set. Numeric ratios accept arithmetic (`5/3`, `3*pi`).
 
+use ecam_core::budget::Budget;
 use anyhow::{Context, bail};
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
@@ -83,6 +84,19 @@ pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
 /// # Errors
 /// As [`from_toml`]; a value that is not an object.
 pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Generated> {
+    from_json_within(name, params, &mut Budget::per_run())
+}
+
+/// As [`from_json`], taking the work from `budget` (see
+/// [`generate_within`]).
+///
+/// # Errors
+/// As [`from_json`]; the budget used up or the request given up.
+pub fn from_json_within(
+    name: &str,
+    params: serde_json::Value,
+    budget: &mut Budget,
+) -> anyhow::Result<Generated> {
     let generator = find(name)?;
     if !params.is_object() {
         let error = ValuesSeed::new(generator, true)
@@ -95,7 +109,7 @@ pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Genera
         .deserialize(params)
         .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
         .with_context(|| format!("parameters of generator {name:?}"))?;
-    generate(generator, values)
+    generate_within(generator, values, budget)
 }
 
 /// The generator called `name` (or one of its aliases).
@@ -115,7 +129,24 @@ pub fn find(name: &str) -> anyhow::Result<&'static Schema> {
 /// # Errors
 /// Values of the wrong kind or name, or parameters the generator refuses
 /// (with the PLC's error code).
-pub fn generate(generator: &Schema, mut values: Values) -> anyhow::Result<Generated> {
+pub fn generate(generator: &Schema, values: Values) -> anyhow::Result<Generated> {
+    generate_within(generator, values, &mut Budget::per_run())
+}
+
+/// As [`generate`], taking the work from `budget`: the `function`
+/// generator spends one unit per term of its expression at each
+/// evaluation (five per table point: the value and the four around it of
+/// its exact derivatives); the others, bounded by their parameters'
+/// ranges, only look at whether the request was given up.
+///
+/// # Errors
+/// As [`generate`]; the budget used up, or the request given up.
+pub fn generate_within(
+    generator: &Schema,
+    mut values: Values,
+    budget: &mut Budget,
+) -> anyhow::Result<Generated> {
+    budget.check()?;
     match generator.name {
         "s-curve" => s_curve_table(&typed(values)?),
         "rotary-cut" => rotary_cut_table(&typed(values)?),
@@ -124,7 +155,7 @@ pub fn generate(generator: &Schema, mut values: Values) -> anyhow::Result<Genera
             fly_saw_table(&typed(values)?, cycle)
         }
         "keypoints" => key_points_table(&typed(values)?),
-        _ => function(&typed(values)?),
+        _ => function(&typed(values)?, budget),
     }
 }
 
@@ -310,21 +341,25 @@ fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- function
 
-fn function(params: &function::Params) -> anyhow::Result<Generated> {
-    let expr = params
-        .expr
-        .as_deref()
-        .context("give the function with --expr, e.g. --expr \"1000*sin(2*pi*x/36000)\"")?;
+fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Generated> {
+    // Worded for every face: `--expr` on the command line, `expr` in a
+    // parameter file and over HTTP.
+    let expr = params.expr.as_deref().context(
+        "the function generator needs its expression `expr`, a function of the master x, \
+         e.g. 1000*sin(2*pi*x/36000)",
+    )?;
     let (from, to, points) = (params.from, params.to, params.points);
-    let table = function_table(expr, from, to, points)?;
+    let table = function_table_within(expr, from, to, points, budget)?;
     let f = MasterFunction::parse(expr)?;
     // Central differences a quarter of the point spacing wide: small
     // against the curve's features, large against f64 round-off.
     let h = (to as f64 - from as f64) / (points.max(2) - 1) as f64 / 4.0;
+    let per_point = f.cost().saturating_mul(4);
     let kinematics = table
         .points()
         .iter()
         .map(|p| {
+            budget.spend(per_point)?;
             let k = f.kinematics(p.master as f64, h)?;
             Ok(Kinematics {
                 s: p.slave as f64,
@@ -348,6 +383,21 @@ fn function(params: &function::Params) -> anyhow::Result<Generated> {
 /// Parse or evaluation errors (naming the master where it failed), or a
 /// table the core refuses.
 pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::Result<PointTable> {
+    function_table_within(expr, from, to, points, &mut Budget::per_run())
+}
+
+/// As [`function_table`], one unit of `budget` per term of the expression
+/// at each point.
+///
+/// # Errors
+/// As [`function_table`]; the budget used up, or the request given up.
+pub fn function_table_within(
+    expr: &str,
+    from: i64,
+    to: i64,
+    points: usize,
+    budget: &mut Budget,
+) -> anyhow::Result<PointTable> {
     use ecam_core::limits::{MAX_EXPRESSION_LEN, MAX_TABLE_POINTS};
     if points > MAX_TABLE_POINTS {
         bail!("points {points} is above the limit of {MAX_TABLE_POINTS} points per table");
@@ -368,8 +418,10 @@ pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::
         );
     }
     let first_error = std::cell::RefCell::new(None);
+    let budget = std::cell::RefCell::new(budget);
+    let cost = f.cost();
     let sampled = ecam_core::table::sample_function(
-        |x| match f.at(x) {
+        |x| match budget.borrow_mut().spend(cost).map_err(anyhow::Error::from).and_then(|()| f.at(x)) {
             Ok(y) => y,
             Err(e) => {
                 first_error.borrow_mut().get_or_insert(e);

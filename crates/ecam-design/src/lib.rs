@@ -51,13 +51,13 @@ mod params;
 mod table_source;
 
 pub use designer::{
-    DEFAULT_LAW_POINTS, MAX_LAW_POINTS, generate_json, generators_json, key_points_json,
-    law_curves_json, laws_json,
+    DEFAULT_LAW_POINTS, MAX_DESIGN_POINTS, MAX_LAW_POINTS, generate_json, generate_json_within,
+    generators_json, key_points_json, law_curves_json, laws_json,
 };
 pub use expr::{MasterFunction, number};
 pub use generate::{
-    Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,
-    parse_key_lines,
+    Generated, default_values, find, from_json, from_json_within, from_toml, function_table,
+    function_table_within, generate, generate_within, parse_key, parse_key_lines,
 };
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
 pub use table_source::{load as load_table, resolve};

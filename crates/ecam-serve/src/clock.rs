@@ -155,6 +155,7 @@ mod tests {
             modbus: addr,
             http: addr,
             state_dir: None,
+            limits: Default::default(),
         };
         let heard = Arc::new(Mutex::new(Vec::new()));
         let sink = Arc::clone(&heard);

@@ -4,8 +4,8 @@
 //!
 //! - **Bounded**: a request that finds the queue full is refused at once
 //!   ([`Busy`], 503); what runs at once is the workers' count, so memory
-//!   is at most that many answers (each bounded by
-//!   [`MAX_DESIGN_POINTS`](crate::MAX_DESIGN_POINTS)) plus the waiting
+//!   is at most that many answers (each bounded by the design API's own
+//!   point limit, `ecam_design::MAX_DESIGN_POINTS`) plus the waiting
 //!   bodies.
 //! - **Cancelled**: each request gets a work budget
 //!   ([`ecam_core::budget::Budget::per_run`]) that stops as soon as its

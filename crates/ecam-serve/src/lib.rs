@@ -35,6 +35,7 @@
 //!     modbus: addr,
 //!     http: addr,
 //!     state_dir: None,
+//!     limits: Default::default(),
 //! };
 //! let shared = Shared::new(plc, None, info, |event| eprintln!("{event:?}"));
 //!
@@ -87,15 +88,17 @@ pub use connections::{Activity, Busy as RequestBusy, Caps, Connections, Kind, Re
 pub use design_pool::{Busy, DesignPool, Outcome, Ticket};
 pub use image::Image;
 pub use scan_time::ThreadCpuTime;
-pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
+pub use device_json::{
+    MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets, parse_json_body,
+};
 pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
     OnDamage, Recovery, SNAPSHOT_FILE,
 };
 pub use limits::{
     BODY, DEFAULT_DESIGN_DEADLINE, DEFAULT_IDLE, DEFAULT_MAX_CONNECTIONS, DESIGN_QUEUE,
-    DESIGN_WORKERS, LIVE_IDLE, LIVE_SEND, Limits, MAX_BODY_BYTES, MAX_DESIGN_POINTS,
-    MAX_LIVE_VIEWS, PARTIAL,
+    DESIGN_WORKERS, LIVE_IDLE, LIVE_SEND, Limits, MAX_BODY_BYTES, MAX_LIVE_VIEWS,
+    PARTIAL,
 };
 pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
@@ -110,7 +113,7 @@ pub use pdu::{
 pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
-pub use state::{Event, ServeInfo, Shared, Stats};
+pub use state::{Closer, Event, ServeInfo, Shared, Stats};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use table_load::{TableLoad, WhileRunning, parse_table_load};
 pub use write::{LineError, Slot, WriteBatch};

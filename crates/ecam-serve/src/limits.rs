@@ -38,10 +38,6 @@ pub const DEFAULT_DESIGN_DEADLINE: Duration = Duration::from_secs(30);
 pub const DESIGN_WORKERS: usize = 2;
 /// Design requests waiting for a worker; beyond, 503 at once.
 pub const DESIGN_QUEUE: usize = 8;
-/// Most points of a table or curve one design request may give: its
-/// answer (every point's position and derivatives as JSON) then stays
-/// under about 30 MB while it is built.
-pub const MAX_DESIGN_POINTS: usize = 100_001;
 
 /// The caps and deadlines one server keeps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -109,7 +105,6 @@ impl Limits {
             "design_deadline_s": s(self.design_deadline),
             "design_workers": DESIGN_WORKERS,
             "design_queue": DESIGN_QUEUE,
-            "max_design_points": MAX_DESIGN_POINTS,
         })
     }
 }

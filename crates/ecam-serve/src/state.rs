@@ -16,14 +16,17 @@ use std::collections::HashSet;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 
 use ecam_plc::Devices;
 use ecam_plc::Plc;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
+use crate::connections::Connections;
+use crate::design_pool::DesignPool;
 use crate::image::Image;
+use crate::limits::Limits;
 use crate::journal::{Journal, JournalError};
 use crate::pdu::{Exception, Response};
 use crate::retain::LatchedImage;
@@ -42,7 +45,13 @@ pub struct ServeInfo {
     pub http: SocketAddr,
     /// The state directory, if writes are kept.
     pub state_dir: Option<PathBuf>,
+    /// Caps and deadlines of the connections.
+    pub limits: Limits,
 }
+
+/// How the server closes a connection the registry chose to make room
+/// (see [`Connections`]): the listener's own way to end that task.
+pub type Closer = Arc<dyn Fn() + Send + Sync>;
 
 /// Counters the servers and the scan loop update.
 #[derive(Debug, Default)]
@@ -125,6 +134,10 @@ pub struct Shared {
     /// The drives on a fieldbus, when the server runs them (`--ethercat`);
     /// set once at start.
     pub bus: std::sync::OnceLock<crate::bus::BusFace>,
+    /// The open connections, within `info.limits`.
+    pub connections: Arc<Connections<Closer>>,
+    /// Where design requests are computed; started by the first one.
+    design: OnceLock<Option<DesignPool>>,
     events: Box<dyn Fn(Event) + Send + Sync>,
 }
 
@@ -144,11 +157,21 @@ impl Shared {
             image: Mutex::new(Image::of(&plc)),
             plc: Mutex::new(plc),
             journal: Mutex::new(journal),
+            connections: Arc::new(Connections::new(info.limits.caps())),
             info,
             stats: Stats::default(),
             bus: std::sync::OnceLock::new(),
+            design: OnceLock::new(),
             events: Box::new(events),
         }
+    }
+
+    /// The design requests' pool, started on first use; `None` when its
+    /// threads could not be started (design requests are then refused).
+    pub fn design(&self) -> Option<&DesignPool> {
+        self.design
+            .get_or_init(|| DesignPool::start().ok())
+            .as_ref()
     }
 
     /// Hands `event` to the sink given to [`Self::new`].
@@ -279,6 +302,9 @@ impl Shared {
                 "closed_malformed": load(&s.modbus_garbage),
             },
             "http": self.info.http.to_string(),
+            "connections": self.connections.json(),
+            "design": self.design.get().and_then(Option::as_ref).map(DesignPool::json),
+            "limits": self.info.limits.json(),
             "ethercat": self.bus.get().map(|b| {
                 let s = b.snapshot();
                 json!({"state": s.state, "drives": s.drives.len(), "cycles": s.cycles})

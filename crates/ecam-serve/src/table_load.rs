@@ -42,8 +42,7 @@ pub struct TableLoad {
 /// A message naming what is wrong: not JSON, no `block` D register, no
 /// `points`, a table the core refuses, or the DECAM checks (6782, 6783).
 pub fn parse_table_load(body: &[u8]) -> Result<TableLoad, String> {
-    let value: Value =
-        serde_json::from_slice(body).map_err(|e| format!("the body is not JSON: {e}"))?;
+    let value = crate::device_json::parse_json_body(body)?;
     let block =
         match value.get("block") {
             Some(Value::Number(n)) => n

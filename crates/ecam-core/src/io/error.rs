@@ -6,6 +6,7 @@
 
 use std::fmt;
 use std::path::PathBuf;
+use std::format;
 use std::string::{String, ToString};
 
 use crate::TableError;
@@ -166,6 +167,19 @@ impl std::error::Error for FileError {
 /// (`i64`, `f64`, `u16`…) become what they mean.
 pub(crate) fn plain_json_message(e: &serde_json::Error) -> String {
     plain_serde_message(&e.to_string())
+}
+
+/// Why `text` is not JSON, in the words of its author rather than the
+/// parser's: where it stops being JSON (line and column) and whether it
+/// ended too early. For HTTP request bodies and other JSON a user types.
+pub fn json_syntax_message(e: &serde_json::Error) -> String {
+    let at = format!("line {}, column {}", e.line(), e.column());
+    match e.classify() {
+        serde_json::error::Category::Eof => format!("it ends before the JSON is complete ({at})"),
+        serde_json::error::Category::Syntax => format!("it stops being JSON at {at}"),
+        serde_json::error::Category::Io => format!("it cannot be read ({at})"),
+        serde_json::error::Category::Data => plain_json_message(e),
+    }
 }
 
 /// A serde message (JSON, TOML, parameter maps) in the words of the input's
