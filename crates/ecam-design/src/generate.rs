@@ -71,12 +71,24 @@ fn kinematics_along(table: &PointTable, curve: &impl CamCurve) -> Vec<Kinematics
 /// # Errors
 /// Unknown generator names or parameters, or bad values.
 pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
+    from_toml_within(name, params, &mut Budget::per_run())
+}
+
+/// As [`from_toml`], taking the work from `budget`.
+///
+/// # Errors
+/// As [`from_toml`]; the budget used up.
+pub fn from_toml_within(
+    name: &str,
+    params: toml::Table,
+    budget: &mut Budget,
+) -> anyhow::Result<Generated> {
     let generator = find(name)?;
     let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Value::Table(params))
         .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
         .with_context(|| format!("parameters of generator {name:?}"))?;
-    generate(generator, values)
+    generate_within(generator, values, budget)
 }
 
 /// Generates from the `params` object of the designer's HTTP request.
@@ -349,17 +361,27 @@ fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Ge
          e.g. 1000*sin(2*pi*x/36000)",
     )?;
     let (from, to, points) = (params.from, params.to, params.points);
-    let table = function_table_within(expr, from, to, points, budget)?;
     let f = MasterFunction::parse(expr)?;
+    // The four evaluations per point of the exact derivatives, taken
+    // before any work so that a table that cannot fit is refused at once.
+    let evaluations = u64::try_from(points).unwrap_or(u64::MAX);
+    budget
+        .spend(f.cost().saturating_mul(4).saturating_mul(evaluations))
+        .with_context(|| {
+            format!(
+                "{points} points of an expression of {} terms, each evaluated 5 times",
+                f.cost()
+            )
+        })?;
+    let table = function_table_within(expr, from, to, points, budget)?;
     // Central differences a quarter of the point spacing wide: small
     // against the curve's features, large against f64 round-off.
     let h = (to as f64 - from as f64) / (points.max(2) - 1) as f64 / 4.0;
-    let per_point = f.cost().saturating_mul(4);
     let kinematics = table
         .points()
         .iter()
         .map(|p| {
-            budget.spend(per_point)?;
+            budget.check()?;
             let k = f.kinematics(p.master as f64, h)?;
             Ok(Kinematics {
                 s: p.slave as f64,
@@ -417,11 +439,16 @@ pub fn function_table_within(
             ecam_core::CODE_TABLE
         );
     }
+    // Known before the work starts: refused at once when it cannot fit;
+    // each point then only looks at whether the request was given up.
+    let evaluations = u64::try_from(points).unwrap_or(u64::MAX);
+    budget
+        .spend(f.cost().saturating_mul(evaluations))
+        .with_context(|| format!("{points} points of an expression of {} terms", f.cost()))?;
+    let budget = &*budget;
     let first_error = std::cell::RefCell::new(None);
-    let budget = std::cell::RefCell::new(budget);
-    let cost = f.cost();
     let sampled = ecam_core::table::sample_function(
-        |x| match budget.borrow_mut().spend(cost).map_err(anyhow::Error::from).and_then(|()| f.at(x)) {
+        |x| match budget.check().map_err(anyhow::Error::from).and_then(|()| f.at(x)) {
             Ok(y) => y,
             Err(e) => {
                 first_error.borrow_mut().get_or_insert(e);

@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use ecam_core::budget::Budget;
 use anyhow::{Context, bail};
 use ecam_core::table::UniformTable;
 use ecam_core::{CamCurve, PointTable};
@@ -41,6 +42,19 @@ struct File {
 /// No or several source keys, keys that do not belong to the source, or a
 /// table the core refuses.
 pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve>> {
+    load_within(table, base, &mut Budget::per_run())
+}
+
+/// As [`load`], taking a generator's or an expression's work from
+/// `budget` (a scenario's tables and its run share one).
+///
+/// # Errors
+/// As [`load`]; the budget used up.
+pub fn load_within(
+    table: &toml::Table,
+    base: &Path,
+    budget: &mut Budget,
+) -> anyhow::Result<Box<dyn CamCurve>> {
     let given: Vec<&str> = SOURCES
         .iter()
         .copied()
@@ -71,14 +85,14 @@ pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve
         }
         // Exactly `ecam table gen function`'s keys and defaults (from 0,
         // to 36000, 361 points), as docs/simulate.md promises.
-        "expr" => Box::new(generate::from_toml("function", table.clone())?.table),
+        "expr" => Box::new(generate::from_toml_within("function", table.clone(), budget)?.table),
         _ => {
             let mut params = table.clone();
             let name = params
                 .remove("generator")
                 .and_then(|v| v.as_str().map(str::to_string))
                 .context("generator must be a name, e.g. \"rotary-cut\"")?;
-            Box::new(generate::from_toml(&name, params)?.table)
+            Box::new(generate::from_toml_within(&name, params, budget)?.table)
         }
     })
 }

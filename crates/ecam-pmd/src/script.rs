@@ -125,10 +125,13 @@ pub fn parse_number(text: &str) -> Option<i64> {
     i64::try_from(if negative { -magnitude } else { magnitude }).ok()
 }
 
-/// Parses lines into commands, remembering `Define`d names.
+/// Parses lines into commands, remembering `Define`d names and how many
+/// cycles the script's `Tick`s take in all (one run's budget,
+/// `ecam_core::budget`).
 #[derive(Clone, Debug, Default)]
 pub struct Parser {
     symbols: HashMap<String, i64>,
+    budget: ecam_core::budget::Budget,
 }
 
 struct Args<'a> {
@@ -360,6 +363,11 @@ impl Parser {
                             "Tick: {n} is out of range: the cycle count must be 0 to {limit}"
                         ))
                     })?;
+                self.budget.cycles(n).map_err(|_| {
+                    a.error(format!(
+                        "Tick {n}: the script's Ticks add up to more than the {limit} cycles one run may take"
+                    ))
+                })?;
                 Command::Tick(n)
             }
             _ => return Err(a.error(format!("unknown command '{cmd}'"))),

@@ -327,7 +327,10 @@ impl Scenario {
             bail!("trace_every must be at least 1 (1 writes every tick)");
         }
         unused_keys(&raw.cam, &raw.start)?;
-        let curve = ecam_design::load_table(&raw.table, base).context("in [table]")?;
+        // One run, one budget: its tables' generators and its ticks.
+        let mut budget = ecam_core::budget::Budget::per_run();
+        let curve =
+            ecam_design::load_table_within(&raw.table, base, &mut budget).context("in [table]")?;
         let moves = raw
             .master
             .moves
@@ -362,7 +365,7 @@ impl Scenario {
         }
         let ticks = duration_us.div_ceil(u64::from(raw.tick_us.max(1)));
         let limit = ecam_core::limits::MAX_SIMULATED_TICKS;
-        if ticks > limit {
+        if ticks > limit || budget.cycles(ticks).is_err() {
             bail!(
                 "the scenario runs {ticks} ticks of {} us; the limit is {limit}: shorten duration_s or the moves, or lengthen tick_us",
                 raw.tick_us
@@ -412,7 +415,7 @@ impl Scenario {
                     (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
                     _ => bail!("{what} needs exactly one of at_s, master_at_least, master_at_most"),
                 };
-                let curve = ecam_design::load_table(&s.table, base)
+                let curve = ecam_design::load_table_within(&s.table, base, &mut budget)
                     .with_context(|| format!("in {what} table"))?;
                 let blend = match s.blend {
                     Some(b) => Some(

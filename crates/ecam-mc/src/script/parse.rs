@@ -63,6 +63,7 @@ impl Script {
             base_dir: path.parent().unwrap_or(Path::new("")),
             axis_count: DEFAULT_AXES,
             tables: BTreeMap::new(),
+            budget: ecam_core::budget::Budget::per_run(),
         };
         let mut lines: Vec<Line> = Vec::new();
         for (index, text) in text.lines().enumerate() {
@@ -107,6 +108,8 @@ struct Parser<'a> {
     base_dir: &'a Path,
     axis_count: usize,
     tables: BTreeMap<String, PointTable>,
+    /// The cycles of the script's `Tick`s in all: one run's budget.
+    budget: ecam_core::budget::Budget,
 }
 
 /// One line's command word and arguments.
@@ -411,7 +414,13 @@ impl Parser<'_> {
                 a.expect(&["N"])?;
                 let limit = ecam_core::limits::MAX_SIMULATED_TICKS as i64;
                 let n = a.bounded(0, "the cycle count", 0, limit)?;
-                Command::Tick(u64::try_from(n).unwrap_or_default())
+                let n = u64::try_from(n).unwrap_or_default();
+                self.budget.cycles(n).map_err(|_| {
+                    format!(
+                        "Tick {n}: the script's Ticks add up to more than the {limit} cycles one run may take"
+                    )
+                })?;
+                Command::Tick(n)
             }
             "getcommandposition" => {
                 a.expect(&["AXIS"])?;
