@@ -87,6 +87,9 @@ mod tests {
         let shown = format!("{}", excerpt(&long));
         assert_eq!(shown, format!("{}… (200 bytes)", "é".repeat(EXCERPT_CHARS)));
         let quoted = format!("{:?}", excerpt(&long));
-        assert_eq!(quoted, format!("\"{}…\" (200 bytes)", "é".repeat(EXCERPT_CHARS)));
+        assert_eq!(
+            quoted,
+            format!("\"{}…\" (200 bytes)", "é".repeat(EXCERPT_CHARS))
+        );
     }
 }

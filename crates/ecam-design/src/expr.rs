@@ -43,9 +43,10 @@ impl MasterFunction {
             ));
         }
         let plain = expand_exponents(text)?;
+        let quoted = ecam_core::excerpt::excerpt(text);
         let expr = exmex::parse::<f64>(&plain).map_err(|e| {
             anyhow!(
-                "cannot parse expression {text:?}: {}",
+                "cannot parse expression {quoted:?}: {}",
                 plain_error(&e.to_string())
             )
         })?;
@@ -58,9 +59,13 @@ impl MasterFunction {
                 "tau" => Ok(Slot::Constant(std::f64::consts::TAU)),
                 "e" => Ok(Slot::Constant(std::f64::consts::E)),
                 other if master_allowed => bail!(
-                    "unknown name {other:?} in {text:?}: the master position is `x`; constants are pi, tau, e"
+                    "unknown name {:?} in {quoted:?}: the master position is `x`; constants are pi, tau, e",
+                    ecam_core::excerpt::excerpt(other)
                 ),
-                other => bail!("unknown name {other:?} in {text:?}: constants are pi, tau, e"),
+                other => bail!(
+                    "unknown name {:?} in {quoted:?}: constants are pi, tau, e",
+                    ecam_core::excerpt::excerpt(other)
+                ),
             })
             .collect::<anyhow::Result<Vec<_>>>()?;
         Ok(Self {
@@ -117,12 +122,15 @@ impl MasterFunction {
     /// Evaluation errors of exmex, or a result that is not finite.
     pub fn at(&self, x: f64) -> anyhow::Result<f64> {
         let values = self.values(x);
-        let y = self
-            .expr
-            .eval(&values)
-            .map_err(|e| anyhow!("cannot evaluate {:?} at x = {x}: {e}", self.text))?;
+        let y = self.expr.eval(&values).map_err(|e| {
+            let text = ecam_core::excerpt::excerpt(&self.text);
+            anyhow!("cannot evaluate {text:?} at x = {x}: {e}")
+        })?;
         if !y.is_finite() {
-            bail!("{:?} is not finite at x = {x}", self.text);
+            bail!(
+                "{:?} is not finite at x = {x}",
+                ecam_core::excerpt::excerpt(&self.text)
+            );
         }
         Ok(y)
     }
@@ -173,7 +181,11 @@ fn expand_exponents(text: &str) -> anyhow::Result<String> {
                 let literal: String = chars.get(start..j).unwrap_or_default().iter().collect();
                 if let Ok(v) = literal.parse::<f64>() {
                     if !v.is_finite() {
-                        bail!("the number {literal} in {text:?} is too large for a 64-bit float");
+                        bail!(
+                            "the number {literal} in {text:?} is too large for a 64-bit float",
+                            text = ecam_core::excerpt::excerpt(text),
+                            literal = ecam_core::excerpt::excerpt(&literal)
+                        );
                     }
                     out.push_str(&format!("{v}"));
                     i = j;
@@ -192,13 +204,28 @@ fn expand_exponents(text: &str) -> anyhow::Result<String> {
 /// Syntax errors, unknown names, or a non-finite value.
 pub fn number(text: &str) -> anyhow::Result<f64> {
     let f = MasterFunction::with_variables(text, false)?;
-    f.at(0.0).with_context(|| format!("in {text:?}"))
+    f.at(0.0)
+        .with_context(|| format!("in {:?}", ecam_core::excerpt::excerpt(text)))
 }
 
 /// The parser's message without its internal dumps: some name the Rust
 /// operator structs, function addresses included, which say nothing to
 /// the author of the expression.
 fn plain_error(message: &str) -> String {
+    // exmex reads `sinn(` as a name followed by a bracket: say what it
+    // means to the author of the expression.
+    if let Some(name) = message
+        .split_once("left: ")
+        .and_then(|(_, rest)| rest.split_once("; right: ("))
+        .map(|(name, _)| name)
+        .filter(|name| name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+    {
+        return format!(
+            "`{}` is not a function (the functions: sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh, acosh, atanh, exp, ln, log, log2, log10, sqrt, cbrt, abs, signum, floor, ceil, round, trunc, fract)",
+            ecam_core::excerpt::excerpt(name)
+        );
+    }
+    let message = message.strip_prefix("wlog ").unwrap_or(message);
     match message
         .find(" Operator {")
         .or_else(|| message.find("Operator {"))

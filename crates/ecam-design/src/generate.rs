@@ -6,8 +6,8 @@
 //! generator's `Params` in `ecam_core::generator`); the values given
 //! override what they set. Numeric ratios accept arithmetic (`5/3`, `3*pi`).
 
-use ecam_core::budget::Budget;
 use anyhow::{Context, bail};
+use ecam_core::budget::Budget;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
@@ -302,14 +302,31 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
 /// What is wrong with `text`, naming the flag.
 pub fn parse_key(text: &str) -> Result<KeyPoint, String> {
     KeyPoint::parse_line(text).map_err(|e| match e {
-        LineError::TooFew => format!("--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]"),
-        LineError::TooMany => format!("--key {text:?}: too many fields"),
+        LineError::TooFew => format!(
+            "--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]",
+            text = ecam_core::excerpt::excerpt(text)
+        ),
+        LineError::TooMany => format!(
+            "--key {text:?}: too many fields",
+            text = ecam_core::excerpt::excerpt(text)
+        ),
         LineError::NotInteger { what, text: field } => {
-            format!("{what} {field:?} in --key {text:?} is not an integer")
+            format!(
+                "{what} {field:?} in --key {text:?} is not an integer",
+                text = ecam_core::excerpt::excerpt(text),
+                field = ecam_core::excerpt::excerpt(field)
+            )
         }
-        LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+        LineError::UnknownCurve(c) => format!(
+            "unknown curve {c:?}; use {}",
+            CurveType::NAMES,
+            c = ecam_core::excerpt::excerpt(c)
+        ),
         LineError::BadResolution(r) => {
-            format!("resolution {r:?} in --key {text:?} must be 0..=512")
+            format!(
+                "resolution {r:?} in --key {text:?} must be 0..=512",
+                text = ecam_core::excerpt::excerpt(text)
+            )
         }
     })
 }
@@ -323,8 +340,15 @@ pub fn parse_key_lines(text: &str) -> Result<Vec<KeyPoint>, String> {
         let what = match e {
             LineError::TooFew => "expected MASTER SLAVE [CURVE [RESOLUTION]]".to_string(),
             LineError::TooMany => "too many fields".to_string(),
-            LineError::NotInteger { what, text } => format!("{what} {text:?} is not an integer"),
-            LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+            LineError::NotInteger { what, text } => format!(
+                "{what} {text:?} is not an integer",
+                text = ecam_core::excerpt::excerpt(text)
+            ),
+            LineError::UnknownCurve(c) => format!(
+                "unknown curve {c:?}; use {}",
+                CurveType::NAMES,
+                c = ecam_core::excerpt::excerpt(c)
+            ),
             LineError::BadResolution(r) => format!("resolution {r:?} must be 0..=512"),
         };
         format!("key point line {line}: {what}")
@@ -448,7 +472,11 @@ pub fn function_table_within(
     let budget = &*budget;
     let first_error = std::cell::RefCell::new(None);
     let sampled = ecam_core::table::sample_function(
-        |x| match budget.check().map_err(anyhow::Error::from).and_then(|()| f.at(x)) {
+        |x| match budget
+            .check()
+            .map_err(anyhow::Error::from)
+            .and_then(|()| f.at(x))
+        {
             Ok(y) => y,
             Err(e) => {
                 first_error.borrow_mut().get_or_insert(e);

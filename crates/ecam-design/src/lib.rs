@@ -57,8 +57,7 @@ pub use designer::{
 pub use expr::{MasterFunction, number};
 pub use generate::{
     Generated, default_values, find, from_json, from_json_within, from_toml, from_toml_within,
-    function_table,
-    function_table_within, generate, generate_within, parse_key, parse_key_lines,
+    function_table, function_table_within, generate, generate_within, parse_key, parse_key_lines,
 };
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
 pub use table_source::{load as load_table, load_within as load_table_within, resolve};

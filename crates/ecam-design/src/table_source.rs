@@ -6,8 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
-use ecam_core::budget::Budget;
 use anyhow::{Context, bail};
+use ecam_core::budget::Budget;
 use ecam_core::table::UniformTable;
 use ecam_core::{CamCurve, PointTable};
 use serde::Deserialize;

@@ -50,9 +50,7 @@ pub use hardware::{
     Counters, HIGH_SPEED_COUNTERS, Hardware, OutputOwner, PULSE_OUTPUTS, PulseTrain, Wire,
     WireError, record_pulses,
 };
-pub use operation_error::{
-    CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, OperationError,
-};
+pub use operation_error::{CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, OperationError};
 pub use scan::Plc;
 pub use timers::{T_COUNT, Timers, timer_clock};
 pub use view::{Value, View, ViewError};

@@ -15,8 +15,8 @@
 use crate::decam::{Decam, DecamOperands, MasterOperand};
 use crate::devices::{Device, Devices};
 use crate::hardware::Hardware;
-use crate::il::{Instruction, MasterSpec, ParseError, Program};
 use crate::hardware::{OutputOwner, PULSE_OUTPUTS};
+use crate::il::{Instruction, MasterSpec, ParseError, Program};
 use crate::interpreter::{Interpreter, LineError, Machine};
 use crate::special::{
     D_ERROR, D_HARDWARE_ERROR, D_SCAN_TIME, D_WATCHDOG, M_CLOCKS, M_ERROR, M_FIRST_SCAN,
@@ -207,9 +207,11 @@ impl Plc {
         let timer = &mut self.timer;
         timer.start();
         // The interpreter writes D8067/M8067 as each instruction fails.
-        let outcome = self.interpreter.scan(&self.program, &mut machine, &mut |steps| {
-            timer.elapsed_us(steps) > limit_us
-        });
+        let outcome = self
+            .interpreter
+            .scan(&self.program, &mut machine, &mut |steps| {
+                timer.elapsed_us(steps) > limit_us
+            });
         let scan_us = self.timer.elapsed_us(outcome.steps);
         self.last_steps = outcome.steps;
         self.scans += 1;
@@ -226,9 +228,9 @@ impl Plc {
 
     /// D8010–D8012: this scan's time, the shortest and the longest, 0.1 ms.
     fn show_scan_time(&mut self, scan_us: u64) {
-        let (low, high) = self
-            .scan_range_us
-            .map_or((scan_us, scan_us), |(l, h)| (l.min(scan_us), h.max(scan_us)));
+        let (low, high) = self.scan_range_us.map_or((scan_us, scan_us), |(l, h)| {
+            (l.min(scan_us), h.max(scan_us))
+        });
         self.scan_range_us = Some((low, high));
         for (register, us) in D_SCAN_TIME.into_iter().zip([scan_us, low, high]) {
             let tenths = i16::try_from(us / 100).unwrap_or(i16::MAX);

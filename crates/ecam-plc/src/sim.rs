@@ -171,7 +171,11 @@ pub fn run_within(
         RunLength::Millis(ms) => start.saturating_add(ms.saturating_mul(1000)),
     };
     // Each period's last tick is shorter when the tick does not divide it.
-    let (span, scan, tick) = (end - start, u64::from(timing.scan_us), u64::from(timing.tick_us));
+    let (span, scan, tick) = (
+        end - start,
+        u64::from(timing.scan_us),
+        u64::from(timing.tick_us),
+    );
     let ticks = (span / scan)
         .saturating_mul(scan.div_ceil(tick))
         .saturating_add((span % scan).div_ceil(tick));
@@ -182,7 +186,10 @@ pub fn run_within(
             tick_us: timing.tick_us,
             limit: left,
         },
-        OverBudget::Cancelled => RunError::OverBudget { reason, at_us: start },
+        OverBudget::Cancelled => RunError::OverBudget {
+            reason,
+            at_us: start,
+        },
     })?;
     let mut errors = Vec::new();
     while plc.now_us() < end {
@@ -219,8 +226,14 @@ mod tests {
     fn a_run_whose_ticks_do_not_fit_the_budget_is_refused_before_it_starts() {
         let mut p = plc("LD M8000\nINC D0\n");
         let mut budget = Budget::new(10 * 25);
-        let err = run_within(&mut p, Timing::default(), RunLength::Millis(3), &mut budget, |_| {})
-            .unwrap_err();
+        let err = run_within(
+            &mut p,
+            Timing::default(),
+            RunLength::Millis(3),
+            &mut budget,
+            |_| {},
+        )
+        .unwrap_err();
         assert_eq!(
             err,
             RunError::TooManyTicks {
@@ -237,7 +250,11 @@ mod tests {
         };
         let mut budget = Budget::new(10 * 12 + 8);
         run_within(&mut p, timing, RunLength::Scans(4), &mut budget, |_| {}).unwrap();
-        assert_eq!(budget.used(), 10 * 12 + 2 * 4, "12 ticks, 2 instructions a scan");
+        assert_eq!(
+            budget.used(),
+            10 * 12 + 2 * 4,
+            "12 ticks, 2 instructions a scan"
+        );
     }
 
     #[test]
@@ -246,8 +263,14 @@ mod tests {
         let source = "LD M8000\nMOV K0 D0\nP0\nLD M8000\nINC D0\nLD< D0 K1000\nCJ P0\nEND\n";
         let mut p = plc(source);
         let mut budget = Budget::new(10 * 1000 + 20_000);
-        let err = run_within(&mut p, Timing::default(), RunLength::Scans(100), &mut budget, |_| {})
-            .unwrap_err();
+        let err = run_within(
+            &mut p,
+            Timing::default(),
+            RunLength::Scans(100),
+            &mut budget,
+            |_| {},
+        )
+        .unwrap_err();
         assert!(
             matches!(err, RunError::OverBudget { reason: OverBudget::Exhausted { .. }, at_us } if at_us > 0),
             "{err:?}"

@@ -118,6 +118,9 @@ mod tests {
     fn a_million_modeled_instructions_are_the_default_watchdog_time() {
         let mut t = ModeledScanTime;
         t.start();
-        assert_eq!(t.elapsed_us(1_000_000), u64::from(DEFAULT_WATCHDOG_MS) * 1000);
+        assert_eq!(
+            t.elapsed_us(1_000_000),
+            u64::from(DEFAULT_WATCHDOG_MS) * 1000
+        );
     }
 }

@@ -370,7 +370,12 @@ impl Parser {
                 })?;
                 Command::Tick(n)
             }
-            _ => return Err(a.error(format!("unknown command '{cmd}'"))),
+            _ => {
+                return Err(a.error(format!(
+                    "unknown command '{cmd}'",
+                    cmd = ecam_core::excerpt::excerpt(cmd)
+                )));
+            }
         };
         if let Command::Define(symbol, value) = &command {
             self.symbols.insert(symbol.clone(), *value);
@@ -415,6 +420,23 @@ mod tests {
             p.parse_line("SetProfileMode ElectronicCam").unwrap(),
             Some(Command::SetProfileMode(8))
         );
+    }
+
+    #[test]
+    fn a_scripts_ticks_share_one_budget() {
+        let mut p = Parser::new();
+        for _ in 0..4 {
+            assert_eq!(
+                p.parse_line("Tick 25000000").unwrap(),
+                Some(Command::Tick(25_000_000))
+            );
+        }
+        let e = p.parse_line("Tick 1").unwrap_err();
+        assert!(
+            e.message.contains("add up to more than the 100000000"),
+            "{e}"
+        );
+        assert_eq!(p.parse_line("Tick 0").unwrap(), Some(Command::Tick(0)));
     }
 
     #[test]

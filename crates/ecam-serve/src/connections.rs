@@ -258,7 +258,12 @@ impl<H> Connections<H> {
     /// when it must make room later; returns its registration and the
     /// connections to close now to make room for it (the idlest of its
     /// cap, when the cap is full).
-    pub fn admit(self: &Arc<Self>, kind: Kind, handle: H, now: Instant) -> (Registration<H>, Vec<H>) {
+    pub fn admit(
+        self: &Arc<Self>,
+        kind: Kind,
+        handle: H,
+        now: Instant,
+    ) -> (Registration<H>, Vec<H>) {
         let mut table = lock(&self.table);
         let mut evicted = table.make_room(self.caps, kind, None, now);
         if kind == Kind::Live {

@@ -238,7 +238,9 @@ mod tests {
         let probe = |_: &mut Budget| nice();
         #[cfg(not(target_os = "linux"))]
         let probe = |_: &mut Budget| 19;
-        let _ticket = pool.submit(probe, move |out| tx.send(out).unwrap()).unwrap();
+        let _ticket = pool
+            .submit(probe, move |out| tx.send(out).unwrap())
+            .unwrap();
         assert_eq!(rx.recv_timeout(WAIT).unwrap(), Outcome::Done(19));
         assert_eq!(pool.json()["done"], 1);
     }
@@ -263,7 +265,10 @@ mod tests {
         // Given up while waiting: never started.
         drop(second);
         drop(first);
-        let outcomes = [rx.recv_timeout(WAIT).unwrap(), rx.recv_timeout(WAIT).unwrap()];
+        let outcomes = [
+            rx.recv_timeout(WAIT).unwrap(),
+            rx.recv_timeout(WAIT).unwrap(),
+        ];
         assert_eq!(outcomes, [Outcome::Cancelled, Outcome::Cancelled]);
         let status = pool.json();
         assert_eq!(

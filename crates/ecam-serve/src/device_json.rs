@@ -26,12 +26,18 @@ pub fn parse_device_names(names: &str) -> Result<Vec<View>, String> {
     for item in names.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let (name, count) = match item.split_once(':') {
             Some((name, count)) => {
-                let count: u16 = count
-                    .trim()
-                    .parse()
-                    .ok()
-                    .filter(|&c| c >= 1)
-                    .ok_or_else(|| format!("`{item}`: COUNT must be a whole number 1..65535"))?;
+                let count: u16 =
+                    count
+                        .trim()
+                        .parse()
+                        .ok()
+                        .filter(|&c| c >= 1)
+                        .ok_or_else(|| {
+                            format!(
+                                "`{item}`: COUNT must be a whole number 1..65535",
+                                item = ecam_core::excerpt::excerpt(item)
+                            )
+                        })?;
                 (name, count)
             }
             None => (item, 1),

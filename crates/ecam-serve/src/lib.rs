@@ -86,19 +86,17 @@ pub use bus::{
 pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
 pub use connections::{Activity, Busy as RequestBusy, Caps, Connections, Kind, Registration};
 pub use design_pool::{Busy, DesignPool, Outcome, Ticket};
-pub use image::Image;
-pub use scan_time::ThreadCpuTime;
 pub use device_json::{
     MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets, parse_json_body,
 };
+pub use image::Image;
 pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
     OnDamage, Recovery, SNAPSHOT_FILE,
 };
 pub use limits::{
     BODY, DEFAULT_DESIGN_DEADLINE, DEFAULT_IDLE, DEFAULT_MAX_CONNECTIONS, DESIGN_QUEUE,
-    DESIGN_WORKERS, LIVE_IDLE, LIVE_SEND, Limits, MAX_BODY_BYTES, MAX_LIVE_VIEWS,
-    PARTIAL,
+    DESIGN_WORKERS, LIVE_IDLE, LIVE_SEND, Limits, MAX_BODY_BYTES, MAX_LIVE_VIEWS, PARTIAL,
 };
 pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
@@ -113,6 +111,7 @@ pub use pdu::{
 pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
+pub use scan_time::ThreadCpuTime;
 pub use state::{Closer, Event, ServeInfo, Shared, Stats};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use table_load::{TableLoad, WhileRunning, parse_table_load};

@@ -111,7 +111,11 @@ impl Limits {
 
 impl Default for Limits {
     fn default() -> Self {
-        Self::new(DEFAULT_MAX_CONNECTIONS, DEFAULT_IDLE, DEFAULT_DESIGN_DEADLINE)
+        Self::new(
+            DEFAULT_MAX_CONNECTIONS,
+            DEFAULT_IDLE,
+            DEFAULT_DESIGN_DEADLINE,
+        )
     }
 }
 

@@ -39,9 +39,12 @@ impl LiveRequest {
     pub fn parse(block: Option<&str>, rate: Option<&str>) -> Result<Self, String> {
         let text = block.ok_or("name the cam's register block: /api/live?block=2000")?;
         let digits = text.trim().trim_start_matches(['D', 'd']);
-        let block: u16 = digits
-            .parse()
-            .map_err(|_| format!("block must be a D register number, not `{text}`"))?;
+        let block: u16 = digits.parse().map_err(|_| {
+            format!(
+                "block must be a D register number, not `{text}`",
+                text = ecam_core::excerpt::excerpt(text)
+            )
+        })?;
         if u32::from(block) + u32::from(BLOCK_WORDS) > u32::from(D_COUNT) {
             return Err(format!(
                 "block D{block} runs past D{}: a DECAM block needs 40 words and its table",
@@ -56,7 +59,10 @@ impl LiveRequest {
                 .ok()
                 .filter(|r| (1..=MAX_LIVE_RATE).contains(r))
                 .ok_or_else(|| {
-                    format!("rate must be 1..={MAX_LIVE_RATE} samples per second, not `{text}`")
+                    format!(
+                        "rate must be 1..={MAX_LIVE_RATE} samples per second, not `{text}`",
+                        text = ecam_core::excerpt::excerpt(text)
+                    )
                 })?,
         };
         Ok(Self { block, rate })

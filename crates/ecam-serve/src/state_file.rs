@@ -618,7 +618,8 @@ mod tests {
                 }) => assert_eq!(at, line),
                 other => panic!("not refused: {other:?}"),
             }
-            let (values, recovery) = open(snapshot().as_bytes(), &bytes, OnDamage::Recover).unwrap();
+            let (values, recovery) =
+                open(snapshot().as_bytes(), &bytes, OnDamage::Recover).unwrap();
             assert_eq!(values, state_after(line - 1));
             assert!(!recovery.torn_tail);
             assert_eq!(recovery.dropped.len(), 1);

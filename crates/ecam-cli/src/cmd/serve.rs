@@ -266,7 +266,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             // The scan loop has stopped: this image is the PLC's last state.
             match shared.save_latched(&mut LatchedImage::new()) {
                 Ok(saved) => tracing::info!(target: LOG, "stopped; {saved} latched values saved"),
-                Err(err) => tracing::error!(target: LOG, "stopped; cannot save latched values: {err}"),
+                Err(err) => {
+                    tracing::error!(target: LOG, "stopped; cannot save latched values: {err}")
+                }
             }
         }
         served

@@ -108,22 +108,24 @@ async fn body_within(State(shared): State<Arc<Shared>>, request: Request, next: 
     if declared.is_some_and(|n| n > MAX_BODY_BYTES as u64) {
         return too_large();
     }
-    let bytes = match tokio::time::timeout(deadline, axum::body::to_bytes(body, MAX_BODY_BYTES)).await {
-        Ok(Ok(bytes)) => bytes,
-        Ok(Err(_)) => return too_large(),
-        Err(_) => {
-            let message = format!(
-                "the request body did not arrive within {} s of its headers",
-                deadline.as_secs_f64()
-            );
-            return closing(error(StatusCode::REQUEST_TIMEOUT, &message));
-        }
-    };
+    let bytes =
+        match tokio::time::timeout(deadline, axum::body::to_bytes(body, MAX_BODY_BYTES)).await {
+            Ok(Ok(bytes)) => bytes,
+            Ok(Err(_)) => return too_large(),
+            Err(_) => {
+                let message = format!(
+                    "the request body did not arrive within {} s of its headers",
+                    deadline.as_secs_f64()
+                );
+                return closing(error(StatusCode::REQUEST_TIMEOUT, &message));
+            }
+        };
     let _busy = parts
         .extensions
         .get::<Conn>()
         .map(|conn| conn.registration.activity().busy());
-    next.run(Request::from_parts(parts, Body::from(bytes))).await
+    next.run(Request::from_parts(parts, Body::from(bytes)))
+        .await
 }
 
 /// `response`, after which the connection is closed (its request body was
@@ -263,7 +265,10 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/ethercat", get(ethercat_status))
         .route("/api/ethercat/{command}", post(ethercat_command))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
-        .layer(middleware::from_fn_with_state(Arc::clone(&shared), body_within))
+        .layer(middleware::from_fn_with_state(
+            Arc::clone(&shared),
+            body_within,
+        ))
         .with_state(shared)
         .layer(middleware::from_fn_with_state(Arc::new(access), guard))
 }
@@ -454,7 +459,10 @@ async fn table_gen(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
 }
 
 async fn key_points(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
-    design(&shared, move |_| json_call(&body, ecam_design::key_points_json)).await
+    design(&shared, move |_| {
+        json_call(&body, ecam_design::key_points_json)
+    })
+    .await
 }
 
 /// Every design request goes through here: computed in the server's design
@@ -468,7 +476,10 @@ async fn design(
     work: impl FnOnce(&mut Budget) -> Response + Send + 'static,
 ) -> Response {
     let Some(pool) = shared.design() else {
-        return error(StatusCode::SERVICE_UNAVAILABLE, "the designer's workers could not start");
+        return error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "the designer's workers could not start",
+        );
     };
     let (tx, rx) = tokio::sync::oneshot::channel();
     let ticket = match pool.submit(work, move |outcome| {
@@ -480,7 +491,10 @@ async fn design(
     let deadline = shared.info.limits.design_deadline;
     let response = match tokio::time::timeout(deadline, rx).await {
         Ok(Ok(Outcome::Done(response))) => response,
-        Ok(_) => error(StatusCode::INTERNAL_SERVER_ERROR, "the request was given up"),
+        Ok(_) => error(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            "the request was given up",
+        ),
         Err(_) => error(
             StatusCode::SERVICE_UNAVAILABLE,
             &format!(

@@ -5,8 +5,8 @@
 //! source, `: `-separated), so each names what to fix.
 
 use std::fmt;
-use std::path::PathBuf;
 use std::format;
+use std::path::PathBuf;
 use std::string::{String, ToString};
 
 use crate::TableError;
@@ -83,9 +83,11 @@ impl fmt::Display for FormatError {
             ),
             Self::CsvRow { row, message } => write!(f, "bad CSV row {row}: {message}"),
             Self::NotAnInteger { row, column, text } => {
+                let text = crate::excerpt::excerpt(text);
                 write!(f, "row {row}: {column} {text:?} is not an integer")
             }
             Self::NotANumber { row, column, text } => {
+                let text = crate::excerpt::excerpt(text);
                 write!(f, "row {row}: {column} {text:?} is not a number")
             }
             Self::Json { message } => write!(f, "JSON: {message}"),

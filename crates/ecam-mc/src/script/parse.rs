@@ -255,7 +255,7 @@ impl Parser<'_> {
                 other.kind()
             )),
             Err(e) => {
-                let mut message = format!("{cmd}: {e}");
+                let mut message = format!("{cmd}: {e}", cmd = ecam_core::excerpt::excerpt(cmd));
                 let mut source = std::error::Error::source(&e);
                 while let Some(s) = source {
                     message.push_str(&format!(": {s}"));
@@ -303,7 +303,7 @@ impl Parser<'_> {
                     .count_or_off(1, "the single-turn encoder range")?
                     .map(|counts| SingleTurn::new(counts.get()))
                     .transpose()
-                    .map_err(|e| format!("{cmd}: {e}"))?;
+                    .map_err(|e| format!("{cmd}: {e}", cmd = ecam_core::excerpt::excerpt(cmd)))?;
                 Command::SetSingleTurn { axis, turn }
             }
             "setuserunit" => {
@@ -314,7 +314,10 @@ impl Parser<'_> {
                     .ok()
                     .and_then(|p| UserUnit::new(p).ok())
                     .ok_or_else(|| {
-                        format!("{cmd}: a user unit must be at least 1 pulse, got {pulses}")
+                        format!(
+                            "{cmd}: a user unit must be at least 1 pulse, got {pulses}",
+                            cmd = ecam_core::excerpt::excerpt(cmd)
+                        )
                     })?;
                 Command::SetUserUnit { axis, unit }
             }
@@ -362,7 +365,10 @@ impl Parser<'_> {
                     words: vec![name_word],
                 };
                 if name_word.is_empty() || file.is_empty() {
-                    return Err(format!("{cmd} takes NAME PATH"));
+                    return Err(format!(
+                        "{cmd} takes NAME PATH",
+                        cmd = ecam_core::excerpt::excerpt(cmd)
+                    ));
                 }
                 let name = Self::table_name(&named)?;
                 let table = self.file_table(cmd, file)?;
@@ -374,7 +380,10 @@ impl Parser<'_> {
                 let master = self.axis(&a, 0, "master axis")?;
                 let slave = self.axis(&a, 1, "slave axis")?;
                 if master == slave {
-                    return Err(format!("{cmd}: axis {master} cannot be its own master"));
+                    return Err(format!(
+                        "{cmd}: axis {master} cannot be its own master",
+                        cmd = ecam_core::excerpt::excerpt(cmd)
+                    ));
                 }
                 let cam_type = match a.word(2).to_ascii_lowercase().as_str() {
                     "normal" => CamType::Normal,
@@ -394,7 +403,7 @@ impl Parser<'_> {
                     } else {
                         format!("defined so far: {}", known.join(", "))
                     };
-                    format!("{cmd}: no E-CAM table named '{table_name}' ({hint})")
+                    format!("{cmd}: no E-CAM table named '{table_name}' ({hint})", cmd = ecam_core::excerpt::excerpt(cmd))
                 })?;
                 Command::StartECam {
                     master,
@@ -456,7 +465,12 @@ impl Parser<'_> {
                     }
                 }
             }
-            _ => return Err(format!("unknown command '{cmd}'")),
+            _ => {
+                return Err(format!(
+                    "unknown command '{cmd}'",
+                    cmd = ecam_core::excerpt::excerpt(cmd)
+                ));
+            }
         };
         Ok(Some(command))
     }

@@ -81,7 +81,12 @@ impl Operand {
                 .ok()
                 .filter(|n| *n < INDEX_COUNT)
                 .map(kind)
-                .ok_or_else(|| format!("index register `{token}` is out of range (V0-V7, Z0-Z7)")),
+                .ok_or_else(|| {
+                    format!(
+                        "index register `{token}` is out of range (V0-V7, Z0-Z7)",
+                        token = ecam_core::excerpt::excerpt(token)
+                    )
+                }),
         )
     }
 
@@ -89,7 +94,12 @@ impl Operand {
     fn modified(token: &str, base: &str, by: &str) -> Result<Self, String> {
         let by = match Self::index_register(by, by) {
             Some(Ok(reg)) => reg,
-            Some(Err(m)) => return Err(format!("`{token}`: {m}")),
+            Some(Err(m)) => {
+                return Err(format!(
+                    "`{token}`: {m}",
+                    token = ecam_core::excerpt::excerpt(token)
+                ));
+            }
             None => {
                 return Err(format!(
                     "`{token}`: the modifier must be an index register V0-V7 or Z0-Z7"
@@ -138,27 +148,27 @@ impl Operand {
             'K' => rest
                 .parse::<i64>()
                 .map(Self::Decimal)
-                .map_err(|_| format!("`{token}` is not a K constant (expected K and a decimal integer, e.g. K100)")),
+                .map_err(|_| format!("`{token}` is not a K constant (expected K and a decimal integer, e.g. K100)", token = ecam_core::excerpt::excerpt(token))),
             'H' => u64::from_str_radix(rest, 16)
                 .ok()
                 .filter(|_| !rest.starts_with('+'))
                 .map(Self::Hex)
-                .ok_or_else(|| format!("`{token}` is not an H constant (expected H and hex digits, e.g. H1F)")),
+                .ok_or_else(|| format!("`{token}` is not an H constant (expected H and hex digits, e.g. H1F)", token = ecam_core::excerpt::excerpt(token))),
             'T' if !rest.is_empty() && rest.bytes().all(|b| b.is_ascii_digit()) => rest
                 .parse::<u16>()
                 .ok()
                 .filter(|n| *n < crate::timers::T_COUNT)
                 .map(Self::Timer)
-                .ok_or_else(|| format!("device `{token}` is out of range (timers T0-T255)")),
+                .ok_or_else(|| format!("device `{token}` is out of range (timers T0-T255)", token = ecam_core::excerpt::excerpt(token))),
             'E' => rest
                 .parse::<f32>()
                 .ok()
                 .filter(|v| v.is_finite())
                 .map(Self::Float)
-                .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)")),
+                .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)", token = ecam_core::excerpt::excerpt(token))),
             _ => Device::parse(upper).map(Self::Device).map_err(|err| match err {
-                DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"),
-                _ => format!("unknown device `{token}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"),
+                DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)", token = ecam_core::excerpt::excerpt(token)),
+                _ => format!("unknown device `{token}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)", token = ecam_core::excerpt::excerpt(token)),
             }),
         }
     }
@@ -174,7 +184,10 @@ impl Operand {
                 ));
             }
             Err(DeviceError::OutOfRange) => {
-                return Err(format!("device `{token}` is out of range (D0-D8511)"));
+                return Err(format!(
+                    "device `{token}` is out of range (D0-D8511)",
+                    token = ecam_core::excerpt::excerpt(token)
+                ));
             }
             Err(_) => {
                 return Err(format!(
@@ -187,7 +200,10 @@ impl Operand {
             _ => None,
         }
         .ok_or_else(|| {
-            format!("`{token}`: the bit number must be one hex digit 0-F (e.g. D2001.F)")
+            format!(
+                "`{token}`: the bit number must be one hex digit 0-F (e.g. D2001.F)",
+                token = ecam_core::excerpt::excerpt(token)
+            )
         })?;
         Ok(Self::WordBit(WordBit {
             register,

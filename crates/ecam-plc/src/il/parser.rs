@@ -54,7 +54,10 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
             if !operand_tokens.is_empty() {
                 return Err(error(
                     line.number,
-                    format!("a pointer label {mnemonic} stands alone on its line"),
+                    format!(
+                        "a pointer label {mnemonic} stands alone on its line",
+                        mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+                    ),
                 ));
             }
             statements.push(Statement {
@@ -72,8 +75,16 @@ pub fn parse(source: &str, file: &str) -> Result<Program, ParseError> {
         }
         let mut operands = Vec::with_capacity(operand_tokens.len());
         for (i, token) in operand_tokens.iter().enumerate() {
-            let operand = Operand::parse(token)
-                .map_err(|m| error(line.number, format!("{mnemonic} operand {}: {m}", i + 1)))?;
+            let operand = Operand::parse(token).map_err(|m| {
+                error(
+                    line.number,
+                    format!(
+                        "{mnemonic} operand {}: {m}",
+                        i + 1,
+                        mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+                    ),
+                )
+            })?;
             operands.push(operand);
         }
         let instruction = instruction(&mnemonic, &operands).map_err(|m| error(line.number, m))?;
@@ -112,7 +123,12 @@ fn pointer_number(token: &str) -> Result<u8, String> {
     let number = upper
         .strip_prefix('P')
         .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
-        .ok_or_else(|| format!("expected a pointer P0–P127, found `{token}`"))?;
+        .ok_or_else(|| {
+            format!(
+                "expected a pointer P0–P127, found `{token}`",
+                token = ecam_core::excerpt::excerpt(token)
+            )
+        })?;
     match number.parse::<u8>() {
         Ok(n) if usize::from(n) < flow::POINTER_COUNT => Ok(n),
         _ => Err(format!(
@@ -128,8 +144,12 @@ fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instructio
     let pointer = |exec: Exec, call: bool| -> Result<Instruction, String> {
         match tokens {
             [token] => {
-                let pointer =
-                    pointer_number(token).map_err(|m| format!("{mnemonic} operand 1: {m}"))?;
+                let pointer = pointer_number(token).map_err(|m| {
+                    format!(
+                        "{mnemonic} operand 1: {m}",
+                        mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+                    )
+                })?;
                 if call && pointer == flow::END_POINTER {
                     return Err(format!(
                         "{mnemonic} P63: P63 is the END pointer, only CJ may use it"
@@ -151,7 +171,10 @@ fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instructio
         if tokens.is_empty() {
             Ok(instruction)
         } else {
-            Err(format!("{mnemonic} takes no operands"))
+            Err(format!(
+                "{mnemonic} takes no operands",
+                mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+            ))
         }
     };
     Some(match mnemonic {
@@ -334,7 +357,10 @@ fn comparison(mnemonic: &str) -> Option<(Join, Width, Relation)> {
 
 fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, String> {
     let Some((join, width, relation)) = comparison(mnemonic) else {
-        return Err(format!("unknown instruction `{mnemonic}`"));
+        return Err(format!(
+            "unknown instruction `{mnemonic}`",
+            mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+        ));
     };
     arity(mnemonic, ops, &["S1", "S2"])?;
     let operand = |index: usize| -> Result<Source, String> {

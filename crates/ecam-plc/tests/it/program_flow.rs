@@ -145,7 +145,10 @@ fn endless_backward_jump_stops_the_program_on_the_watchdog() {
     assert!(plc.fault().is_none());
     assert_eq!(plc.devices().dword(8142), Ok(10), "Y1 pulses at 10 kHz");
     set(&mut plc, Device::X(0), true);
-    assert!(plc.scan().is_empty(), "the watchdog is not an operation error");
+    assert!(
+        plc.scan().is_empty(),
+        "the watchdog is not an operation error"
+    );
     let fault = plc.fault().expect("stopped by the watchdog");
     assert_eq!(fault.code(), CODE_WATCHDOG);
     assert_eq!(fault.line(), 10, "the line of the CJ that loops");
@@ -172,7 +175,8 @@ fn endless_backward_jump_stops_the_program_on_the_watchdog() {
 #[test]
 fn the_watchdog_time_is_d8000_as_the_program_sets_it() {
     // About 150 000 instructions a scan: 30 ms of modeled time.
-    let source = "LD M8000\nMOV K20 D8000\nMOV K0 D0\nP0\nLD M8000\nINC D0\nLD< D0 K30000\nCJ P0\nEND\n";
+    let source =
+        "LD M8000\nMOV K20 D8000\nMOV K0 D0\nP0\nLD M8000\nINC D0\nLD< D0 K30000\nCJ P0\nEND\n";
     let mut plc = plc(source);
     assert_eq!(word(&plc, 8000), 200, "200 ms at power-on");
     // The first scan began with 200 ms: it finishes.
