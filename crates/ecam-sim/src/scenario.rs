@@ -319,7 +319,8 @@ impl Scenario {
     /// # Errors
     /// As [`Scenario::load`].
     pub fn parse(text: &str, base: &Path) -> anyhow::Result<Self> {
-        let raw: RawScenario = toml::from_str(text)?;
+        let raw: RawScenario = toml::from_str(text)
+            .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))?;
         if raw.tick_us == 0 {
             bail!("tick_us must be at least 1");
         }

@@ -188,7 +188,8 @@ pub fn json_syntax_message(e: &serde_json::Error) -> String {
 /// author: `expected i64` becomes `expected a whole number`, and so on for
 /// the other Rust number types.
 pub fn plain_serde_message(message: &str) -> String {
-    let mut text = message.to_string();
+    // serde and TOML quote the input (a value, a whole line): cut it.
+    let mut text = crate::excerpt::cut_quotes(message);
     for (rust, plain) in [
         ("expected i64", "expected a whole number"),
         ("expected i32", "expected a whole number"),
