@@ -111,11 +111,9 @@ pub fn from_json_within(
 ) -> anyhow::Result<Generated> {
     let generator = find(name)?;
     if !params.is_object() {
-        let error = ValuesSeed::new(generator, true)
-            .deserialize(params)
-            .err()
-            .map_or_else(String::new, |e| e.to_string());
-        bail!("\"params\" must be an object of numbers, strings and booleans: {error}");
+        bail!(
+            "\"params\" must be an object of numbers, strings and booleans, e.g. {{\"points\": 361}}"
+        );
     }
     let values = ValuesSeed::new(generator, true)
         .deserialize(params)

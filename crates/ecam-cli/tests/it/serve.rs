@@ -39,7 +39,7 @@ impl Server {
     }
 
     /// Starts with stderr going to the file `log` (truncated first).
-    fn start_logged(state: &Path, extra: &[&str], log: &Path) -> Self {
+    pub(crate) fn start_logged(state: &Path, extra: &[&str], log: &Path) -> Self {
         let file = std::fs::File::create(log).unwrap();
         Self::start_with_stderr(Some(state), extra, Stdio::from(file))
     }
@@ -90,6 +90,11 @@ impl Server {
         server
     }
 
+    /// The server's process id.
+    pub(crate) fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// `kill -9` and wait for it to be gone.
     pub(crate) fn kill_9(mut self) {
         self.child.kill().unwrap();
@@ -124,7 +129,7 @@ impl Server {
         http(self.http, method, path, body)
     }
 
-    fn get_json(&self, path: &str) -> Value {
+    pub(crate) fn get_json(&self, path: &str) -> Value {
         let (status, body) = self.http("GET", path, None);
         assert_eq!(status, 200, "GET {path}: {body}");
         serde_json::from_str(&body).unwrap()
@@ -145,7 +150,7 @@ fn state_dir(name: &str) -> PathBuf {
     dir
 }
 
-fn program(name: &str, source: &str) -> PathBuf {
+pub(crate) fn program(name: &str, source: &str) -> PathBuf {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::write(&path, source).unwrap();
     path
