@@ -383,6 +383,10 @@ fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Ge
          e.g. 1000*sin(2*pi*x/36000)",
     )?;
     let (from, to, points) = (params.from, params.to, params.points);
+    let limit = ecam_core::limits::MAX_TABLE_POINTS;
+    if points > limit {
+        bail!("points {points} is above the limit of {limit} points per table");
+    }
     let f = MasterFunction::parse(expr)?;
     // The four evaluations per point of the exact derivatives, taken
     // before any work so that a table that cannot fit is refused at once.

@@ -988,6 +988,39 @@ async fn a_damaged_journal_stops_the_start_and_recover_state_drops_what_follows(
 }
 
 #[tokio::test]
+async fn a_zeroed_journal_stops_the_start_and_recover_state_keeps_it_aside() {
+    let dir = state_dir("zeroed");
+    let server = Server::start(&dir, &[]);
+    {
+        let mut ctx = server.client().await;
+        for (register, value) in [(100, 1), (101, 2)] {
+            ctx.write_single_register(register, value)
+                .await
+                .unwrap()
+                .unwrap();
+        }
+    }
+    server.kill_9();
+    // The file system kept the journal's length but lost its blocks.
+    let journal = dir.join("journal.log");
+    let length = std::fs::metadata(&journal).unwrap().len() as usize;
+    assert!(length > 0);
+    std::fs::write(&journal, vec![0u8; length]).unwrap();
+    let stderr = refused_start(&dir);
+    assert!(stderr.contains("journal.log:1: "), "{stderr}");
+    assert!(stderr.contains("zeroed or overwritten"), "{stderr}");
+    let log = dir.with_extension("log");
+    let server = Server::start_logged(&dir, &["--recover-state"], &log);
+    let said = log_line(&log, "--recover-state: ");
+    assert!(said.contains("whatever it held is lost"), "{said}");
+    assert!(dir.join("journal.log.damaged").exists());
+    assert_eq!(
+        server.get_json("/api/devices?names=D100:2"),
+        json!({"D100": 0, "D101": 0})
+    );
+}
+
+#[tokio::test]
 async fn a_snapshot_cut_inside_a_number_stops_the_start() {
     let dir = state_dir("cut-snapshot");
     let server = Server::start(&dir, &[]);

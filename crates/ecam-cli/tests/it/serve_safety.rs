@@ -1,5 +1,6 @@
 //! `ecam serve` holds up to careless and hostile clients: a cap on
-//! connections (the newest refused), idle and half-sent requests closed, and
+//! connections (the idlest making room, `serve_limits.rs`), idle and
+//! half-sent requests closed, and
 //! a web face that refuses foreign hosts, foreign pages, non-JSON writes and
 //! writes without the token. Loopback only; every wait is bounded.
 
@@ -39,18 +40,12 @@ fn closed_within(s: &mut TcpStream) -> Duration {
 }
 
 #[test]
-fn modbus_connections_are_capped_and_idle_ones_closed() {
+fn idle_and_half_sent_modbus_requests_are_closed() {
     let server = Server::start_stateless(&["--max-connections", "3", "--idle-timeout", "1"]);
     let mut served: Vec<TcpStream> = (0..3).map(|_| connect(server.modbus)).collect();
     for s in &mut served {
         assert!(modbus_answers(s));
     }
-    let mut newest = connect(server.modbus);
-    assert!(
-        !modbus_answers(&mut newest),
-        "the newest is refused at the cap"
-    );
-    assert!(modbus_answers(&mut served[1]), "the others go on");
     drop(served.remove(0));
     std::thread::sleep(Duration::from_millis(200));
     let mut again = connect(server.modbus);
@@ -68,6 +63,8 @@ fn modbus_connections_are_capped_and_idle_ones_closed() {
 
 fn http_raw(addr: SocketAddr, request: &str) -> (u16, String) {
     let mut s = connect(addr);
+    // Design work runs at the lowest priority: on a busy machine it waits.
+    s.set_read_timeout(Some(STEP)).unwrap();
     s.write_all(request.as_bytes()).unwrap();
     let mut response = String::new();
     let _ = s.read_to_string(&mut response);
@@ -195,7 +192,6 @@ fn design_work_does_not_hold_up_modbus() {
                         body.len()
                     ),
                 )
-                .0
             })
         })
         .collect();
@@ -209,7 +205,8 @@ fn design_work_does_not_hold_up_modbus() {
         std::thread::sleep(Duration::from_millis(20));
     }
     for h in heavy {
-        assert_eq!(h.join().unwrap(), 200);
+        let (code, text) = h.join().unwrap();
+        assert_eq!(code, 200, "{}", &text[..text.len().min(300)]);
     }
     assert!(
         worst < Duration::from_secs(1),
