@@ -192,14 +192,14 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
     });
     if let Some(asked) = asked.filter(|&n| n > MAX_DESIGN_POINTS as u64) {
         return Err(format!(
-            "points {asked}: a design request gives at most {MAX_DESIGN_POINTS} points"
+            "points {asked} is above the limit of {MAX_DESIGN_POINTS} points per design request"
         ));
     }
     let g = generate::from_json_within(name, params, budget).map_err(|e| format!("{e:#}"))?;
     let points = g.table.points();
     if points.len() > MAX_DESIGN_POINTS {
         return Err(format!(
-            "the table has {} points: a design request gives at most {MAX_DESIGN_POINTS}",
+            "the table has {} points, above the limit of {MAX_DESIGN_POINTS} per design request",
             points.len()
         ));
     }

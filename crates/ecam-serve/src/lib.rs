@@ -11,13 +11,18 @@
 //! [`LatchedImage`]), device names as JSON for the HTTP API
 //! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
 //! the PLC shared by the scan loop and the servers ([`Shared`]), paced
-//! by the wall clock ([`scan_loop`]), and what the designer's live view
-//! samples of a DECAM block ([`LiveRequest`], [`LiveSample`]).
+//! by the wall clock ([`scan_loop`]) and timed by the watchdog
+//! ([`ThreadCpuTime`]), the copy of it clients read and write so that no
+//! request waits for a scan ([`Image`]), what the designer's live view
+//! samples of a DECAM block ([`LiveRequest`], [`LiveSample`]), and what
+//! keeps clients from holding the server: every cap and deadline
+//! ([`Limits`]), who makes room at a full cap ([`Connections`]), and where
+//! design requests run ([`DesignPool`]).
 //!
 //! It has no async runtime and prints nothing: the binary owns the
-//! sockets, the threads and stderr, and hears what the operator should
+//! sockets, the async tasks and stderr, and hears what the operator should
 //! through [`Event`]. The scan loop and the latched-value saver block the
-//! thread they run on. Use it to serve the PLC over another transport, or
+//! thread they run on; the design pool runs its own worker threads. Use it to serve the PLC over another transport, or
 //! to test what a client sees without a network; to run PLC programs in
 //! simulated time, use `ecam_plc::sim` directly. `docs/modbus.md` describes
 //! the server as a user sees it.
