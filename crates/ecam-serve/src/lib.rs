@@ -81,6 +81,7 @@ mod scan_time;
 mod state;
 mod state_file;
 mod table_load;
+mod web_guard;
 mod write;
 
 pub use answer::answer_request;
@@ -120,4 +121,5 @@ pub use scan_time::ThreadCpuTime;
 pub use state::{Closer, Event, ServeInfo, Shared, Stats};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use table_load::{TableLoad, WhileRunning, parse_table_load};
+pub use web_guard::{Access, MIN_TOKEN_LEN, Refusal, RequestFacts, TokenError, read_token};
 pub use write::{LineError, Slot, WriteBatch};

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use anyhow::{Context as _, bail};
+use anyhow::Context as _;
 use ecam_plc::Plc;
 use ecam_plc::Wire;
 use ecam_plc::sim::{self, Timing};
@@ -156,18 +156,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     };
     let token = match &args.token_file {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("--token-file {}", path.display()))?;
-            let token = text.trim().to_string();
-            if token.len() < 16 {
-                bail!(
-                    "--token-file {}: the token must be at least 16 characters",
-                    path.display()
-                );
-            }
-            Some(token)
-        }
+        Some(path) => Some(
+            ecam_serve::read_token(path)
+                .with_context(|| format!("--token-file {}", path.display()))?,
+        ),
         None => None,
     };
     let timing = Timing {
@@ -242,7 +234,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
             None => None,
         };
-        let access = http::Access::new(shared.info.http, &args.http_names, token.clone());
+        let access = ecam_serve::Access::new(shared.info.http, &args.http_names, token.clone());
         let router = http::router(Arc::clone(&shared), access);
         let served: anyhow::Result<()> = tokio::select! {
             () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),

@@ -35,8 +35,8 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use ecam_core::budget::Budget;
 use ecam_serve::{
-    BusCommand, Kind, MAX_BODY_BYTES, Outcome, Shared, devices_to_json, parse_device_names,
-    parse_device_sets, parse_json_body,
+    Access, BusCommand, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
+    parse_device_names, parse_device_sets, parse_json_body,
 };
 use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
@@ -136,106 +136,25 @@ fn closing(mut response: Response) -> Response {
     response
 }
 
-/// Who may talk to the HTTP face: the threat model is a page in the
-/// operator's browser (or a rebinding DNS name) sending requests to a
-/// server on the operator's machine (docs/modbus.md, "Web safety").
-#[derive(Clone, Debug)]
-pub struct Access {
-    /// `Host` header values accepted (`name` or `name:port`).
-    hosts: Vec<String>,
-    /// A token writes must present as `Authorization: Bearer TOKEN`.
-    token: Option<String>,
-}
-
-impl Access {
-    /// Accepts the bound address, `localhost` and `127.0.0.1` at its port,
-    /// and `names` (as given, or with the port); writes need `token` when
-    /// one is given.
-    pub fn new(bound: std::net::SocketAddr, names: &[String], token: Option<String>) -> Self {
-        let port = bound.port();
-        let mut hosts = vec![
-            bound.to_string(),
-            format!("localhost:{port}"),
-            format!("127.0.0.1:{port}"),
-            format!("[::1]:{port}"),
-        ];
-        for name in names {
-            hosts.push(name.clone());
-            hosts.push(format!("{name}:{port}"));
-        }
-        Self { hosts, token }
-    }
-
-    fn host_allowed(&self, host: &str) -> bool {
-        self.hosts.iter().any(|h| h.eq_ignore_ascii_case(host))
-    }
-}
-
-/// Refuses requests for another host (DNS rebinding), from a foreign page
-/// (`Origin`), writes that are not JSON (a cross-site form or `text/plain`
-/// post), and writes without the token when one is set.
+/// Refuses what [`Access::check`] refuses (foreign hosts and pages,
+/// writes that are not JSON or lack the token; docs/modbus.md, "Web
+/// safety").
 async fn guard(State(access): State<Arc<Access>>, request: Request, next: Next) -> Response {
     let headers = request.headers();
-    let host = headers
-        .get(header::HOST)
-        .and_then(|h| h.to_str().ok())
-        .unwrap_or("");
-    if !access.host_allowed(host) {
-        return error(
-            StatusCode::MISDIRECTED_REQUEST,
-            &format!(
-                "Host `{}` is not this server; name it with --http-name",
-                ecam_core::excerpt::excerpt(host)
-            ),
-        );
-    }
-    if let Some(origin) = headers.get(header::ORIGIN) {
-        let origin = origin.to_str().unwrap_or("");
-        let own = origin
-            .strip_prefix("http://")
-            .or_else(|| origin.strip_prefix("https://"))
-            .is_some_and(|o| access.host_allowed(o));
-        if !own {
-            return error(
-                StatusCode::FORBIDDEN,
-                &format!(
-                    "requests from pages of `{}` are refused",
-                    ecam_core::excerpt::excerpt(origin)
-                ),
-            );
-        }
-    }
-    let reads = matches!(
-        *request.method(),
-        axum::http::Method::GET | axum::http::Method::HEAD
-    );
-    if !reads {
-        let json = headers
-            .get(header::CONTENT_TYPE)
-            .and_then(|c| c.to_str().ok())
-            .is_some_and(|c| {
-                c.trim()
-                    .to_ascii_lowercase()
-                    .starts_with("application/json")
-            });
-        if !json {
-            return error(
-                StatusCode::UNSUPPORTED_MEDIA_TYPE,
-                "writes need Content-Type: application/json",
-            );
-        }
-        if let Some(token) = &access.token {
-            let given = headers
-                .get(header::AUTHORIZATION)
-                .and_then(|a| a.to_str().ok())
-                .and_then(|a| a.strip_prefix("Bearer "));
-            if given != Some(token.as_str()) {
-                return error(
-                    StatusCode::UNAUTHORIZED,
-                    "writes need the token: Authorization: Bearer TOKEN (see --token-file)",
-                );
-            }
-        }
+    let text = |name| headers.get(name).map(|v| v.to_str().unwrap_or(""));
+    let facts = RequestFacts {
+        read: matches!(
+            *request.method(),
+            axum::http::Method::GET | axum::http::Method::HEAD
+        ),
+        host: text(header::HOST).unwrap_or(""),
+        origin: text(header::ORIGIN),
+        content_type: text(header::CONTENT_TYPE),
+        authorization: text(header::AUTHORIZATION),
+    };
+    if let Err(refusal) = access.check(&facts) {
+        let status = StatusCode::from_u16(refusal.status).unwrap_or(StatusCode::FORBIDDEN);
+        return error(status, &refusal.message);
     }
     next.run(request).await
 }
