@@ -147,7 +147,7 @@ fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instructio
                 let pointer = pointer_number(token).map_err(|m| {
                     format!(
                         "{mnemonic} operand 1: {m}",
-                        mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+                        mnemonic = ecam_core::excerpt::excerpt(mnemonic)
                     )
                 })?;
                 if call && pointer == flow::END_POINTER {
@@ -173,7 +173,7 @@ fn flow_instruction(mnemonic: &str, tokens: &[&str]) -> Option<Result<Instructio
         } else {
             Err(format!(
                 "{mnemonic} takes no operands",
-                mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+                mnemonic = ecam_core::excerpt::excerpt(mnemonic)
             ))
         }
     };
@@ -359,7 +359,7 @@ fn compare_contact(mnemonic: &str, ops: &[Operand]) -> Result<Instruction, Strin
     let Some((join, width, relation)) = comparison(mnemonic) else {
         return Err(format!(
             "unknown instruction `{mnemonic}`",
-            mnemonic = ecam_core::excerpt::excerpt(&mnemonic)
+            mnemonic = ecam_core::excerpt::excerpt(mnemonic)
         ));
     };
     arity(mnemonic, ops, &["S1", "S2"])?;

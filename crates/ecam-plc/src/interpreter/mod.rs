@@ -137,7 +137,7 @@ impl Interpreter {
             let index = next;
             next += 1;
             steps += 1;
-            if steps % crate::watchdog::CHECK_EVERY == 0 && over_time(steps) {
+            if steps.is_multiple_of(crate::watchdog::CHECK_EVERY) && over_time(steps) {
                 overrun_at = Some(last_jump.unwrap_or(statement.line));
                 break;
             }
