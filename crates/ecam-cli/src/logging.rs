@@ -36,6 +36,8 @@ pub fn init(verbose: u8, quiet: u8, extra: &[&str]) {
         .with_writer(std::io::stderr)
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .try_init();
+    // ethercrab's own log lines (target `ethercrab`).
+    ecam_ethercat::log_bridge::install(tracing::level_filters::LevelFilter::current());
 }
 
 #[cfg(test)]

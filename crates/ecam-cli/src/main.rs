@@ -11,6 +11,7 @@ mod paths;
 mod plot;
 mod progress;
 mod serve;
+mod signals;
 mod trace;
 
 use clap::{ArgAction, Parser, Subcommand};

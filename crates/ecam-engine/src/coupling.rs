@@ -12,6 +12,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::start_rule;
 use crate::steady::Steady;
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
 
@@ -50,6 +51,9 @@ pub(crate) struct Geometry {
     /// slave values differ and whose stroke is not accumulated.
     pub(crate) jumps_at_seam: bool,
     pub(crate) extent: Extent,
+    /// The table moves the slave both ways inside a cycle (for the start
+    /// rule, `start_rule.rs`).
+    turns_back: bool,
 }
 
 /// Largest single-turn range accepted (keeps every product far from overflow).
@@ -114,12 +118,25 @@ impl Geometry {
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
+            turns_back: curve.turns_back(),
         })
     }
 
     /// One stroke in output pulses (0 for a cam that does not accumulate).
     pub(crate) fn stroke_pulses(&self) -> f64 {
         to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+    }
+
+    /// What the start rule needs of the cycle: a stroke in pulses, which
+    /// way the slave goes while the master moves forward on a table that
+    /// never turns back (the sign of stroke × both zooms, 0 without a
+    /// stroke), and whether the table turns back.
+    pub(crate) fn strokes(&self) -> start_rule::StrokeGeometry {
+        start_rule::StrokeGeometry {
+            per_stroke: self.stroke_pulses(),
+            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
+            turns_back: self.turns_back,
+        }
     }
 
     /// The master zoom's denominator (the unit of table-input offsets).
@@ -199,7 +216,7 @@ impl Geometry {
     }
 
     /// Exact zoomed value of `table + strokes × stroke`, rounded once.
-    fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
+    pub(crate) fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
         let accumulated = mul_exact(strokes, self.stroke)
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
@@ -307,7 +324,9 @@ fn clamp_i64(v: i128) -> i64 {
 pub(crate) struct Engagement {
     /// Table input = master × num + `input_offset_num` (× den units).
     input_offset_num: i128,
-    /// Extra whole strokes chosen by [`SlaveAlign::NearestEquivalent`].
+    /// Whole strokes added to the master's cycle number: the cycle the
+    /// cam engaged in counts as the strokes the start rule chose
+    /// (`start_rule.rs`), not as its distance from the table's origin.
     shift: i128,
     /// Added to the zoomed table value.
     output_offset: i128,
@@ -361,13 +380,14 @@ impl Engagement {
         let place = geo.locate(t_engage);
         let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
-        let shift = match config.slave_align {
-            SlaveAlign::NearestEquivalent if geo.stroke != 0 => {
-                nearest_shift(geo, place.k, table, target)?
-            }
-            _ => 0,
-        };
-        let on_table = geo.zoomed(place.k.saturating_add(shift), table)?;
+        let strokes =
+            start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
+                geo.zoomed(n, table)
+            })?;
+        // The stroke count of the cycle the master is in is `strokes`:
+        // cycles count from there, not from the table's origin.
+        let shift = strokes.saturating_sub(place.k);
+        let on_table = geo.zoomed(strokes, table)?;
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
             SlaveAlign::Offset(o) => i128::from(o),
@@ -605,29 +625,6 @@ impl Engagement {
             velocity_ratio: slope * geo.zoom_factor(),
         })
     }
-}
-
-/// Whole strokes to add so the zoomed table value lands nearest `target`
-/// (document 001: start at master 20000 with slave −1500 → −2000).
-fn nearest_shift(geo: &Geometry, k: i128, table: f64, target: i128) -> Result<i128, EngineError> {
-    let base = geo.zoomed(k, table)?;
-    // One stroke moves the output by stroke × snum / sden.
-    let per_stroke = geo.stroke as f64 * geo.snum as f64 / geo.sden as f64;
-    let gap = target.checked_sub(base).ok_or(EngineError::SlaveOverflow)?;
-    let guess = libm::round(gap as f64 / per_stroke);
-    if !guess.is_finite() {
-        return Err(EngineError::SlaveOverflow);
-    }
-    let guess = guess as i128;
-    let mut best: Option<(i128, u128)> = None;
-    for shift in [guess.saturating_sub(1), guess, guess.saturating_add(1)] {
-        let value = geo.zoomed(k.saturating_add(shift), table)?;
-        let distance = value.abs_diff(target);
-        if best.is_none_or(|(_, d)| distance < d) {
-            best = Some((shift, distance));
-        }
-    }
-    Ok(best.map_or(0, |(shift, _)| shift))
 }
 
 #[cfg(test)]

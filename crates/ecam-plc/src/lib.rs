@@ -38,6 +38,7 @@ mod devices;
 mod hardware;
 mod interpreter;
 mod operation_error;
+mod remote_write;
 mod scan;
 mod timers;
 mod view;
@@ -51,6 +52,7 @@ pub use hardware::{
     WireError, record_pulses,
 };
 pub use operation_error::{CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, OperationError};
+pub use remote_write::{WriteRefusal, check_register_writes, check_table_load};
 pub use scan::Plc;
 pub use timers::{T_COUNT, Timers, timer_clock};
 pub use view::{Value, View, ViewError};

@@ -9,7 +9,7 @@
 //! it) and is queued for the PLC, which takes it at the start of its next
 //! scan period, as before: a write is seen by the next scan.
 
-use ecam_plc::{Devices, Plc};
+use ecam_plc::{Devices, Plc, WriteRefusal};
 
 use crate::write::WriteBatch;
 
@@ -21,6 +21,10 @@ pub struct Image {
     now_us: u64,
     scans: u64,
     running_cams: Vec<u16>,
+    /// The blocks the program's DECAMs name.
+    cam_blocks: Vec<u16>,
+    /// The master span of the table each running cam follows.
+    spans: Vec<(u16, i64)>,
     fault: Option<String>,
     /// Writes applied here but not yet in the PLC.
     pending: Vec<WriteBatch>,
@@ -55,6 +59,37 @@ impl Image {
         self.running_cams.contains(&block)
     }
 
+    /// The master span of the table the cam at `D{block}` follows, while
+    /// it runs (see [`ecam_plc::Plc::cam_table_span`]).
+    pub fn cam_table_span(&self, block: u16) -> Option<i64> {
+        self.spans
+            .iter()
+            .find_map(|&(b, span)| (b == block).then_some(span))
+    }
+
+    /// Checks that a table of `points` points may be loaded into the block
+    /// at `D{block}`, as [`ecam_plc::Plc::check_table_load`] does.
+    ///
+    /// # Errors
+    /// The refusal, naming why.
+    pub fn check_table_load(&self, block: u16, points: u16) -> Result<(), WriteRefusal> {
+        ecam_plc::check_table_load(
+            &self.devices,
+            self.cam_blocks.iter().copied(),
+            block,
+            points,
+        )
+    }
+
+    /// Checks client writes into data registers against the running cams,
+    /// as [`ecam_plc::Plc::check_register_writes`] does.
+    ///
+    /// # Errors
+    /// The refusal, naming the block and its error.
+    pub fn check_register_writes(&self, writes: &[(u16, i16)]) -> Result<(), WriteRefusal> {
+        ecam_plc::check_register_writes(&self.devices, self.running_cams.iter().copied(), writes)
+    }
+
     /// What stopped the program (the watchdog), if anything did.
     pub fn fault(&self) -> Option<&str> {
         self.fault.as_deref()
@@ -84,6 +119,14 @@ impl Image {
         self.scans = plc.scans();
         self.running_cams.clear();
         self.running_cams.extend(plc.running_cams());
+        self.cam_blocks.clear();
+        self.cam_blocks.extend(plc.cam_blocks());
+        self.spans.clear();
+        self.spans.extend(
+            self.running_cams
+                .iter()
+                .filter_map(|&b| plc.cam_table_span(b).map(|span| (b, span))),
+        );
         self.fault = plc.fault().map(ToString::to_string);
     }
 }

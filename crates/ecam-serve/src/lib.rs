@@ -86,10 +86,10 @@ mod write;
 
 pub use answer::answer_request;
 pub use bus::{
-    BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, DRIVE_WORDS, DriveView,
-    ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
+    BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, DRIVE_WORDS,
+    DriveView, ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
 };
-pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
+pub use clock::{BusTicks, MAX_LAG, Step, next_step, scan_loop, scan_on_bus_ticks, scan_period};
 pub use connections::{Activity, Busy as RequestBusy, Caps, Connections, Kind, Registration};
 pub use design_pool::{Busy, DesignPool, Outcome, Ticket};
 pub use device_json::{
@@ -118,8 +118,8 @@ pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
 pub use scan_time::ThreadCpuTime;
-pub use state::{Closer, Event, ServeInfo, Shared, Stats};
+pub use state::{Closer, Event, ServeInfo, Shared, Stats, WriteError};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
-pub use table_load::{TableLoad, WhileRunning, parse_table_load};
+pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use web_guard::{Access, MIN_TOKEN_LEN, Refusal, RequestFacts, TokenError, read_token};
 pub use write::{LineError, Slot, WriteBatch};

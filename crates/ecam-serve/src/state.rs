@@ -20,6 +20,7 @@ use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 
 use ecam_plc::Devices;
 use ecam_plc::Plc;
+use ecam_plc::WriteRefusal;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
@@ -114,6 +115,72 @@ pub enum Event {
     /// The watchdog stopped the program: `file:line: message (D8061=code,
     /// M8061=1)`; it stays stopped until the server is restarted.
     ProgramStopped(String),
+}
+
+/// A client's write that was not made; device memory is as it was.
+#[derive(Debug)]
+pub enum WriteError {
+    /// The program's cams refuse it: it would leave a running cam's table
+    /// invalid, or a table load aims where no table may go.
+    Refused(WriteRefusal),
+    /// The journal could not be written (`--state`), so the write was not
+    /// applied either.
+    Journal(JournalError),
+}
+
+impl WriteError {
+    /// The Modbus exception a client gets: 03 (illegal data value) for a
+    /// write the cams refuse, 04 (server device failure) for one that
+    /// could not be made durable.
+    pub fn exception(&self) -> Exception {
+        match self {
+            Self::Refused(_) => Exception::IllegalDataValue,
+            Self::Journal(_) => Exception::ServerDeviceFailure,
+        }
+    }
+
+    /// The HTTP status a client gets: 409 (conflict with the running
+    /// program) for a refusal, except 400 for a table load into the
+    /// special registers (never right); 500 when it could not be made
+    /// durable.
+    pub fn http_status(&self) -> u16 {
+        match self {
+            Self::Refused(WriteRefusal::SpecialRegisters { .. }) => 400,
+            Self::Refused(_) => 409,
+            Self::Journal(_) => 500,
+        }
+    }
+
+    /// The PLC error code behind a refusal, if any (6781, 6782, 6783).
+    pub fn code(&self) -> Option<u16> {
+        match self {
+            Self::Refused(refusal) => refusal.code(),
+            Self::Journal(_) => None,
+        }
+    }
+}
+
+impl core::fmt::Display for WriteError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Refused(refusal) => write!(f, "{refusal}"),
+            Self::Journal(err) => write!(f, "not written: {err}"),
+        }
+    }
+}
+
+impl std::error::Error for WriteError {}
+
+impl From<WriteRefusal> for WriteError {
+    fn from(refusal: WriteRefusal) -> Self {
+        Self::Refused(refusal)
+    }
+}
+
+impl From<JournalError> for WriteError {
+    fn from(err: JournalError) -> Self {
+        Self::Journal(err)
+    }
 }
 
 /// Locks `mutex`, carrying on after a panic elsewhere: device memory is
@@ -216,15 +283,24 @@ impl Shared {
         out
     }
 
-    /// Makes `batch` durable (when there is a state directory), then applies
-    /// it to device memory as clients see it; the PLC takes it at the start
-    /// of its next scan period. Once this returns `Ok` the write may be
+    /// Checks `batch` against the program's running cams (as clients see
+    /// them, in the [`Image`]), makes it durable (when there is a state
+    /// directory), then applies it to device memory as clients see it; the
+    /// PLC takes it at the start of its next scan period. Never waits for a
+    /// scan. Once this returns `Ok` the write may be
     /// acknowledged.
     ///
     /// # Errors
-    /// The journal could not be written; nothing was applied.
-    pub fn write(&self, batch: &WriteBatch) -> Result<(), JournalError> {
+    /// [`WriteError::Refused`] when it would leave a running cam's table
+    /// invalid ([`ecam_plc::check_register_writes`]); [`WriteError::Journal`]
+    /// when the journal could not be written. Either way nothing was
+    /// applied.
+    pub fn write(&self, batch: &WriteBatch) -> Result<(), WriteError> {
         let mut journal = lock(&self.journal);
+        let words: Vec<(u16, i16)> = batch.words().collect();
+        if !words.is_empty() {
+            lock(&self.image).check_register_writes(&words)?;
+        }
         if let Some(journal) = journal.as_mut() {
             self.append(journal, batch)?;
         }
