@@ -26,10 +26,7 @@ use core::sync::atomic::{AtomicBool, Ordering};
 
 use crate::limits::MAX_RUN_WORK;
 
-/// Work units one control cycle costs.
-pub const CYCLE_WORK: u64 = 10;
-/// Work units one instruction, or one expression term at one point, costs.
-pub const STEP_WORK: u64 = 1;
+pub use crate::limits::{CYCLE_WORK, STEP_WORK};
 
 /// The work a run may still do.
 #[derive(Clone, Debug)]

@@ -27,7 +27,7 @@ use ecam_core::budget::{Budget, OverBudget};
 use serde_json::{Value, json};
 
 use crate::limits::{DESIGN_QUEUE, DESIGN_WORKERS};
-use crate::state::lock;
+use crate::sync::lock;
 
 type Job = Box<dyn FnOnce() + Send>;
 

@@ -80,6 +80,7 @@ mod retain;
 mod scan_time;
 mod state;
 mod state_file;
+mod sync;
 mod table_load;
 mod web_guard;
 mod write;

@@ -16,7 +16,7 @@ use std::collections::HashSet;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use ecam_plc::Devices;
 use ecam_plc::Plc;
@@ -31,6 +31,7 @@ use crate::journal::{Journal, JournalError};
 use crate::limits::Limits;
 use crate::pdu::{Exception, Response};
 use crate::retain::LatchedImage;
+pub(crate) use crate::sync::lock;
 use crate::write::WriteBatch;
 
 /// How the server was started (for `GET /api/status`).
@@ -181,12 +182,6 @@ impl From<JournalError> for WriteError {
     fn from(err: JournalError) -> Self {
         Self::Journal(err)
     }
-}
-
-/// Locks `mutex`, carrying on after a panic elsewhere: device memory is
-/// plain data, always in a usable state.
-pub(crate) fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
-    mutex.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// Everything the server threads share.
