@@ -46,6 +46,7 @@ extern crate std;
 
 pub mod budget;
 mod curve;
+pub mod drive_check;
 mod error;
 pub mod excerpt;
 #[cfg(feature = "std")]
@@ -58,6 +59,7 @@ mod kinematics;
 pub mod law;
 pub mod limits;
 pub mod register_image;
+pub mod segments;
 pub mod table;
 
 pub use curve::{CamCurve, Cursor};

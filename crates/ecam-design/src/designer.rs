@@ -15,6 +15,7 @@ use ecam_core::generator::schema;
 use ecam_core::generator::{DesignCurve, Field, FieldKind};
 use ecam_core::table::{Summary, derivatives};
 use ecam_core::{CamCurve, MotionLaw};
+use serde::de::DeserializeSeed;
 use serde_json::{Value, json};
 
 use crate::generate;
@@ -150,7 +151,14 @@ pub fn key_points_json(body: &Value) -> Result<Value, String> {
 const DESIGN_SAMPLES_PER_PIECE: usize = 24;
 
 fn design_samples(design: &DesignCurve) -> Value {
-    let samples = design.sample_pieces(DESIGN_SAMPLES_PER_PIECE);
+    samples_json(&design.sample_pieces(DESIGN_SAMPLES_PER_PIECE))
+}
+
+/// Samples per segment of a segment cam (polynomials are smooth; both ends
+/// of every segment are drawn, so a step at a point is a vertical edge).
+const SEGMENT_SAMPLES: usize = 48;
+
+fn samples_json(samples: &[(f64, ecam_core::Kinematics)]) -> Value {
     json!({
         "master": samples.iter().map(|(m, _)| *m).collect::<Vec<_>>(),
         "s": samples.iter().map(|(_, k)| k.s).collect::<Vec<_>>(),
@@ -209,7 +217,13 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
         .clone()
         .unwrap_or_else(|| derivatives::of_points(points));
     let summary = Summary::of(&g.table);
-    let design_peaks = g.design.as_ref().map(design_peaks);
+    let design_peaks = g.design.as_ref().map(design_peaks).or_else(|| {
+        g.segments.as_ref().map(|cam| {
+            cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
+                (v.max(p.peak_velocity), a.max(p.peak_acceleration))
+            })
+        })
+    });
     let outputs: serde_json::Map<String, Value> = g
         .outputs
         .iter()
@@ -230,7 +244,14 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
         // the table, sampled densely: a long section of the table (a dwell)
         // would otherwise draw its end points' accelerations joined by a
         // slope the motion never has.
-        "design": g.design.as_ref().map(design_samples),
+        "design": g.design.as_ref().map(design_samples).or_else(|| {
+            g.segments
+                .as_ref()
+                .map(|cam| samples_json(&cam.sample_segments(SEGMENT_SAMPLES)))
+        }),
+        // A segment cam: its points with every boundary value it was
+        // solved for, the continuity at each point and each segment's peaks.
+        "segments": g.segments.as_ref().map(segments_json),
         "sync": g.sync.map(|(lo, hi)| vec![lo, hi]),
         "outputs": outputs,
         "summary": {
@@ -250,6 +271,105 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
             "seam": summary.seam.to_string(),
         },
     }))
+}
+
+/// What the designer shows of a segment cam: its points (as solved), the
+/// continuity at every point and each segment's peaks.
+pub fn segments_json(cam: &ecam_core::segments::SegmentCam) -> Value {
+    json!({
+        "start": cam.start(),
+        "segment": cam.segments(),
+        "continuity": cam.continuity(),
+        "peaks": cam.peaks(),
+    })
+}
+
+/// The lines `ecam table show` prints for a segment cam: the continuity at
+/// every point and each segment's law, `Cv`/`Ca`/`Cj` and peaks.
+pub fn segments_text(cam: &ecam_core::segments::SegmentCam) -> String {
+    let report = cam.continuity();
+    let short = |x: Option<f64>| match x {
+        None => "–".to_string(),
+        Some(v) if v.is_infinite() => "∞".to_string(),
+        Some(v) => format!("{v:.4}"),
+    };
+    let mut out = format!(
+        "segment cam:       continuity {} (seam {})\n",
+        report.cam, report.seam
+    );
+    let points: Vec<String> = report
+        .joints
+        .iter()
+        .map(|j| {
+            format!(
+                "{} at {}: {}",
+                if j.seam { "seam" } else { "point" },
+                j.master,
+                j.class
+            )
+        })
+        .collect();
+    out.push_str(&format!("  points:          {}\n", points.join(", ")));
+    for p in cam.peaks() {
+        out.push_str(&format!(
+            "  segment {:<2}      {:<26} master {} .. {}, rise {}: Cv {} Ca {} Cj {}; peaks {} pulses/count, {} pulses/count², {} pulses/count³\n",
+            p.segment,
+            p.law.name(),
+            p.master.0,
+            p.master.1,
+            p.rise,
+            short(p.cv),
+            short(p.ca),
+            short(p.cj),
+            sig(p.peak_velocity),
+            sig(p.peak_acceleration),
+            sig(p.peak_jerk),
+        ));
+    }
+    out
+}
+
+/// Six significant digits, plainly where that reads well.
+fn sig(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x.is_infinite() {
+            "∞".into()
+        } else {
+            "0".into()
+        };
+    }
+    if (1e-3..1e6).contains(&x.abs()) {
+        let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
+        let text = format!("{x:.decimals$}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        format!("{x:.5e}")
+    }
+}
+
+/// "Make continuous": `{"start": {...}, "segment": [...]}` → the same with
+/// every free velocity, acceleration and jerk filled in from the
+/// neighbouring segments ([`ecam_core::segments::make_continuous`]).
+///
+/// # Errors
+/// A body of the wrong shape, or a cam that cannot be made continuous (the
+/// message names the point).
+pub fn segments_continuous_json(body: &Value) -> Result<Value, String> {
+    let generator = schema::find("segments").ok_or("no segments generator")?;
+    let mut params = serde_json::Map::new();
+    for key in ["start", "segment"] {
+        if let Some(v) = body.get(key) {
+            params.insert(key.to_string(), v.clone());
+        }
+    }
+    let values = crate::params::ValuesSeed::new(generator, true)
+        .deserialize(Value::Object(params))
+        .map_err(|e| ecam_core::io::plain_serde_message(&e.to_string()))?;
+    let p: ecam_core::generator::segments::Params =
+        crate::params::typed(values).map_err(|e| format!("{e:#}"))?;
+    let (start, segment) =
+        ecam_core::segments::make_continuous(p.start, p.segment).map_err(|e| e.to_string())?;
+    Ok(json!({ "start": start, "segment": segment }))
 }
 
 /// The largest |velocity| and |acceleration| of the design curve, from the

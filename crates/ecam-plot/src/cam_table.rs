@@ -475,6 +475,45 @@ pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &
         from = CamPoint::new(segment.master_end, segment.slave_end);
     }
     let key_points: Vec<CamPoint> = profile.key_points().collect();
+    let title = format!(
+        "cam table: {name} (lines: its motion laws, exact; arrows: their steps as impulses; dots: its {} key points)",
+        key_points.len()
+    );
+    exact_chart(&samples, &key_points, "key points", sync, title)
+}
+
+/// The plot of a segment cam ([`ecam_core::segments::SegmentCam`]): each
+/// segment's solved law evaluated exactly at dense samples (both ends of
+/// every segment, so a step at a point is a vertical edge and an impulse in
+/// the next panel), its interpolation points dotted over the displacement.
+pub fn segment_cam_chart(
+    cam: &ecam_core::segments::SegmentCam,
+    sync: Option<(i64, i64)>,
+    name: &str,
+) -> Chart {
+    let per_segment = (DESIGN_SAMPLES / cam.segments().len().max(1)).clamp(8, DESIGN_SAMPLES);
+    let samples = cam.sample_segments(per_segment);
+    let points: Vec<CamPoint> = cam
+        .points()
+        .iter()
+        .map(|p| CamPoint::new(p.master, p.slave))
+        .collect();
+    let title = format!(
+        "segment cam {name}: each segment's law, exact ({} interpolation points dotted)",
+        points.len()
+    );
+    exact_chart(&samples, &points, "interpolation points", sync, title)
+}
+
+/// Four panels of exact samples (two at a master where a step is), `marks`
+/// dotted over the displacement.
+fn exact_chart(
+    samples: &[(f64, Kinematics)],
+    marks: &[CamPoint],
+    marks_name: &str,
+    sync: Option<(i64, i64)>,
+    title: String,
+) -> Chart {
     let x: Vec<f64> = samples.iter().map(|(m, _)| *m).collect();
     let of = |f: fn(&Kinematics) -> f64| samples.iter().map(|(_, k)| f(k)).collect::<Vec<_>>();
     let panels = vec![
@@ -483,9 +522,9 @@ pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &
             vec![
                 line("profile", x.clone(), of(|k| k.s)),
                 Trace {
-                    name: "key points".into(),
-                    x: masters(&key_points),
-                    y: slaves(&key_points),
+                    name: marks_name.into(),
+                    x: masters(marks),
+                    y: slaves(marks),
                     style: Style::Markers,
                 },
             ],
@@ -501,10 +540,6 @@ pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &
         ),
         exact_panel(JERK, "profile", &x, of(|k| k.j), &of(|k| k.a), JERK_IMPULSE),
     ];
-    let title = format!(
-        "cam table: {name} (lines: its motion laws, exact; arrows: their steps as impulses; dots: its {} key points)",
-        key_points.len()
-    );
     chart_over(title, panels, sync)
 }
 
@@ -593,6 +628,7 @@ mod tests {
             sync: Some((0, 10)),
             generator: None,
             kinematics,
+            segments: None,
         }
     }
 

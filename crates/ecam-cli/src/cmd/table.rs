@@ -10,8 +10,9 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::bail;
+use anyhow::{Context, bail};
 use ecam_core::CamCurve;
+use ecam_core::drive_check::DriveReport;
 use ecam_core::io::{self, AnyTable, Columns, TableFile};
 use ecam_core::table::Summary;
 use ecam_plot::cam_table;
@@ -51,6 +52,11 @@ pub struct ShowArgs {
     /// The machine, for peaks in physical units.
     #[command(flatten)]
     pub machine: MachineArgs,
+    /// Check the cam against a drive (TOML: `[mechanics]`, `[limits]`; see
+    /// docs/design.md): motor speed, torque and RMS torque at
+    /// --master-speed, and the fastest machine speed the drive allows.
+    #[arg(long, value_name = "FILE.toml")]
+    pub drive: Option<PathBuf>,
 }
 
 /// Arguments of `ecam table plot`.
@@ -106,6 +112,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         sync: generated.sync,
         generator: Some(generated.name.to_string()),
         kinematics: generated.kinematics,
+        segments: generated.segments.map(Box::new),
     };
     let columns = if output.minimal {
         Columns::Minimal
@@ -124,8 +131,11 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         eprintln!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
-        let design = generated.design.as_ref();
-        plot::draw_chart(cam_table::chart(&file, design, generated.name), path)?;
+        let chart = match &file.segments {
+            Some(cam) => cam_table::segment_cam_chart(cam, file.sync, generated.name),
+            None => cam_table::chart(&file, generated.design.as_ref(), generated.name),
+        };
+        plot::draw_chart(chart, path)?;
     }
     Ok(())
 }
@@ -152,6 +162,13 @@ struct ShowJson<'a> {
     /// table's (`of` says which).
     #[serde(skip_serializing_if = "Option::is_none")]
     at_speed: Option<AtSpeed>,
+    /// A segment cam's points, continuity at every point and per-segment
+    /// peaks (files of `ecam table gen segments`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    segments: Option<serde_json::Value>,
+    /// `--drive`: the drive check.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    drive: Option<&'a DriveReport>,
 }
 
 fn peaks(summary: &Summary) -> Peaks {
@@ -163,6 +180,16 @@ fn peaks(summary: &Summary) -> Peaks {
 
 /// The design's peaks from a file's derivative columns, when it has them.
 fn design_peaks(file: &TableFile) -> Option<Peaks> {
+    // A segment cam's own peaks are exact (closed forms), not those at the points.
+    if let Some(cam) = &file.segments {
+        let (v, a) = cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
+            (v.max(p.peak_velocity), a.max(p.peak_acceleration))
+        });
+        return Some(Peaks {
+            peak_velocity: v,
+            peak_acceleration: a,
+        });
+    }
     let known = file.kinematics.as_ref()?;
     let peak = |f: fn(&ecam_core::Kinematics) -> f64| {
         known.iter().map(f).fold(0.0_f64, |m, v| m.max(v.abs()))
@@ -176,8 +203,21 @@ fn design_peaks(file: &TableFile) -> Option<Peaks> {
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
     let table = io::read(&args.file)?;
     let kind = table.kind();
+    let drive = match &args.drive {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read drive file {}", path.display()))?;
+            let report = ecam_design::check_table(&table, &text, args.machine.master_speed)
+                .with_context(|| format!("drive file {}", path.display()))?;
+            Some(report)
+        }
+        None => None,
+    };
+    let extra = Extra {
+        drive: drive.as_ref(),
+    };
     match table {
-        AnyTable::Points(file) => show_points(args, &file),
+        AnyTable::Points(file) => show_points(args, &file, &extra),
         AnyTable::Uniform(table) => {
             let values = table.values().len();
             // Document 002: N values make N − 1 pieces over CamCounts.
@@ -186,14 +226,35 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
                 "evenly spaced table, a value every {} counts",
                 short(spacing)
             );
-            show_curve(args, kind, &what, values, &table, Source::UniformPieces)
+            show_curve(
+                args,
+                kind,
+                &what,
+                values,
+                &table,
+                Source::UniformPieces,
+                &extra,
+            )
         }
         AnyTable::Profile(profile) => {
             let key_points = profile.segments().len().saturating_add(1);
             let what = "segment profile, key points joined by motion laws, evaluated exactly";
-            show_curve(args, kind, what, key_points, &profile, Source::ProfileLaws)
+            show_curve(
+                args,
+                kind,
+                what,
+                key_points,
+                &profile,
+                Source::ProfileLaws,
+                &extra,
+            )
         }
     }
+}
+
+/// What `show` adds to any table kind: the drive check.
+struct Extra<'a> {
+    drive: Option<&'a DriveReport>,
 }
 
 /// `show` for an evenly spaced table or a segment profile: its summary is
@@ -206,6 +267,7 @@ fn show_curve(
     points: usize,
     curve: &impl CamCurve,
     source: Source,
+    extra: &Extra<'_>,
 ) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
     let summary = Summary::of(curve);
@@ -223,6 +285,8 @@ fn show_curve(
             summary: &summary,
             design: None,
             at_speed: args.machine.at_speed(&table, source),
+            segments: None,
+            drive: extra.drive,
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
@@ -238,16 +302,23 @@ fn show_curve(
     )?;
     table_peaks::write(&mut out, None, (&table, source), None, &args.machine)?;
     writeln!(out, "continuity:        {}", summary.continuity)?;
+    if let Some(drive) = extra.drive {
+        writeln!(out, "{drive}")?;
+    }
     Ok(())
 }
 
-fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
+fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::Result<()> {
     // Written through a handle, not `println!`, so a closed pipe
     // (`ecam table show t.csv | head -1`) is an error, not a panic.
     let mut out = std::io::stdout().lock();
     let summary = Summary::of(&file.table);
     let table = peaks(&summary);
     let design = design_peaks(file);
+    let design_source = match file.segments {
+        Some(_) => Source::ProfileLaws,
+        None => Source::DesignColumns,
+    };
     let points = file.table.points();
     let (first, last) = match (points.first(), points.last()) {
         (Some(f), Some(l)) => (*f, *l),
@@ -266,9 +337,11 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
             summary: &summary,
             design,
             at_speed: match &design {
-                Some(design) => args.machine.at_speed(design, Source::DesignColumns),
+                Some(design) => args.machine.at_speed(design, design_source),
                 None => args.machine.at_speed(&table, Source::SampledTable),
             },
+            segments: file.segments.as_deref().map(ecam_design::segments_json),
+            drive: extra.drive,
         };
         writeln!(out, "{}", serde_json::to_string(&json)?)?;
         return Ok(());
@@ -293,7 +366,7 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
         .min();
     table_peaks::write(
         &mut out,
-        design.as_ref().map(|d| (d, Source::DesignColumns)),
+        design.as_ref().map(|d| (d, design_source)),
         (&table, Source::SampledTable),
         shortest,
         &args.machine,
@@ -301,6 +374,12 @@ fn show_points(args: &ShowArgs, file: &TableFile) -> anyhow::Result<()> {
     writeln!(out, "continuity:        {}", summary.continuity)?;
     if let Some((lo, hi)) = file.sync {
         writeln!(out, "sync zone:         master {lo} .. {hi}")?;
+    }
+    if let Some(cam) = &file.segments {
+        write!(out, "{}", ecam_design::segments_text(cam))?;
+    }
+    if let Some(drive) = extra.drive {
+        writeln!(out, "{drive}")?;
     }
     Ok(())
 }
@@ -339,7 +418,10 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
                 .generator
                 .clone()
                 .unwrap_or_else(|| display_name(&args.file));
-            cam_table::chart(&file, None, &name)
+            match &file.segments {
+                Some(cam) => cam_table::segment_cam_chart(cam, file.sync, &name),
+                None => cam_table::chart(&file, None, &name),
+            }
         }
         AnyTable::Uniform(table) => {
             cam_table::uniform_chart(&table, args.sync, &display_name(&args.file))

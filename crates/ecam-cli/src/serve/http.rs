@@ -13,6 +13,8 @@
 //! | `GET /api/generators` | generator names, parameters, defaults |
 //! | `POST /api/table/gen` `{"generator": "rotary-cut", "params": {...}}` | a generated table with its curves |
 //! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
+//! | `POST /api/segments/continuous` `{"start": {...}, "segment": [...]}` | a segment cam's free boundary values filled in from the neighbours |
+//! | `POST /api/drive/check` `{"generator", "params", "drive", "master_speed"}` | the design checked against a drive (docs/design.md) |
 //! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block the program names (or one clear of them, below D8000), one durable write (409 while its cam runs, unless `at-seam`) |
 //! | `GET /api/live?block=2000&rate=20` (WebSocket) | the cam's master, slave, speeds and sync output, [`super::live`] |
 //! | `GET /api/ethercat` | `--ethercat`: the line and every drive (state, positions, faults, lateness) |
@@ -181,6 +183,8 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         )
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
+        .route("/api/segments/continuous", post(segments_continuous))
+        .route("/api/drive/check", post(drive_check))
         .route("/api/table/load", post(table_load))
         .route("/api/live", get(super::live::live))
         .route("/api/ethercat", get(ethercat_status))
@@ -365,6 +369,20 @@ async fn table_gen(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
 async fn key_points(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
     design(&shared, move |_| {
         json_call(&body, ecam_design::key_points_json)
+    })
+    .await
+}
+
+async fn segments_continuous(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    design(&shared, move |_| {
+        json_call(&body, ecam_design::segments_continuous_json)
+    })
+    .await
+}
+
+async fn drive_check(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    design(&shared, move |_| {
+        json_call(&body, ecam_design::drive_check_json)
     })
     .await
 }

@@ -28,4 +28,5 @@ mod serve_soak;
 mod simulate;
 mod table;
 mod table_design;
+mod table_segments;
 mod table_truth;

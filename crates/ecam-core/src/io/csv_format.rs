@@ -149,6 +149,7 @@ impl TableFile {
             sync: None,
             generator: None,
             kinematics: derivative_columns.map(|_| kinematics),
+            segments: None,
         })
     }
 
@@ -200,6 +201,7 @@ mod tests {
             sync: Some((10, 20)),
             generator: Some("test".into()),
             kinematics: None,
+            segments: None,
         }
     }
 

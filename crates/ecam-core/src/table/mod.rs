@@ -28,8 +28,10 @@ mod uniform;
 pub use cam_table::CamTable;
 pub use function::sample_function;
 pub use point::{CamPoint, PointTable};
+pub(crate) use resolution::distribute;
 pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
 pub use segment::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION, Segment, SegmentProfile};
+pub(crate) use segment::{sample_spans, sample_uniform};
 pub use summary::{Continuity, Summary};
 pub use uniform::{MAX_CAM_COUNTS, UniformTable};
 
