@@ -203,7 +203,7 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
             "points {asked} is above the limit of {MAX_DESIGN_POINTS} points per design request"
         ));
     }
-    let g = generate::from_json_within(name, params, budget).map_err(|e| format!("{e:#}"))?;
+    let g = generate::from_json_within(name, params, budget).map_err(|e| e.to_string())?;
     let points = g.table.points();
     if points.len() > MAX_DESIGN_POINTS {
         return Err(format!(

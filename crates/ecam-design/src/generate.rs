@@ -6,8 +6,8 @@
 //! generator's `Params` in `ecam_core::generator`); the values given
 //! override what they set. Numeric ratios accept arithmetic (`5/3`, `3*pi`).
 
-use anyhow::{Context, bail};
 use ecam_core::budget::Budget;
+use ecam_core::excerpt::excerpt;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
@@ -19,6 +19,7 @@ use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
 use serde::de::DeserializeSeed;
 use serde_json::Value;
 
+use crate::error::GenerateError;
 use crate::expr::MasterFunction;
 use crate::params::{Param, Values, ValuesSeed, typed};
 
@@ -75,7 +76,7 @@ fn kinematics_along(table: &PointTable, curve: &impl CamCurve) -> Vec<Kinematics
 ///
 /// # Errors
 /// Unknown generator names or parameters, or bad values.
-pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
+pub fn from_toml(name: &str, params: toml::Table) -> Result<Generated, GenerateError> {
     from_toml_within(name, params, &mut Budget::per_run())
 }
 
@@ -87,12 +88,14 @@ pub fn from_toml_within(
     name: &str,
     params: toml::Table,
     budget: &mut Budget,
-) -> anyhow::Result<Generated> {
+) -> Result<Generated, GenerateError> {
     let generator = find(name)?;
     let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Value::Table(params))
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
-        .with_context(|| format!("parameters of generator {name:?}"))?;
+        .map_err(|e| GenerateError::Params {
+            generator: name.to_string(),
+            message: ecam_core::io::plain_serde_message(&e.to_string()),
+        })?;
     generate_within(generator, values, budget)
 }
 
@@ -100,7 +103,7 @@ pub fn from_toml_within(
 ///
 /// # Errors
 /// As [`from_toml`]; a value that is not an object.
-pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Generated> {
+pub fn from_json(name: &str, params: serde_json::Value) -> Result<Generated, GenerateError> {
     from_json_within(name, params, &mut Budget::per_run())
 }
 
@@ -113,17 +116,17 @@ pub fn from_json_within(
     name: &str,
     params: serde_json::Value,
     budget: &mut Budget,
-) -> anyhow::Result<Generated> {
+) -> Result<Generated, GenerateError> {
     let generator = find(name)?;
     if !params.is_object() {
-        bail!(
-            "\"params\" must be an object of numbers, strings and booleans, e.g. {{\"points\": 361}}"
-        );
+        return Err(GenerateError::NotAnObject);
     }
     let values = ValuesSeed::new(generator, true)
         .deserialize(params)
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
-        .with_context(|| format!("parameters of generator {name:?}"))?;
+        .map_err(|e| GenerateError::Params {
+            generator: name.to_string(),
+            message: ecam_core::io::plain_serde_message(&e.to_string()),
+        })?;
     generate_within(generator, values, budget)
 }
 
@@ -131,10 +134,9 @@ pub fn from_json_within(
 ///
 /// # Errors
 /// An unknown name; the message lists the known ones.
-pub fn find(name: &str) -> anyhow::Result<&'static Schema> {
-    schema::find(name).with_context(|| {
-        let known: Vec<&str> = schema::GENERATORS.iter().map(|g| g.name).collect();
-        format!("unknown generator {name:?}; known: {}", known.join(", "))
+pub fn find(name: &str) -> Result<&'static Schema, GenerateError> {
+    schema::find(name).ok_or_else(|| GenerateError::UnknownGenerator {
+        name: name.to_string(),
     })
 }
 
@@ -144,7 +146,7 @@ pub fn find(name: &str) -> anyhow::Result<&'static Schema> {
 /// # Errors
 /// Values of the wrong kind or name, or parameters the generator refuses
 /// (with the PLC's error code).
-pub fn generate(generator: &Schema, values: Values) -> anyhow::Result<Generated> {
+pub fn generate(generator: &Schema, values: Values) -> Result<Generated, GenerateError> {
     generate_within(generator, values, &mut Budget::per_run())
 }
 
@@ -160,8 +162,8 @@ pub fn generate_within(
     generator: &Schema,
     mut values: Values,
     budget: &mut Budget,
-) -> anyhow::Result<Generated> {
-    budget.check()?;
+) -> Result<Generated, GenerateError> {
+    budget.check().map_err(GenerateError::from)?;
     match generator.name {
         "s-curve" => s_curve_table(&typed(values)?),
         "rotary-cut" => rotary_cut_table(&typed(values)?),
@@ -193,7 +195,7 @@ pub fn default_values(g: &Schema) -> serde_json::Map<String, Value> {
 
 // ---------------------------------------------------------------- s-curve
 
-fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
+fn s_curve_table(params: &s_curve::Params) -> Result<Generated, GenerateError> {
     let g = s_curve::generate(params)?;
     Ok(Generated {
         outputs: vec![
@@ -229,7 +231,7 @@ fn ratio_text(ratio: f64) -> String {
     }
 }
 
-fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
+fn rotary_cut_table(params: &CutParams) -> Result<Generated, GenerateError> {
     let g = rotary_cut::generate(params)?;
     Ok(Generated {
         outputs: vec![
@@ -257,7 +259,7 @@ fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
     })
 }
 
-fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
+fn fly_saw_table(params: &CutParams, cycle: bool) -> Result<Generated, GenerateError> {
     if !cycle {
         let g = flying_saw::generate(params)?;
         return Ok(Generated {
@@ -281,8 +283,14 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
     let (m_end, s_end) = (forward.table.master_last(), forward.table.slave_last());
     let mut points = forward.table.points().to_vec();
     for q in back.table.points().iter().skip(1) {
-        let master = q.master.checked_add(m_end).context("master overflow")?;
-        let slave = q.slave.checked_add(s_end).context("slave overflow")?;
+        let master = q
+            .master
+            .checked_add(m_end)
+            .ok_or(GenerateError::Overflow { what: "master" })?;
+        let slave = q
+            .slave
+            .checked_add(s_end)
+            .ok_or(GenerateError::Overflow { what: "slave" })?;
         points.push(CamPoint::new(master, slave));
     }
     let table = PointTable::new(points)?;
@@ -310,31 +318,23 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
 /// # Errors
 /// What is wrong with `text`, naming the flag.
 pub fn parse_key(text: &str) -> Result<KeyPoint, String> {
+    let quoted = excerpt(text);
     KeyPoint::parse_line(text).map_err(|e| match e {
-        LineError::TooFew => format!(
-            "--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]",
-            text = ecam_core::excerpt::excerpt(text)
-        ),
-        LineError::TooMany => format!(
-            "--key {text:?}: too many fields",
-            text = ecam_core::excerpt::excerpt(text)
-        ),
-        LineError::NotInteger { what, text: field } => {
-            format!(
-                "{what} {field:?} in --key {text:?} is not an integer",
-                text = ecam_core::excerpt::excerpt(text),
-                field = ecam_core::excerpt::excerpt(field)
-            )
+        LineError::TooFew => {
+            format!("--key {quoted:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]")
         }
-        LineError::UnknownCurve(c) => format!(
-            "unknown curve {c:?}; use {}",
-            CurveType::NAMES,
-            c = ecam_core::excerpt::excerpt(c)
-        ),
+        LineError::TooMany => format!("--key {quoted:?}: too many fields"),
+        LineError::NotInteger { what, text: field } => {
+            let field = excerpt(field);
+            format!("{what} {field:?} in --key {quoted:?} is not an integer")
+        }
+        LineError::UnknownCurve(c) => {
+            format!("unknown curve {:?}; use {}", excerpt(c), CurveType::NAMES)
+        }
         LineError::BadResolution(r) => {
             format!(
-                "resolution {r:?} in --key {text:?} must be 0..=512",
-                text = ecam_core::excerpt::excerpt(text)
+                "resolution {:?} in --key {quoted:?} must be 0..=512",
+                excerpt(r)
             )
         }
     })
@@ -349,22 +349,19 @@ pub fn parse_key_lines(text: &str) -> Result<Vec<KeyPoint>, String> {
         let what = match e {
             LineError::TooFew => "expected MASTER SLAVE [CURVE [RESOLUTION]]".to_string(),
             LineError::TooMany => "too many fields".to_string(),
-            LineError::NotInteger { what, text } => format!(
-                "{what} {text:?} is not an integer",
-                text = ecam_core::excerpt::excerpt(text)
-            ),
-            LineError::UnknownCurve(c) => format!(
-                "unknown curve {c:?}; use {}",
-                CurveType::NAMES,
-                c = ecam_core::excerpt::excerpt(c)
-            ),
-            LineError::BadResolution(r) => format!("resolution {r:?} must be 0..=512"),
+            LineError::NotInteger { what, text } => {
+                format!("{what} {:?} is not an integer", excerpt(text))
+            }
+            LineError::UnknownCurve(c) => {
+                format!("unknown curve {:?}; use {}", excerpt(c), CurveType::NAMES)
+            }
+            LineError::BadResolution(r) => format!("resolution {:?} must be 0..=512", excerpt(r)),
         };
         format!("key point line {line}: {what}")
     })
 }
 
-fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
+fn key_points_table(params: &key_points::Params) -> Result<Generated, GenerateError> {
     let generated = key_points::generate(params)?;
     Ok(Generated {
         kinematics: Some(kinematics_along(&generated.table, &generated.profile)),
@@ -387,17 +384,12 @@ fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- function
 
-fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Generated> {
-    // Worded for every face: `--expr` on the command line, `expr` in a
-    // parameter file and over HTTP.
-    let expr = params.expr.as_deref().context(
-        "the function generator needs its expression `expr`, a function of the master x, \
-         e.g. 1000*sin(2*pi*x/36000)",
-    )?;
+fn function(params: &function::Params, budget: &mut Budget) -> Result<Generated, GenerateError> {
+    let expr = params.expr.as_deref().ok_or(GenerateError::MissingExpr)?;
     let (from, to, points) = (params.from, params.to, params.points);
     let limit = ecam_core::limits::MAX_TABLE_POINTS;
     if points > limit {
-        bail!("points {points} is above the limit of {limit} points per table");
+        return Err(GenerateError::TooManyPoints { points, limit });
     }
     let f = MasterFunction::parse(expr)?;
     // The four evaluations per point of the exact derivatives, taken
@@ -405,11 +397,12 @@ fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Ge
     let evaluations = u64::try_from(points).unwrap_or(u64::MAX);
     budget
         .spend(f.cost().saturating_mul(4).saturating_mul(evaluations))
-        .with_context(|| {
-            format!(
+        .map_err(|error| GenerateError::OverBudget {
+            work: format!(
                 "{points} points of an expression of {} terms, each evaluated 5 times",
                 f.cost()
-            )
+            ),
+            error,
         })?;
     let table = function_table_within(expr, from, to, points, budget)?;
     // Central differences a quarter of the point spacing wide: small
@@ -426,7 +419,7 @@ fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Ge
                 ..k
             })
         })
-        .collect::<anyhow::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, GenerateError>>()?;
     Ok(Generated {
         table,
         sync: None,
@@ -440,7 +433,7 @@ fn function(params: &function::Params, budget: &mut Budget) -> anyhow::Result<Ge
 
 // ---------------------------------------------------------------- segments
 
-fn segments_table(params: &segments::Params) -> anyhow::Result<Generated> {
+fn segments_table(params: &segments::Params) -> Result<Generated, GenerateError> {
     let g = segments::generate(params)?;
     let report = g.cam.continuity();
     let joints: Vec<String> = report
@@ -560,7 +553,12 @@ pub fn parse_segment_flag(text: &str) -> Result<ecam_core::segments::SegmentSpec
 /// # Errors
 /// Parse or evaluation errors (naming the master where it failed), or a
 /// table the core refuses.
-pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::Result<PointTable> {
+pub fn function_table(
+    expr: &str,
+    from: i64,
+    to: i64,
+    points: usize,
+) -> Result<PointTable, GenerateError> {
     function_table_within(expr, from, to, points, &mut Budget::per_run())
 }
 
@@ -575,39 +573,43 @@ pub fn function_table_within(
     to: i64,
     points: usize,
     budget: &mut Budget,
-) -> anyhow::Result<PointTable> {
+) -> Result<PointTable, GenerateError> {
     use ecam_core::limits::{MAX_EXPRESSION_LEN, MAX_TABLE_POINTS};
     if points > MAX_TABLE_POINTS {
-        bail!("points {points} is above the limit of {MAX_TABLE_POINTS} points per table");
+        return Err(GenerateError::TooManyPoints {
+            points,
+            limit: MAX_TABLE_POINTS,
+        });
     }
     if expr.len() > MAX_EXPRESSION_LEN {
-        bail!(
-            "the expression is {} bytes long; the limit is {MAX_EXPRESSION_LEN}",
-            expr.len()
-        );
+        return Err(crate::error::ExprError::TooLong {
+            len: expr.len(),
+            limit: MAX_EXPRESSION_LEN,
+        }
+        .into());
     }
     let f = MasterFunction::parse(expr)?;
     // The core reports this as a non-increasing last point (6782), which
     // names a section the user never wrote; say which settings clash.
     if to <= from {
-        bail!(
-            "table error ({}): the last master position ({to}) must be greater than the first ({from})",
-            ecam_core::CODE_TABLE
-        );
+        return Err(GenerateError::EmptyRange { from, to });
     }
     // Known before the work starts: refused at once when it cannot fit;
     // each point then only looks at whether the request was given up.
     let evaluations = u64::try_from(points).unwrap_or(u64::MAX);
     budget
         .spend(f.cost().saturating_mul(evaluations))
-        .with_context(|| format!("{points} points of an expression of {} terms", f.cost()))?;
+        .map_err(|error| GenerateError::OverBudget {
+            work: format!("{points} points of an expression of {} terms", f.cost()),
+            error,
+        })?;
     let budget = &*budget;
     let first_error = std::cell::RefCell::new(None);
     let sampled = ecam_core::table::sample_function(
         |x| match budget
             .check()
-            .map_err(anyhow::Error::from)
-            .and_then(|()| f.at(x))
+            .map_err(GenerateError::from)
+            .and_then(|()| f.at(x).map_err(GenerateError::from))
         {
             Ok(y) => y,
             Err(e) => {

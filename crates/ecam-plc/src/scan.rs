@@ -13,7 +13,8 @@
 //! program (the PLC is then [`Plc::fault`]ed until it is started again).
 
 use crate::decam::{Decam, DecamOperands, MasterOperand};
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::hardware::Hardware;
 use crate::hardware::{OutputOwner, PULSE_OUTPUTS};
 use crate::il::{Instruction, MasterSpec, ParseError, Program};
@@ -51,7 +52,7 @@ impl Plc {
     /// A DECAM whose operands the E-cam face refuses, with its line.
     ///
     /// ```
-    /// let program = ecam_plc::il::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
+    /// let program = ecam_plc::Program::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
     /// let mut plc = ecam_plc::Plc::new(program).unwrap();
     /// plc.scan();
     /// assert_eq!(plc.devices().word(0), Ok(7));
@@ -76,7 +77,7 @@ impl Plc {
                     .map_err(|err| ParseError {
                         file: program.file.clone(),
                         line: statement.line,
-                        message: err.to_string(),
+                        problem: crate::il::ParseProblem::Decam(err),
                     })?;
                 decams.push(Decam::new(operands));
             }
@@ -257,7 +258,7 @@ impl Plc {
     /// Stops the program the FX way after an error: every output off, the
     /// pulse outputs and cams stopped, the error's flag and code set.
     fn stop(&mut self, fault: Fault) {
-        for y in 0..crate::devices::XY_COUNT {
+        for y in 0..crate::device::XY_COUNT {
             let _ = self.devices.set_bit(Device::Y(y), false);
         }
         for output in 0..PULSE_OUTPUTS as u8 {

@@ -286,7 +286,7 @@ mod tests {
 
     #[test]
     fn a_block_of_an_idle_plc_reads_stopped() {
-        let plc = ecam_plc::Plc::new(ecam_plc::il::parse("", "empty.il").unwrap()).unwrap();
+        let plc = ecam_plc::Plc::new(ecam_plc::Program::parse("", "empty.il").unwrap()).unwrap();
         let s = LiveSample::read(&Image::of(&plc), 2000);
         assert!(!s.running);
         assert_eq!(s.to_json(2000, None)["mode"], "stopped");

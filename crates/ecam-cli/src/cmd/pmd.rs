@@ -46,7 +46,8 @@ fn run_script(args: &RunArgs) -> anyhow::Result<()> {
         let (name, value) = define
             .split_once('=')
             .with_context(|| format!("--define {define}: expected NAME=VALUE"))?;
-        let value = ecam_pmd::script::parse_number(value.trim())
+        let value = ecam_core::script_line::parse_number(value.trim())
+            .ok()
             .with_context(|| format!("--define {define}: '{value}' is not a number"))?;
         runner.define(name.trim(), value);
     }

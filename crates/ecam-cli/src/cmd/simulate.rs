@@ -68,7 +68,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .get_or_insert_with(|| Progress::new(ticks))
             .tick(done);
         done += 1;
-        Ok(())
+        Ok::<(), anyhow::Error>(())
     })?;
     if let Some(progress) = progress {
         progress.finish();
