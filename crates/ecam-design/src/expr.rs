@@ -250,6 +250,26 @@ mod tests {
     }
 
     #[test]
+    fn messages_quote_a_short_excerpt_of_a_long_expression() {
+        // 4 000 bytes: under the length limit, so the parser's and the
+        // evaluator's messages are the ones that quote it.
+        let long_name = format!("x*{}", "y".repeat(3_998));
+        let e = MasterFunction::parse(&long_name).err().unwrap().to_string();
+        assert!(e.len() < 200, "{} bytes: {e}", e.len());
+        assert!(
+            e.contains("(3998 bytes)") && e.contains("(4000 bytes)"),
+            "{e}"
+        );
+        let syntax = format!("1+{}(", "2".repeat(3_990));
+        let e = MasterFunction::parse(&syntax).err().unwrap().to_string();
+        assert!(e.len() < 300, "{} bytes: {e}", e.len());
+        assert!(e.contains("(3993 bytes)"), "{e}");
+        let big = format!("x+1e{}", "9".repeat(3_000));
+        let e = number(&big).unwrap_err().to_string();
+        assert!(e.len() < 300, "{} bytes: {e}", e.len());
+    }
+
+    #[test]
     fn the_manuals_sine_cam() {
         let f = MasterFunction::parse("1000*sin(2*pi*x/36000)").unwrap();
         assert!(f.at(0.0).unwrap().abs() < 1e-9);

@@ -499,6 +499,20 @@ mod tests {
     }
 
     #[test]
+    fn messages_quote_a_short_excerpt_of_a_huge_word() {
+        let mut p = Parser::new();
+        let huge = "Q".repeat(100_000);
+        let e = p.parse_line(&huge).unwrap_err().to_string();
+        assert!(e.len() < 100, "{} bytes: {e}", e.len());
+        assert!(e.contains("(100000 bytes)"), "{e}");
+        let e = p
+            .parse_line(&format!("Tick {huge}"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.len() < 300, "{} bytes: {e}", e.len());
+    }
+
+    #[test]
     fn a_scripts_ticks_share_one_budget() {
         let mut p = Parser::new();
         for _ in 0..4 {

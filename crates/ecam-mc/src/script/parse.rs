@@ -483,6 +483,18 @@ mod tests {
     }
 
     #[test]
+    fn messages_quote_a_short_excerpt_of_a_huge_line() {
+        let huge = "Q".repeat(100_000);
+        let e = error(&format!("{huge} 1"));
+        assert!(e.len() < 120, "{} bytes: {e}", e.len());
+        assert!(e.starts_with("t.mc:1: unknown command 'QQ"), "{e}");
+        assert!(e.contains("(100000 bytes)"), "{e}");
+        let e = error(&format!("Axes 2\nECAMTable 9{huge} 0 0 10 10"));
+        assert!(e.len() < 250, "{} bytes: {e}", e.len());
+        assert!(e.starts_with("t.mc:2: ECAMTable:"), "{e}");
+    }
+
+    #[test]
     fn commands_parse() {
         assert_eq!(
             only("setsingleturn 0 30000 ' master"),
