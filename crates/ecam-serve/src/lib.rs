@@ -63,6 +63,7 @@
 
 mod answer;
 mod bus;
+mod bus_request;
 mod clock;
 mod connections;
 mod design_pool;
@@ -90,6 +91,7 @@ pub use bus::{
     BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, DRIVE_WORDS,
     DriveView, ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
 };
+pub use bus_request::{BusRequestError, DEFAULT_FAULT_CODE, parse_bus_command};
 pub use clock::{BusTicks, MAX_LAG, Step, next_step, scan_loop, scan_on_bus_ticks, scan_period};
 pub use connections::{Activity, Busy as RequestBusy, Caps, Connections, Kind, Registration};
 pub use design_pool::{Busy, DesignPool, Outcome, Ticket};

@@ -39,8 +39,8 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use ecam_core::budget::Budget;
 use ecam_serve::{
-    Access, BusCommand, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
-    parse_device_names, parse_device_sets, parse_json_body,
+    Access, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
+    parse_bus_command, parse_device_names, parse_device_sets, parse_json_body,
 };
 use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
@@ -235,38 +235,10 @@ async fn ethercat_command(
         Ok(value) => value,
         Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
-    let command = match command.as_str() {
-        "enable" => BusCommand::Enable,
-        "disable" => BusCommand::Disable,
-        "reset" => BusCommand::Reset,
-        "fault" => {
-            if !bus.snapshot().transport.starts_with("emulated") {
-                return error(
-                    StatusCode::CONFLICT,
-                    "faults can only be injected into emulated drives (--emulated N)",
-                );
-            }
-            let drive = body.get("drive").and_then(Value::as_u64);
-            let code = body.get("code").and_then(Value::as_u64).unwrap_or(0x7500);
-            match (
-                drive.and_then(|d| usize::try_from(d).ok()),
-                u16::try_from(code),
-            ) {
-                (Some(drive), Ok(code)) => BusCommand::EmulateFault { drive, code },
-                _ => {
-                    return error(
-                        StatusCode::BAD_REQUEST,
-                        "give {\"drive\": N} and optionally {\"code\": 0..65535}",
-                    );
-                }
-            }
-        }
-        other => {
-            return error(
-                StatusCode::NOT_FOUND,
-                &format!("no command `{other}`: enable, disable, reset or fault"),
-            );
-        }
+    let transport = bus.snapshot().transport;
+    let command = match parse_bus_command(&command, &body, &transport) {
+        Ok(command) => command,
+        Err(e) => return refused(e.http_status(), &e.to_string(), None),
     };
     match bus.command(command) {
         Ok(()) => json_value(StatusCode::ACCEPTED, &json!({ "queued": command })),
