@@ -12,7 +12,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::rounding::{round_half_away, round_to_i64};
+use crate::rounding::{floor_div_rem, round_half_away, round_to_i64};
 use crate::start_rule;
 use crate::steady::Steady;
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
@@ -58,9 +58,9 @@ pub(crate) struct Geometry {
     /// The integers in 64 bits when they all fit (nearly always), for the
     /// 64-bit routes (`locate`, the steady constants).
     narrow: Option<NarrowGeometry>,
-    /// The table moves the slave both ways inside a cycle (for the start
-    /// rule, `start_rule.rs`).
-    turns_back: bool,
+    /// What the start rule needs of the cycle (`start_rule.rs`), taken
+    /// once here rather than at every engage.
+    strokes: start_rule::StrokeGeometry,
 }
 
 /// A geometry's integers in 64 bits.
@@ -181,17 +181,32 @@ impl Geometry {
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
-            turns_back: curve.turns_back(),
             floats: ZoomFloats::of(mnum, mden, snum, sden),
             narrow: None,
+            strokes: start_rule::StrokeGeometry {
+                per_stroke: 0.0,
+                forward: 0,
+                turns_back: curve.turns_back(),
+            },
         };
-        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry.derive();
         Ok(geometry)
+    }
+
+    /// Takes what follows from the integers: their 64-bit copies and the
+    /// start rule's figures.
+    fn derive(&mut self) {
+        self.narrow = NarrowGeometry::of(self);
+        self.strokes = start_rule::StrokeGeometry {
+            per_stroke: to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden),
+            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
+            turns_back: self.strokes.turns_back,
+        };
     }
 
     /// One stroke in output pulses (0 for a cam that does not accumulate).
     pub(crate) fn stroke_pulses(&self) -> f64 {
-        to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+        self.strokes.per_stroke
     }
 
     /// What the start rule needs of the cycle: a stroke in pulses, which
@@ -199,11 +214,7 @@ impl Geometry {
     /// never turns back (the sign of stroke × both zooms, 0 without a
     /// stroke), and whether the table turns back.
     pub(crate) fn strokes(&self) -> start_rule::StrokeGeometry {
-        start_rule::StrokeGeometry {
-            per_stroke: self.stroke_pulses(),
-            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
-            turns_back: self.turns_back,
-        }
+        self.strokes
     }
 
     /// The master zoom's denominator (the unit of table-input offsets).
@@ -221,7 +232,7 @@ impl Geometry {
             floats: ZoomFloats::of(self.mnum, self.mden, snum, sden),
             ..*self
         };
-        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry.derive();
         geometry
     }
 
@@ -243,10 +254,13 @@ impl Geometry {
                     k: 0,
                     r_num: i128::from(u.clamp(0, n.period_num)),
                 },
-                Extent::Cyclic | Extent::Cycles(_) => Place {
-                    k: i128::from(u.div_euclid(n.period_num)),
-                    r_num: i128::from(u.rem_euclid(n.period_num)),
-                },
+                Extent::Cyclic | Extent::Cycles(_) => {
+                    let (k, r_num) = floor_div_rem(u, n.period_num);
+                    Place {
+                        k: i128::from(k),
+                        r_num: i128::from(r_num),
+                    }
+                }
             };
         }
         let u = t_num.saturating_sub(self.origin_num);
@@ -329,13 +343,11 @@ impl Geometry {
     /// value leaves them (the 128-bit route then decides).
     #[inline]
     fn zoomed_narrow(&self, strokes: i64, table: f64) -> Option<i64> {
-        let narrow = |v: i128| i64::try_from(v).ok();
-        let accumulated = strokes
-            .checked_mul(narrow(self.stroke)?)?
-            .checked_mul(narrow(self.snum)?)?;
-        let sden = narrow(self.sden)?;
-        let whole = accumulated.div_euclid(sden);
-        let rem = accumulated.rem_euclid(sden);
+        // `strokes × (stroke × snum)`: where it fits it is the product
+        // in either order (the 128-bit route decides where it does not).
+        let n = self.narrow.as_ref()?;
+        let accumulated = strokes.checked_mul(n.stroke_snum)?;
+        let (whole, rem) = floor_div_rem(accumulated, n.sden);
         let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
         whole.checked_add(fraction)
     }
@@ -348,7 +360,10 @@ impl Geometry {
 #[inline]
 fn div_floor(a: i128, b: i128) -> (i128, i128) {
     match (i64::try_from(a), i64::try_from(b)) {
-        (Ok(a), Ok(b)) if b > 0 => (i128::from(a.div_euclid(b)), i128::from(a.rem_euclid(b))),
+        (Ok(a), Ok(b)) if b > 0 => {
+            let (q, r) = floor_div_rem(a, b);
+            (i128::from(q), i128::from(r))
+        }
         _ => (a.div_euclid(b), a.rem_euclid(b)),
     }
 }
@@ -440,6 +455,18 @@ impl Engagement {
         master_at: i64,
         slave_now: i64,
     ) -> Result<Self, EngineError> {
+        Self::placed(geo, config, curve, cursor, master_at, slave_now).map(|(e, _)| e)
+    }
+
+    /// [`Engagement::new`], and the place of `master_at` under it.
+    pub(crate) fn placed<C: CamCurve + ?Sized>(
+        geo: &Geometry,
+        config: &AxisConfig,
+        curve: &C,
+        cursor: &mut Cursor,
+        master_at: i64,
+        slave_now: i64,
+    ) -> Result<(Self, Place), EngineError> {
         let zoomed = geo.zoomed_master(master_at);
         let t_engage = match config.master_align {
             MasterAlign::Absolute => zoomed,
@@ -450,14 +477,17 @@ impl Engagement {
         let place = geo.locate(t_engage);
         let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
-        let strokes =
+        let (strokes, valued) =
             start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
                 geo.zoomed(n, table)
             })?;
         // The stroke count of the cycle the master is in is `strokes`:
         // cycles count from there, not from the table's origin.
         let shift = strokes.saturating_sub(place.k);
-        let on_table = geo.zoomed(strokes, table)?;
+        let on_table = match valued {
+            Some(value) => value,
+            None => geo.zoomed(strokes, table)?,
+        };
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
             SlaveAlign::Offset(o) => i128::from(o),
@@ -478,13 +508,16 @@ impl Engagement {
             )),
             Extent::Cyclic | Extent::Single => None,
         };
-        Ok(Self {
-            input_offset_num: t_engage.saturating_sub(zoomed),
-            shift,
-            output_offset,
-            k_engage: place.k,
-            span,
-        })
+        Ok((
+            Self {
+                input_offset_num: t_engage.saturating_sub(zoomed),
+                shift,
+                output_offset,
+                k_engage: place.k,
+                span,
+            },
+            place,
+        ))
     }
 
     /// Table input (× den units) for a master position.

@@ -1,5 +1,5 @@
-//! Rounding floats to whole counts and converting exact integers to
-//! floats, the way every path of the tick does it: the same integer as
+//! Rounding floats to whole counts, converting exact integers to
+//! floats and floor division, the way every path of the tick does it: the same integer as
 //! `libm::round`, at a fraction of its cost where the value is of ordinary
 //! size. One home for the rule, so that the coupling law, the steady
 //! constants, the ramps and the blend round alike.
@@ -49,8 +49,18 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
 pub(crate) fn exact_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_to_f64(v),
     }
+}
+
+/// The 128-bit conversion, out of line: inlined, the compiler sees that
+/// both arms of [`exact_f64`] give the same float and keeps only this
+/// one, the library routine, for every value (about 45 instructions
+/// instead of one).
+#[cold]
+#[inline(never)]
+fn wide_to_f64(v: i128) -> f64 {
+    v as f64
 }
 
 /// `v` as a float, for a count that is never negative (travel, spans):
@@ -59,8 +69,34 @@ pub(crate) fn exact_f64(v: i128) -> f64 {
 pub(crate) fn unsigned_to_f64(v: u128) -> f64 {
     match u64::try_from(v) {
         Ok(small) => small as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_unsigned_to_f64(v),
     }
+}
+
+/// [`wide_to_f64`] for [`unsigned_to_f64`].
+#[cold]
+#[inline(never)]
+fn wide_unsigned_to_f64(v: u128) -> f64 {
+    v as f64
+}
+
+/// `v.ceil() as i128` (saturating, NaN as 0) with one conversion where
+/// the result fits 64 bits; the same integer.
+#[inline]
+pub(crate) fn ceil_to_i128(v: f64) -> i128 {
+    let up = libm::ceil(v);
+    if up > -9.2e18 && up < 9.2e18 {
+        i128::from(up as i64)
+    } else {
+        wide_from_f64(up)
+    }
+}
+
+/// The 128-bit conversion of [`ceil_to_i128`], out of line (see [`wide_to_f64`]).
+#[cold]
+#[inline(never)]
+fn wide_from_f64(v: f64) -> i128 {
+    v as i128
 }
 
 /// `libm::round(v) as i128` (saturating, NaN as 0) with the fast rounding
@@ -71,6 +107,16 @@ pub(crate) fn round_to_i128(v: f64) -> i128 {
         Some(whole) => i128::from(whole),
         None => libm::round(v) as i128,
     }
+}
+
+/// `(a.div_euclid(b), a.rem_euclid(b))` for `b > 0`, from one hardware
+/// division (the two library calls take one each, and are not always
+/// inlined): the same pair (tested).
+#[inline(always)]
+pub(crate) fn floor_div_rem(a: i64, b: i64) -> (i64, i64) {
+    debug_assert!(b > 0);
+    let (q, r) = (a.wrapping_div(b), a.wrapping_rem(b));
+    if r < 0 { (q - 1, r + b) } else { (q, r) }
 }
 
 #[cfg(test)]
@@ -85,6 +131,69 @@ mod tests {
             Some(x ^ (x << 17))
         })
         .skip(1)
+    }
+
+    #[test]
+    fn floor_div_rem_is_div_euclid_and_rem_euclid() {
+        let mut words = xorshift(0x1234_5678_9ABC_DEF1);
+        for _ in 0..100_000 {
+            let a = words.next().unwrap_or(1) as i64;
+            let b = (words.next().unwrap_or(1) >> (words.next().unwrap_or(1) % 63)) as i64;
+            for (a, b) in [
+                (a, b.max(1)),
+                (a >> 40, (b >> 50).max(1)),
+                (i64::MIN, b.max(1)),
+            ] {
+                assert_eq!(
+                    floor_div_rem(a, b),
+                    (a.div_euclid(b), a.rem_euclid(b)),
+                    "{a} {b}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn conversions_give_the_plain_casts_values() {
+        let wide = [
+            0i128,
+            1,
+            -1,
+            (1 << 53) + 1,
+            -(1 << 53) - 1,
+            i128::from(i64::MAX),
+            i128::from(i64::MIN),
+            i128::from(i64::MAX) + 1,
+            i128::from(i64::MIN) - 1,
+            i128::MAX,
+            i128::MIN,
+            12_345_678_901_234_567_890_123,
+        ];
+        for v in wide {
+            assert_eq!(exact_f64(v).to_bits(), (v as f64).to_bits(), "{v}");
+            let u = v.unsigned_abs();
+            assert_eq!(unsigned_to_f64(u).to_bits(), (u as f64).to_bits(), "{u}");
+        }
+        for v in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0000001,
+            9.1e18,
+            -9.1e18,
+            9.3e18,
+            -9.3e18,
+            1e30,
+            -1e30,
+            1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert_eq!(ceil_to_i128(v), libm::ceil(v) as i128, "{v}");
+        }
     }
 
     #[test]

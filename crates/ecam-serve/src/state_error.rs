@@ -49,6 +49,14 @@ pub enum Damage {
     },
     /// A record (or, in an old-format file, a line) that cannot be read.
     Unreadable(LineError),
+    /// The journal's last line, without its newline, holds what no record
+    /// has (a NUL, another control character, bytes that are not UTF-8):
+    /// not a write cut short by a crash but a file zeroed or overwritten,
+    /// whose records are lost.
+    NotText {
+        /// Bytes in that line (invalid UTF-8 counted as read).
+        bytes: usize,
+    },
 }
 
 impl fmt::Display for Damage {
@@ -77,6 +85,11 @@ impl fmt::Display for Damage {
                 "record {found} where {expected} was due: a record removed or moved"
             ),
             Self::Unreadable(err) => write!(f, "unreadable record: {err}"),
+            Self::NotText { bytes } => write!(
+                f,
+                "{bytes} bytes that are not text at the end of the file (NULs or other \
+                 control characters): it was zeroed or overwritten, not cut short by a crash"
+            ),
         }
     }
 }

@@ -5,6 +5,7 @@
 //! source, `: `-separated), so each names what to fix.
 
 use std::fmt;
+use std::format;
 use std::path::PathBuf;
 use std::string::{String, ToString};
 
@@ -82,9 +83,11 @@ impl fmt::Display for FormatError {
             ),
             Self::CsvRow { row, message } => write!(f, "bad CSV row {row}: {message}"),
             Self::NotAnInteger { row, column, text } => {
+                let text = crate::excerpt::excerpt(text);
                 write!(f, "row {row}: {column} {text:?} is not an integer")
             }
             Self::NotANumber { row, column, text } => {
+                let text = crate::excerpt::excerpt(text);
                 write!(f, "row {row}: {column} {text:?} is not a number")
             }
             Self::Json { message } => write!(f, "JSON: {message}"),
@@ -168,11 +171,25 @@ pub(crate) fn plain_json_message(e: &serde_json::Error) -> String {
     plain_serde_message(&e.to_string())
 }
 
+/// Why `text` is not JSON, in the words of its author rather than the
+/// parser's: where it stops being JSON (line and column) and whether it
+/// ended too early. For HTTP request bodies and other JSON a user types.
+pub fn json_syntax_message(e: &serde_json::Error) -> String {
+    let at = format!("line {}, column {}", e.line(), e.column());
+    match e.classify() {
+        serde_json::error::Category::Eof => format!("it ends before the JSON is complete ({at})"),
+        serde_json::error::Category::Syntax => format!("it stops being JSON at {at}"),
+        serde_json::error::Category::Io => format!("it cannot be read ({at})"),
+        serde_json::error::Category::Data => plain_json_message(e),
+    }
+}
+
 /// A serde message (JSON, TOML, parameter maps) in the words of the input's
 /// author: `expected i64` becomes `expected a whole number`, and so on for
 /// the other Rust number types.
 pub fn plain_serde_message(message: &str) -> String {
-    let mut text = message.to_string();
+    // serde and TOML quote the input (a value, a whole line): cut it.
+    let mut text = crate::excerpt::cut_quotes(message);
     for (rust, plain) in [
         ("expected i64", "expected a whole number"),
         ("expected i32", "expected a whole number"),

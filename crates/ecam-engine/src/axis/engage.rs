@@ -8,6 +8,7 @@ use ecam_core::CamCurve;
 use crate::coupling::{Engagement, Place};
 use crate::ramp::Ramp;
 use crate::ramp_in::{RampDirection, RampInLimits};
+use crate::rounding::exact_f64;
 use crate::{EngineError, RampIn};
 
 use super::CamAxis;
@@ -17,7 +18,9 @@ use super::underway::Underway;
 impl<C: CamCurve> CamAxis<C> {
     /// Engages the cam at master `at` from the slave where it stands.
     pub(super) fn engage(&mut self, at: i64) -> Result<(), EngineError> {
-        let mut engagement = Engagement::new(
+        // The place of `at` comes with it (the table input there is the
+        // one the engagement fixed).
+        let (mut engagement, place) = Engagement::placed(
             &self.geometry,
             &self.config,
             &self.curve,
@@ -25,9 +28,6 @@ impl<C: CamCurve> CamAxis<C> {
             at,
             self.commanded,
         )?;
-        let place = self
-            .geometry
-            .locate(engagement.table_input(&self.geometry, at));
         let ramp_in = match self.ramp_limits {
             Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
             None => self.config.ramp_in,
@@ -37,6 +37,8 @@ impl<C: CamCurve> CamAxis<C> {
             place,
             followed: i128::from(at) << 32,
             underway: Underway::at_engage(ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded))),
+            lane: None,
+            plan: None,
         });
         Ok(())
     }
@@ -64,7 +66,7 @@ impl<C: CamCurve> CamAxis<C> {
             if stroke == 0.0 {
                 return Err(EngineError::RampDirection);
             }
-            let gap = (i128::from(cam.slave) - hold) as f64;
+            let gap = exact_f64(i128::from(cam.slave) - hold);
             let strokes = libm::ceil(libm::fabs(gap / stroke));
             let toward = match limits.direction {
                 RampDirection::Negative => -1.0,
@@ -79,7 +81,7 @@ impl<C: CamCurve> CamAxis<C> {
                 cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
             }
         }
-        let gap = (i128::from(cam.slave) - hold) as f64;
+        let gap = exact_f64(i128::from(cam.slave) - hold);
         let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
         let configured = self.config.ramp_in.map(|r| r.distance.get());
         Ok(match (needed, configured) {

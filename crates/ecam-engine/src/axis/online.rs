@@ -61,8 +61,9 @@ impl<C: CamCurve> CamAxis<C> {
         })
     }
 
-    /// Queues a table for the next seam (engaged), or replaces the table
-    /// at once (not engaged; `then` and the blend are the engaged cam's).
+    /// Queues a table for the next seam (engaged; its switch prepared
+    /// here, `plan.rs`), or replaces the table at once (not engaged;
+    /// `then` and the blend are the engaged cam's).
     fn queue_for_seam(&mut self, queued: Queued<C>) -> Result<(), EngineError> {
         let geometry = Geometry::new(&queued.curve, &self.config)?;
         match &mut self.phase {
@@ -73,6 +74,7 @@ impl<C: CamCurve> CamAxis<C> {
                 // A seam table never meets a refusal: it may wait beside
                 // any ramp or blend.
                 engaged.underway.wait(Next::Seam(queued))?;
+                self.plan_waiting();
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.geometry = geometry;
@@ -117,11 +119,15 @@ impl<C: CamCurve> CamAxis<C> {
         Geometry::new(&curve, &self.config)?;
         match &mut self.phase {
             // Refused beside an offset or scaling ramp.
-            Phase::Running(engaged) => engaged.underway.wait(Next::Switch(Pending::new(
-                Takeover::Table(curve),
-                trigger,
-                blend,
-            ))),
+            Phase::Running(engaged) => {
+                engaged.underway.wait(Next::Switch(Pending::new(
+                    Takeover::Table(curve),
+                    trigger,
+                    blend,
+                )))?;
+                self.plan_waiting();
+                Ok(())
+            }
             Phase::Stopping(..) => Err(EngineError::Busy),
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.queue_curve(curve)
@@ -182,6 +188,11 @@ impl<C: CamCurve> CamAxis<C> {
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 let ramp = ScalingRamp::new(target, from, distance);
                 engaged.underway.begin(Change::Scaling(ramp, None))?;
+                // The lane's constants on the new scaling, taken here
+                // rather than in the cycle.
+                if let Some(lane) = engaged.lane.as_mut() {
+                    lane.target = engaged.engagement.steady(&target);
+                }
                 self.config.slave_zoom = zoom;
                 Ok(())
             }
@@ -220,7 +231,9 @@ impl<C: CamCurve> CamAxis<C> {
                         Takeover::MasterScaling(zoom),
                         Trigger::Now,
                         blend,
-                    ))))
+                    ))))?;
+                self.plan_waiting();
+                Ok(())
             }
             _ => Err(EngineError::NotRunning),
         }

@@ -9,6 +9,8 @@ use crate::start::StartWatch;
 use crate::stop::CycleEnd;
 use crate::{AxisState, EngineError, MasterPosition};
 
+use super::lane_constants::LaneConstants;
+use super::prepared::Plan;
 use super::underway::{Change, Underway};
 
 /// The life of an axis; each phase holds what only it has, so a stopping
@@ -53,6 +55,14 @@ pub(super) struct Engaged<C> {
     /// The ramp-in, a change, a blend or a table waiting, or nothing
     /// (settled, with the steady tick's constants): `underway.rs`.
     pub(super) underway: Underway<C>,
+    /// The fast lane's 64-bit constants of `engagement` on the axis'
+    /// geometry (and on a slave-scaling ramp's target), whatever is under
+    /// way (`lane.rs`): taken by the lane or at a request, kept up to date
+    /// by the lane, dropped by the general tick, which may change either.
+    pub(super) lane: Option<LaneConstants>,
+    /// The switch or the seam table waiting in `underway`, prepared when
+    /// it was asked for (`plan.rs`).
+    pub(super) plan: Option<Plan>,
 }
 
 impl<C> Engaged<C> {

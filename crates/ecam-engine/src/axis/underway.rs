@@ -117,13 +117,6 @@ impl<C> Underway<C> {
         matches!(self, Self::Changing(Change::Waiting(Next::Seam(_))))
     }
 
-    /// A table waits (for the seam or a switch), beside a ramp or blend or
-    /// alone.
-    #[inline(always)]
-    pub(super) fn table_waits(&self) -> bool {
-        self.change().is_some_and(Change::waiting)
-    }
-
     /// Nothing is under way.
     pub(super) fn is_settled(&self) -> bool {
         matches!(self, Self::Settled | Self::Steady(_))
@@ -276,6 +269,12 @@ impl<C> Underway<C> {
         }
     }
 
+    /// Begins a switch's blend once the switch is taken (nothing else
+    /// changes then; a change there was is replaced).
+    pub(super) fn start_blend(&mut self, blend: Blend) {
+        self.replace_change(Some(Change::Blend(blend, None)));
+    }
+
     /// Sets the steady tick's constants (`None`: drops them): only a
     /// settled cam keeps them.
     pub(super) fn settle(&mut self, steady: Option<Steady>) {
@@ -313,6 +312,30 @@ impl<C> Change<C> {
             Self::Offsets(_, queued) | Self::Scaling(_, queued) => queued.is_some(),
             Self::Blend(_, next) => next.is_some(),
             Self::Waiting(_) => true,
+        }
+    }
+
+    /// The table queued for the seam, whatever runs beside it.
+    #[inline(always)]
+    pub(super) fn queued(&self) -> Option<&Queued<C>> {
+        match self {
+            Self::Offsets(_, queued) | Self::Scaling(_, queued) => queued.as_ref(),
+            Self::Blend(_, Some(Next::Seam(queued))) | Self::Waiting(Next::Seam(queued)) => {
+                Some(queued)
+            }
+            Self::Blend(..) | Self::Waiting(Next::Switch(_)) => None,
+        }
+    }
+
+    /// The switch waiting for its position or the next tick (alone or
+    /// beside a blend).
+    #[inline(always)]
+    pub(super) fn pending(&self) -> Option<&Pending<C>> {
+        match self {
+            Self::Blend(_, Some(Next::Switch(pending))) | Self::Waiting(Next::Switch(pending)) => {
+                Some(pending)
+            }
+            _ => None,
         }
     }
 
