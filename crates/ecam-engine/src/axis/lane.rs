@@ -25,7 +25,7 @@ use crate::{Events, MasterPosition};
 
 use super::lane_constants::LaneConstants;
 use super::phase::Engaged;
-use super::underway::Change;
+use super::underway::{Change, Next};
 use super::{Coupled, FollowSample};
 
 /// What the lane hands back: whether the run ended (an end-of-cycle
@@ -52,15 +52,20 @@ impl<C: CamCurve> Coupled<'_, C> {
         // One change at most (`underway.rs`): an offset or scaling ramp
         // or a blend, a table waiting beside it or alone.
         let (ramp_in, change) = engaged.underway.parts();
-        let (engaged_offsets, engaged_scaling, engaged_blend) = match change {
-            Some(Change::Offsets(ramp, _)) => (Some(ramp), None, None),
-            Some(Change::Scaling(ramp, _)) => (None, Some(ramp), None),
-            Some(Change::Blend(blend, _)) => (None, None, Some(blend)),
-            Some(Change::Waiting(_)) | None => (None, None, None),
-        };
-        let (pending, queued) = match change {
-            Some(change) => (change.pending(), change.queued()),
-            None => (None, None),
+        // All of it read in one match.
+        let (engaged_offsets, engaged_scaling, engaged_blend, pending, queued) = match change {
+            None => (None, None, None, None, None),
+            Some(Change::Offsets(ramp, queued)) => (Some(ramp), None, None, None, queued.as_ref()),
+            Some(Change::Scaling(ramp, queued)) => (None, Some(ramp), None, None, queued.as_ref()),
+            Some(Change::Blend(blend, None)) => (None, None, Some(blend), None, None),
+            Some(Change::Blend(blend, Some(Next::Switch(pending)))) => {
+                (None, None, Some(blend), Some(pending), None)
+            }
+            Some(Change::Blend(blend, Some(Next::Seam(queued)))) => {
+                (None, None, Some(blend), None, Some(queued))
+            }
+            Some(Change::Waiting(Next::Switch(pending))) => (None, None, None, Some(pending), None),
+            Some(Change::Waiting(Next::Seam(queued))) => (None, None, None, None, Some(queued)),
         };
         let offsets_end = engaged_offsets.is_some_and(|ramp| ramp.finished_at(at));
         let scaling_end = engaged_scaling.is_some_and(|ramp| ramp.finished_at(at));
