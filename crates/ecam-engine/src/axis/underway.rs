@@ -197,8 +197,18 @@ impl<C> Underway<C> {
     /// Ends the change's ramp or blend: the table waiting beside it, if
     /// any, is what remains.
     pub(super) fn end_change(&mut self) {
-        let change = self.replace_change(None);
-        self.replace_change(change.and_then(Change::after_end));
+        // In place when no table waits (nearly always): the enum, which
+        // may hold a table, is not moved out and back.
+        match self {
+            Self::RampIn(_, change) if !change.as_ref().is_some_and(Change::waiting) => {
+                *change = None;
+            }
+            Self::Changing(change) if !change.waiting() => *self = Self::Settled,
+            _ => {
+                let change = self.replace_change(None);
+                self.replace_change(change.and_then(Change::after_end));
+            }
+        }
     }
 
     /// Starts `change` (an offset or scaling ramp, a master-scaling
@@ -272,7 +282,11 @@ impl<C> Underway<C> {
     /// Begins a switch's blend once the switch is taken (nothing else
     /// changes then; a change there was is replaced).
     pub(super) fn start_blend(&mut self, blend: Blend) {
-        self.replace_change(Some(Change::Blend(blend, None)));
+        // Written in place (the tick of a switch).
+        match self {
+            Self::RampIn(_, change) => *change = Some(Change::Blend(blend, None)),
+            _ => *self = Self::Changing(Change::Blend(blend, None)),
+        }
     }
 
     /// Sets the steady tick's constants (`None`: drops them): only a
