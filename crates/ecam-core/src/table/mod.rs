@@ -9,6 +9,8 @@
 //! - [`CamTable`]: any of them behind one type;
 //! - [`sample_function`]: a point table from a function of the master;
 //! - [`Summary`]: a table's sections, stroke, peaks and continuity;
+//! - [`steps`]: where a curve's velocity or acceleration steps (the
+//!   impulses its plots draw), by one rule;
 //! - [`derivatives`]: velocity, acceleration and jerk estimated from a
 //!   point table's points where no exact curve is known.
 //!
@@ -22,6 +24,7 @@ mod lines;
 mod point;
 mod resolution;
 mod segment;
+pub mod steps;
 mod summary;
 mod uniform;
 
