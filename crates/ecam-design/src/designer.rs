@@ -11,7 +11,8 @@
 
 use ecam_core::generator::key_points::KeyPoint;
 use ecam_core::generator::schema;
-use ecam_core::generator::{DesignCurve, Field, FieldKind};
+use ecam_core::generator::{ExactCurve, Field, FieldKind};
+use ecam_core::table::steps::Steps;
 use ecam_core::table::{Summary, derivatives};
 use ecam_core::{CamCurve, MotionLaw};
 use serde_json::{Value, json};
@@ -139,12 +140,12 @@ pub fn key_points_json(body: &Value) -> Result<Value, String> {
     Ok(json!({ "key": keys }))
 }
 
-/// Samples per piece of a design curve: enough for smooth ramps, and a
-/// step at a joint still shows as a vertical edge.
-const DESIGN_SAMPLES_PER_PIECE: usize = 24;
+/// Samples of an exact curve the page draws, spread over its pieces: enough
+/// for smooth ramps, and a step at a corner still shows as a vertical edge.
+const DESIGN_SAMPLES: usize = 600;
 
-fn design_samples(design: &DesignCurve) -> Value {
-    let samples = design.sample_pieces(DESIGN_SAMPLES_PER_PIECE);
+fn design_samples(exact: &ExactCurve) -> Value {
+    let samples = exact.samples(DESIGN_SAMPLES);
     json!({
         "master": samples.iter().map(|(m, _)| *m).collect::<Vec<_>>(),
         "s": samples.iter().map(|(_, k)| k.s).collect::<Vec<_>>(),
@@ -175,7 +176,13 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
         .clone()
         .unwrap_or_else(|| derivatives::of_points(points));
     let summary = Summary::of(&g.table);
-    let design_peaks = g.design.as_ref().map(design_peaks);
+    let design_peaks = g.exact.as_ref().map(design_peaks);
+    // The one rule for impulses (`ecam_core::table::steps`): the exact
+    // curve's corners, or, for a function's table, its columns.
+    let steps = match &g.exact {
+        Some(exact) => Steps::of(exact),
+        None => Steps::of_columns(points, &kinematics),
+    };
     let outputs: serde_json::Map<String, Value> = g
         .outputs
         .iter()
@@ -196,7 +203,10 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
         // the table, sampled densely: a long section of the table (a dwell)
         // would otherwise draw its end points' accelerations joined by a
         // slope the motion never has.
-        "design": g.design.as_ref().map(design_samples),
+        "design": g.exact.as_ref().map(design_samples),
+        // Where velocity steps (acceleration impulses) and acceleration
+        // steps (jerk impulses), the seam's at the last master.
+        "steps": steps,
         "sync": g.sync.map(|(lo, hi)| vec![lo, hi]),
         "outputs": outputs,
         "summary": {
@@ -218,11 +228,11 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
     }))
 }
 
-/// The largest |velocity| and |acceleration| of the design curve, from the
+/// The largest |velocity| and |acceleration| of the exact curve, from the
 /// same dense samples the page draws.
-fn design_peaks(design: &DesignCurve) -> (f64, f64) {
-    design
-        .sample_pieces(DESIGN_SAMPLES_PER_PIECE)
+fn design_peaks(exact: &ExactCurve) -> (f64, f64) {
+    exact
+        .samples(DESIGN_SAMPLES)
         .iter()
         .fold((0.0_f64, 0.0_f64), |(v, a), (_, k)| {
             (v.max(k.v.abs()), a.max(k.a.abs()))
@@ -304,11 +314,13 @@ mod tests {
                 assert_eq!(*a, 0.0, "acceleration at master {m}");
             }
         }
+        // Key points are drawn from their laws, the constant-acceleration
+        // turns included (their jerk impulses).
         let kp = generate_json(&json!({"generator": "keypoints", "params": {}})).unwrap();
-        assert!(
-            kp["design"].is_null(),
-            "key points are drawn from their exact points"
-        );
+        assert!(kp["design"]["master"].as_array().unwrap().len() > 100);
+        let turns = kp["steps"]["acceleration"].as_array().unwrap();
+        assert!(turns.iter().any(|s| s["master"] == json!(1800.0)), "{turns:?}");
+        assert!(kp["steps"]["velocity"].as_array().unwrap().is_empty());
     }
 
     #[test]

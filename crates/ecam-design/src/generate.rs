@@ -10,7 +10,7 @@ use anyhow::{Context, bail};
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
-    CutParams, DesignCurve, Generator as Schema, flying_saw, function, rotary_cut, s_curve,
+    CutParams, DesignCurve, ExactCurve, Generator as Schema, flying_saw, function, rotary_cut, s_curve,
 };
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
 use serde::de::DeserializeSeed;
@@ -33,9 +33,10 @@ pub struct Generated {
     /// Exact velocity, acceleration and jerk at each point, from the curve
     /// the table samples (the points themselves are rounded to whole pulses).
     pub kinematics: Option<Vec<Kinematics>>,
-    /// The exact motion the S-curve, rotary-cut and flying-saw generators
-    /// designed before rounding it into the table (what `--plot` draws).
-    pub design: Option<DesignCurve>,
+    /// The exact curve the table samples, where the generator knows one:
+    /// the design of the S-curve, rotary cut and flying saw before rounding,
+    /// the key points' laws (what `--plot` draws, where steps are read).
+    pub exact: Option<ExactCurve>,
 }
 
 /// The design curve's derivatives at each point of `table`, keeping the
@@ -162,7 +163,7 @@ fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
         table: g.table,
         sync: g.sync,
         name: "s-curve",
-        design: Some(g.design),
+        exact: Some(ExactCurve::Design(g.design)),
     })
 }
 
@@ -203,7 +204,7 @@ fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
         table: g.table,
         sync: g.sync,
         name: "rotary-cut",
-        design: Some(g.design),
+        exact: Some(ExactCurve::Design(g.design)),
     })
 }
 
@@ -223,7 +224,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
             table: g.table,
             sync: g.sync,
             name: "fly-saw",
-            design: Some(g.design),
+            exact: Some(ExactCurve::Design(g.design)),
         });
     }
     let (forward, back) = flying_saw::generate_pair(params)?;
@@ -245,7 +246,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
         table,
         sync: forward.sync,
         name: "fly-saw",
-        design: Some(design),
+        exact: Some(ExactCurve::Design(design)),
     })
 }
 
@@ -295,7 +296,7 @@ fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
         table: generated.table,
         sync: generated.sync,
         name: "keypoints",
-        design: None,
+        exact: Some(ExactCurve::Profile(generated.profile)),
         outputs: vec![(
             "segment resolutions",
             generated
@@ -338,7 +339,7 @@ fn function(params: &function::Params) -> anyhow::Result<Generated> {
         name: "function",
         outputs: Vec::new(),
         kinematics: Some(kinematics),
-        design: None,
+        exact: None,
     })
 }
 

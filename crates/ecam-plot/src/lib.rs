@@ -53,6 +53,7 @@ mod chart;
 mod draw;
 mod error;
 mod font;
+mod labels;
 
 pub use chart::{Chart, ChartPanel, Figure, Panel, Series, Style, Trace};
 pub use draw::{Format, Plot, draw, draw_chart};

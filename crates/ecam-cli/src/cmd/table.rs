@@ -124,8 +124,8 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         eprintln!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
-        let design = generated.design.as_ref();
-        plot::draw_chart(cam_table::chart(&file, design, generated.name), path)?;
+        let exact = generated.exact.as_ref();
+        plot::draw_chart(cam_table::chart(&file, exact, generated.name), path)?;
     }
     Ok(())
 }
@@ -204,7 +204,7 @@ fn show_curve(
     kind: &'static str,
     what: &str,
     points: usize,
-    curve: &impl CamCurve,
+    curve: &(impl CamCurve + ecam_core::table::steps::Corners),
     source: Source,
 ) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();

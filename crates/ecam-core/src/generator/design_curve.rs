@@ -168,7 +168,7 @@ impl Corners for DesignCurve {
                     master: after.master_start,
                     before: before.kinematics_at(before.master_end()),
                     after: after.kinematics_at(after.master_start),
-                    reach: before.len.min(after.len),
+                    reach: before.len.max(after.len),
                     seam: false,
                 });
             }
@@ -178,7 +178,7 @@ impl Corners for DesignCurve {
                 master: self.master_last,
                 before: last.kinematics_at(last.master_end()),
                 after: first.kinematics_at(first.master_start),
-                reach: first.len.min(last.len),
+                reach: first.len.max(last.len),
                 seam: true,
             });
         }

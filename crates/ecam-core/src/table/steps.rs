@@ -17,12 +17,14 @@
 //!   where the cycle ended (a periodic cam also jumps back by the stroke
 //!   there), so its step is `value at the start − value at the end`. It is
 //!   reported at the last master.
-//! - **How big.** A step counts when, held over the shorter of the two
+//! - **How big.** A step counts when, held over the longer of the two
 //!   stretches beside its corner (`reach`: the pieces of a design, the
 //!   segments of a profile, the sections of a point table), it moves the
 //!   slave by at least [`HALF_PULSE`], the rounding every point of a
 //!   whole-pulse table carries: `|Δv| · reach ≥ ½` and `|Δa| · reach² / 2
-//!   ≥ ½`. A smaller step cannot be told from the rounding of the table
+//!   ≥ ½`. (The longer: a step next to a sliver of a piece, such as the
+//!   fraction of a count a generator dwells before its first ramp, acts
+//!   over the ramp.) A smaller step cannot be told from the rounding of the table
 //!   that samples it; a floating-point difference of an exact curve is
 //!   many orders below it. (Not a share of the curve's peak: a real step
 //!   of a few percent of the peak counts, rounding noise never does.)
@@ -76,7 +78,7 @@ pub struct Corner {
     pub before: Kinematics,
     /// The curve just after it.
     pub after: Kinematics,
-    /// Length in master counts of the shorter of the two stretches (pieces,
+    /// Length in master counts of the longer of the two stretches (pieces,
     /// segments, sections) that meet at the corner.
     pub reach: f64,
     /// Whether this is the seam: the end of the cycle meeting its start.
@@ -208,7 +210,7 @@ impl Steps {
                     a: da,
                     ..Kinematics::default()
                 },
-                reach: (x[i] - before).min(after - x[i - 1]),
+                reach: (x[i] - before).max(after - x[i - 1]),
                 seam: false,
             });
         }
@@ -227,7 +229,7 @@ impl Steps {
                         a: end.a + da,
                         ..end
                     },
-                    reach: (last - into_last).min(out_of_first - first),
+                    reach: (last - into_last).max(out_of_first - first),
                     seam: true,
                 });
             }
@@ -292,7 +294,7 @@ fn straight_corners(x: &[f64], s: &[f64]) -> Vec<Corner> {
             master: x[i],
             before: moving(slope(i - 1)),
             after: moving(slope(i)),
-            reach: (x[i] - x[i - 1]).min(x[i + 1] - x[i]),
+            reach: (x[i] - x[i - 1]).max(x[i + 1] - x[i]),
             seam: false,
         });
     }
@@ -300,7 +302,7 @@ fn straight_corners(x: &[f64], s: &[f64]) -> Vec<Corner> {
         master: x[n - 1],
         before: moving(slope(n - 2)),
         after: moving(slope(0)),
-        reach: (x[1] - x[0]).min(x[n - 1] - x[n - 2]),
+        reach: (x[1] - x[0]).max(x[n - 1] - x[n - 2]),
         seam: true,
     });
     corners
@@ -358,7 +360,7 @@ impl Corners for SegmentProfile {
                     master: from.master as f64 + u * span,
                     before: at(seg, u, false),
                     after: at(seg, u, true),
-                    reach: span * u.min(1.0 - u),
+                    reach: span * u.max(1.0 - u),
                     seam: false,
                 });
             }
@@ -378,7 +380,7 @@ impl Corners for SegmentProfile {
                     master: from.master as f64 + span,
                     before: at(seg, 1.0, false),
                     after: at(next, 0.0, true),
-                    reach: into.min(out),
+                    reach: into.max(out),
                     seam: i + 1 == scaled.len(),
                 });
             }
