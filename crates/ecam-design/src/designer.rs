@@ -319,7 +319,10 @@ mod tests {
         let kp = generate_json(&json!({"generator": "keypoints", "params": {}})).unwrap();
         assert!(kp["design"]["master"].as_array().unwrap().len() > 100);
         let turns = kp["steps"]["acceleration"].as_array().unwrap();
-        assert!(turns.iter().any(|s| s["master"] == json!(1800.0)), "{turns:?}");
+        assert!(
+            turns.iter().any(|s| s["master"] == json!(1800.0)),
+            "{turns:?}"
+        );
         assert!(kp["steps"]["velocity"].as_array().unwrap().is_empty());
     }
 

@@ -10,7 +10,8 @@ use anyhow::{Context, bail};
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
-    CutParams, DesignCurve, ExactCurve, Generator as Schema, flying_saw, function, rotary_cut, s_curve,
+    CutParams, DesignCurve, ExactCurve, Generator as Schema, flying_saw, function, rotary_cut,
+    s_curve,
 };
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
 use serde::de::DeserializeSeed;

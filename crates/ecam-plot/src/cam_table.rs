@@ -134,7 +134,11 @@ pub fn impulses(name: &str, steps: &[Step], quantity: &str) -> Option<Trace> {
 
 /// The acceleration and jerk panels' impulses: `steps`' velocity steps and
 /// acceleration steps.
-fn with_impulses(mut acceleration: Vec<Trace>, mut jerk: Vec<Trace>, steps: &Steps) -> [Vec<Trace>; 2] {
+fn with_impulses(
+    mut acceleration: Vec<Trace>,
+    mut jerk: Vec<Trace>,
+    steps: &Steps,
+) -> [Vec<Trace>; 2] {
     acceleration.extend(impulses(ACCELERATION_IMPULSE, &steps.velocity, "Δv"));
     jerk.extend(impulses(JERK_IMPULSE, &steps.acceleration, "Δa"));
     [acceleration, jerk]
@@ -185,7 +189,12 @@ fn known_panels(points: &[CamPoint], known: &[Kinematics]) -> Vec<ChartPanel> {
         panel(
             VELOCITY,
             vec![
-                Trace::new("table as run (section slopes)", x.clone(), sections, Style::Steps),
+                Trace::new(
+                    "table as run (section slopes)",
+                    x.clone(),
+                    sections,
+                    Style::Steps,
+                ),
                 dots("velocity column", x, of(|k| k.v)),
             ],
         ),
@@ -253,7 +262,10 @@ fn straight_panels(straight: Straight, marks: &str, steps: &Steps) -> Vec<ChartP
     vec![
         panel(
             DISPLACEMENT,
-            vec![line("table", x.clone(), s.clone()), dots(marks, x.clone(), s)],
+            vec![
+                line("table", x.clone(), s.clone()),
+                dots(marks, x.clone(), s),
+            ],
         ),
         panel(
             "velocity (pulses/count, per section)",
@@ -313,7 +325,11 @@ pub fn uniform_chart(table: &UniformTable, sync: Option<(i64, i64)>, name: &str)
         values.len(),
         table.cam_counts()
     );
-    chart_over(title, straight_panels(straight, "values", &Steps::of(table)), sync)
+    chart_over(
+        title,
+        straight_panels(straight, "values", &Steps::of(table)),
+        sync,
+    )
 }
 
 /// [`derivatives::over_sections`] of an evenly spaced table. Its masters
@@ -526,7 +542,11 @@ mod tests {
         }
         // Slopes rise by 3 per piece of 10/3 counts: 0.9 pulses/count², per
         // joint and over chords alike (the values sample a parabola).
-        for trace in c.panels[2].traces.iter().filter(|t| t.style == Style::Markers) {
+        for trace in c.panels[2]
+            .traces
+            .iter()
+            .filter(|t| t.style == Style::Markers)
+        {
             assert_eq!(trace.x.len(), 2);
             for a in &trace.y {
                 assert!((a - 0.9).abs() < 1e-9, "{}: {:?}", trace.name, trace.y);
@@ -641,7 +661,11 @@ mod tests {
         assert_eq!(hz.panels[1].traces[1].y[0], 2000.0);
         assert!((hz.panels[2].traces[0].y[1] - a * 1e6).abs() < 1e-9);
         // The jerk impulse is an acceleration step: Hz/s, not Hz/s².
-        let jerk = hz.panels[3].traces.iter().find(|t| t.style == Style::Impulses).unwrap();
+        let jerk = hz.panels[3]
+            .traces
+            .iter()
+            .find(|t| t.style == Style::Impulses)
+            .unwrap();
         assert!((jerk.y[0] - a * 1e6).abs() < 1e-9);
         assert_eq!(jerk.name, "impulse: acceleration step (Hz/s)");
         let mm = at_speed(

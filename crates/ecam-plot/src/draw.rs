@@ -151,6 +151,8 @@ const LEGEND_SIZE: f64 = 13.0;
 const IMPULSE_LABEL_SIZE: f64 = 12.0;
 /// Shortest arrow drawn, pixels: a small impulse still shows.
 const MIN_ARROW: i32 = 12;
+/// Impulses closer than this on average, pixels, are too many to label.
+const DENSE_SPACING: i32 = 16;
 /// Pixels kept free beyond the longest arrow's head, for a label.
 const LABEL_ROOM: i32 = 22;
 
@@ -226,7 +228,11 @@ where
         // A panel whose curves are all zero (a design's jerk between its
         // impulses) has no scale to show: a band around 0, labelled 0 only.
         let flat_zero = lo == 0.0 && hi == 0.0;
-        let (y_lo, y_hi) = if flat_zero { (-1.0, 1.0) } else { padded((lo, hi)) };
+        let (y_lo, y_hi) = if flat_zero {
+            (-1.0, 1.0)
+        } else {
+            padded((lo, hi))
+        };
         let mut builder = ChartBuilder::on(&area);
         builder.margin(8).margin_top(4).margin_right(RIGHT_MARGIN);
         if labels {
@@ -292,7 +298,7 @@ where
         let mut legend = Vec::new();
         for (k, trace) in panel.traces.iter().enumerate() {
             let color = COLORS.get(k % COLORS.len()).copied().unwrap_or(BLACK);
-            legend.push((trace.name.as_str(), trace.style, color));
+            legend.push((trace.name.clone(), trace.style, color));
             let points = trace
                 .x
                 .iter()
@@ -328,7 +334,20 @@ where
                         w: plot.w + RIGHT_MARGIN - 8,
                         ..plot
                     };
-                    draw_impulses(root, &arrows, color, labels, room).map_err(err)?;
+                    // Too many to label (a point table's every corner):
+                    // thin arrows, and the legend says how many.
+                    let dense = arrows.len() as i32 * DENSE_SPACING > plot.w;
+                    if let (true, Some(entry)) = (dense, legend.last_mut()) {
+                        let largest = trace.y.iter().fold(0.0_f64, |m, y| m.max(y.abs()));
+                        entry.0 = format!(
+                            "{} ({} impulses, largest ±{})",
+                            trace.name,
+                            arrows.len(),
+                            short(largest, 0.0)
+                        );
+                    }
+                    draw_impulses(root, &arrows, color, labels && !dense, room, dense)
+                        .map_err(err)?;
                 }
             }
         }
@@ -370,7 +389,11 @@ fn impulse_arrows(
         .into_iter()
         .map(|(k, x, size)| {
             let room = if size < 0.0 { down_room } else { up_room }.max(MIN_ARROW);
-            let share = if largest > 0.0 { size.abs() / largest } else { 1.0 };
+            let share = if largest > 0.0 {
+                size.abs() / largest
+            } else {
+                1.0
+            };
             let len = ((room as f64 * share).round() as i32).clamp(MIN_ARROW, room);
             let tip = if size < 0.0 { zero + len } else { zero - len };
             let tag = trace.tags.get(k).map_or("Δ", String::as_str);
@@ -396,14 +419,23 @@ fn draw_impulses<DB: DrawingBackend>(
     color: RGBColor,
     text: bool,
     plot: labels::Rect,
+    thin: bool,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let style = color.stroke_width(2);
+    let (style, head) = if thin {
+        (color.mix(0.6).stroke_width(1), 3)
+    } else {
+        (color.stroke_width(2), 4)
+    };
     for a in arrows {
         let (x, base, tip) = (a.arrow.x, a.arrow.base_y, a.arrow.tip_y);
-        let back = if tip < base { tip + 7 } else { tip - 7 };
+        let back = if tip < base {
+            tip + 2 * head
+        } else {
+            tip - 2 * head
+        };
         root.draw(&PathElement::new([(x, base), (x, tip)], style))?;
         root.draw(&PathElement::new(
-            [(x - 4, back), (x, tip), (x + 4, back)],
+            [(x - head, back), (x, tip), (x + head, back)],
             style,
         ))?;
     }
@@ -436,14 +468,15 @@ fn draw_legend<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     strip: &DrawingArea<DB, Shift>,
     left: i32,
-    entries: &[(&str, Style, RGBColor)],
+    entries: &[(String, Style, RGBColor)],
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let (_, ys) = strip.get_pixel_range();
     let y = (ys.start + ys.end) / 2;
     let font: TextStyle = (font::FAMILY, LEGEND_SIZE).into_font().into();
     let mut x = left;
-    for &(name, style, color) in entries {
-        match style {
+    for (name, style, color) in entries {
+        let (name, color) = (name.as_str(), *color);
+        match *style {
             Style::Markers => {
                 root.draw(&Circle::new((x + 9, y), 3, color.filled()))?;
             }
@@ -522,10 +555,14 @@ fn padded((lo, hi): (f64, f64)) -> (f64, f64) {
         hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
     );
     let span = hi - lo;
+    // A flat line gets a band of ±5 % of its own value (of 1 at 0): an
+    // absolute band would dwarf a small value in the panel's units.
     let pad = if span > 1e-12 * hi.abs().max(lo.abs()).max(1e-300) {
         span * 0.05
+    } else if lo != 0.0 {
+        lo.abs() * 0.05
     } else {
-        lo.abs().max(1.0) * 0.05
+        0.05
     };
     (lo - pad, hi + pad)
 }

@@ -189,7 +189,11 @@ mod tests {
             .map(|i| {
                 let mut a = arrow(5 + 6 * i, i % 3 != 0);
                 let len = 12 + (i * 37) % 78;
-                a.tip_y = if a.tip_y < a.base_y { 100 - len } else { 100 + len };
+                a.tip_y = if a.tip_y < a.base_y {
+                    100 - len
+                } else {
+                    100 + len
+                };
                 a
             })
             .collect();
@@ -209,7 +213,11 @@ mod tests {
                 };
                 let own = arrow.x + ARROW_HALF + GAP == a.x
                     || arrow.x - ARROW_HALF - GAP - arrow.text_w == a.x;
-                assert!(own || !a.overlaps(&shaft), "{a:?} over the arrow at {}", arrow.x);
+                assert!(
+                    own || !a.overlaps(&shaft),
+                    "{a:?} over the arrow at {}",
+                    arrow.x
+                );
             }
         }
     }

@@ -137,7 +137,7 @@ pub fn over_sections(points: &[CamPoint], k: usize) -> (Vec<f64>, Vec<f64>, Vec<
             let (lo, hi) = window(i);
             let half = 0.5 * (x.get(hi).unwrap_or(&0.0) - x.get(lo).unwrap_or(&0.0));
             if half > 0.0 {
-                (slope(i, hi) - slope(lo, i)) / half
+                cancelled(slope(lo, i), slope(i, hi)) / half
             } else {
                 0.0
             }
@@ -158,13 +158,27 @@ pub fn over_sections(points: &[CamPoint], k: usize) -> (Vec<f64>, Vec<f64>, Vec<
                 x.get(lo + 1),
                 x.get(hi + 1),
             ) {
-                (Some(a0), Some(a1), Some(x0), Some(x1)) if x1 > x0 => (a1 - a0) / (x1 - x0),
+                (Some(a0), Some(a1), Some(x0), Some(x1)) if x1 > x0 => {
+                    (cancelled(*a0, *a1)) / (x1 - x0)
+                }
                 _ => 0.0,
             }
         })
         .collect();
     let xs = inner.iter().filter_map(|&i| x.get(i).copied()).collect();
     (xs, acceleration, jerk)
+}
+
+/// `after − before`, exactly 0 where the two agree to floating-point
+/// rounding (equal chords computed over different spans differ in the last
+/// bits; that difference divided by a span is noise, not a derivative).
+fn cancelled(before: f64, after: f64) -> f64 {
+    let change = after - before;
+    if change.abs() <= 1e-12 * before.abs().max(after.abs()) {
+        0.0
+    } else {
+        change
+    }
 }
 
 /// Central difference of `y` at each interior point; 0 at both ends.
