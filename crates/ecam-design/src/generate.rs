@@ -170,18 +170,6 @@ fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- rotary cut, flying saw
 
-/// A ratio for people: at most six decimals (`1.666667` for 5/3, `2` for
-/// 2), instead of the seventeen digits a float prints.
-fn ratio_text(ratio: f64) -> String {
-    let text = format!("{ratio:.6}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".to_string()
-    } else {
-        text.to_string()
-    }
-}
-
 fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
     let g = rotary_cut::generate(params)?;
     Ok(Generated {
@@ -195,10 +183,10 @@ fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
                         .map_or_else(|| "none".to_string(), |(lo, hi)| format!("{lo} .. {hi}")),
                     g.sync_slave.0,
                     g.sync_slave.1,
-                    ratio_text(g.sync_ratio)
+                    crate::short(g.sync_ratio)
                 ),
             ),
-            ("peak ratio", ratio_text(g.peak_ratio)),
+            ("peak ratio", crate::short(g.peak_ratio)),
             ("capped at max ratio", g.capped_at_max.to_string()),
         ],
         kinematics: Some(design_along(&g.table, &g.design)),
@@ -219,7 +207,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
                     "constant-speed zone (master)",
                     format!("{} .. {}", g.constant_zone.0, g.constant_zone.1),
                 ),
-                ("peak ratio", ratio_text(g.peak_ratio)),
+                ("peak ratio", crate::short(g.peak_ratio)),
             ],
             kinematics: Some(design_along(&g.table, &g.design)),
             table: g.table,
@@ -241,7 +229,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
     Ok(Generated {
         outputs: vec![(
             "peak ratio",
-            ratio_text(forward.peak_ratio.max(back.peak_ratio)),
+            crate::short(forward.peak_ratio.max(back.peak_ratio)),
         )],
         kinematics: Some(design_along(&table, &design)),
         table,
@@ -394,10 +382,10 @@ mod tests {
 
     #[test]
     fn ratios_print_at_most_six_decimals() {
-        assert_eq!(ratio_text(5.0 / 3.0), "1.666667");
-        assert_eq!(ratio_text(2.0), "2");
-        assert_eq!(ratio_text(0.5), "0.5");
-        assert_eq!(ratio_text(-0.0000001), "0");
+        assert_eq!(crate::short(5.0 / 3.0), "1.666667");
+        assert_eq!(crate::short(2.0), "2");
+        assert_eq!(crate::short(0.5), "0.5");
+        assert_eq!(crate::short(-0.0000001), "0");
     }
 
     use super::*;

@@ -14,6 +14,9 @@
 //!   `3*pi` ([`number`], [`Number`]);
 //! - the `[table]` of a scenario file ([`load_table`]): points, an evenly
 //!   spaced table, a table file, an expression or a generator;
+//! - what `ecam table show` reports about a table file ([`TableReport`]:
+//!   peaks of the design and the table, the rounding note, figures in
+//!   machine units, steps), as text or JSON;
 //! - the designer page's JSON API ([`laws_json`], [`law_curves_json`],
 //!   [`generators_json`], [`key_points_json`], [`generate_json`]): JSON in,
 //!   JSON out, no sockets.
@@ -47,7 +50,9 @@ mod expr;
 #[doc(hidden)]
 pub mod fuzz;
 mod generate;
+mod machine;
 mod params;
+mod report;
 mod table_source;
 
 pub use designer::{
@@ -59,5 +64,7 @@ pub use generate::{
     Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,
     parse_key_lines,
 };
+pub use machine::{AtSpeed, Machine, Peaks, Source, Unit, short};
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
+pub use report::TableReport;
 pub use table_source::{load as load_table, resolve};
