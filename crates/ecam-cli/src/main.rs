@@ -8,10 +8,8 @@ mod cmd;
 mod generate;
 mod logging;
 mod paths;
-mod plot;
 mod progress;
 mod serve;
-mod trace;
 
 use clap::{ArgAction, Parser, Subcommand};
 

@@ -225,6 +225,18 @@ where
             .filter(|t| t.style != Style::Impulses)
             .flat_map(|t| t.y.iter().copied());
         let (lo, hi) = range_of(values.chain(has_impulses.then_some(0.0)));
+        // Arrows need room on their side of 0: a panel whose curves stay
+        // above 0 gets room below it for negative impulses, and so on.
+        let signs = |negative: bool| {
+            panel
+                .traces
+                .iter()
+                .filter(|t| t.style == Style::Impulses)
+                .flat_map(|t| t.y.iter())
+                .any(|y| (*y < 0.0) == negative && *y != 0.0)
+        };
+        let lo = if signs(true) { lo.min(-0.6 * hi) } else { lo };
+        let hi = if signs(false) { hi.max(-0.6 * lo) } else { hi };
         // A panel whose curves are all zero (a design's jerk between its
         // impulses) has no scale to show: a band around 0, labelled 0 only.
         let flat_zero = lo == 0.0 && hi == 0.0;

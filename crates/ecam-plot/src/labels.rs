@@ -67,9 +67,9 @@ pub fn place(arrows: &[Arrow], plot: Rect) -> Vec<Option<(i32, i32)>> {
     let shafts: Vec<Rect> = arrows
         .iter()
         .map(|a| Rect {
-            x: a.x - ARROW_HALF,
+            x: a.x - ARROW_HALF - GAP / 2,
             y: a.base_y.min(a.tip_y),
-            w: 2 * ARROW_HALF,
+            w: 2 * ARROW_HALF + GAP,
             h: (a.base_y - a.tip_y).abs().max(1),
         })
         .collect();

@@ -7,8 +7,9 @@
 //! hands each tick's [`Row`] and engine output to the caller (to write a
 //! trace, draw a plot, or check an invariant) and returns a [`Summary`].
 //!
-//! This is what `ecam simulate` runs; the command line only reads its
-//! arguments and writes the summary, trace CSV and plot.
+//! This is what `ecam simulate` runs, with the trace CSV it writes
+//! ([`TraceWriter`]) and the picture it draws ([`TracePlot`]); the command
+//! line only reads its arguments and wires them.
 //!
 //! When not to use it: to drive a real axis, call `ecam-engine`'s `tick`
 //! from your own control loop (the simulation holds the whole master
@@ -48,10 +49,12 @@
 
 #[doc(hidden)]
 pub mod fuzz;
+mod plot;
 mod scenario;
 mod simulate;
 mod trace;
 
+pub use plot::{PLOT_POINTS, TracePlot};
 pub use scenario::{MasterMove, Scenario, StopAt, StopTrigger};
 pub use simulate::{Summary, simulate};
-pub use trace::{Row, state_name};
+pub use trace::{HEADER, Row, TraceWriter, state_name};

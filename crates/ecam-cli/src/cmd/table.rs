@@ -15,7 +15,6 @@ use ecam_design::{Machine, TableReport, Unit};
 use ecam_plot::cam_table;
 
 use crate::generate::{self, GenCommand};
-use crate::plot;
 
 /// Subcommands of `ecam table`.
 #[derive(clap::Subcommand, Debug)]
@@ -89,13 +88,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 
 fn generate_table(args: GenArgs) -> anyhow::Result<()> {
     let output = args.generator.output().clone();
-    // Refuse bad extensions before the (possibly slow) generation.
-    if let Some(path) = &output.output {
-        io::FileFormat::of(path)?;
-    }
-    if let Some(path) = &output.plot {
-        plot::Format::of(path)?;
-    }
     let generated = generate::run(&args.generator)?;
     let file = TableFile {
         table: generated.table,
@@ -121,7 +113,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &output.plot {
         let exact = generated.exact.as_ref();
-        plot::draw_chart(cam_table::chart(&file, exact, generated.name), path)?;
+        ecam_plot::draw_chart(&cam_table::chart(&file, exact, generated.name), path)?;
     }
     Ok(())
 }
@@ -184,7 +176,6 @@ fn positive(text: &str) -> Result<f64, String> {
 }
 
 fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
-    plot::Format::of(&args.output)?;
     let chart = match io::read(&args.file)? {
         AnyTable::Points(mut file) => {
             if args.sync.is_some() {
@@ -211,7 +202,7 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
         }
         None => chart,
     };
-    plot::draw_chart(chart, &args.output)
+    Ok(ecam_plot::draw_chart(&chart, &args.output)?)
 }
 
 fn display_name(path: &Path) -> String {
