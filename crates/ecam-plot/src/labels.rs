@@ -81,12 +81,11 @@ pub fn place(arrows: &[Arrow], plot: Rect) -> Vec<Option<(i32, i32)>> {
             // Towards the axis from the tip: down for an arrow pointing up.
             let inward = if a.tip_y <= a.base_y { 1 } else { -1 };
             let top_at = |row: i32| {
-                let y = if inward > 0 {
+                if inward > 0 {
                     a.tip_y + row * (a.text_h + 2)
                 } else {
                     a.tip_y - a.text_h - row * (a.text_h + 2)
-                };
-                y
+                }
             };
             let right = a.x + ARROW_HALF + GAP;
             let left = a.x - ARROW_HALF - GAP - a.text_w;
@@ -146,6 +145,7 @@ pub fn place(arrows: &[Arrow], plot: Rect) -> Vec<Option<(i32, i32)>> {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
 

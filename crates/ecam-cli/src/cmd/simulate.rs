@@ -44,8 +44,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut trace = args.trace.as_deref().map(TraceWriter::create).transpose()?;
     let ticks = scenario.ticks();
     let mut plotted = args.plot.as_ref().map(|_| TracePlot::new(ticks));
-    // Made at the first tick, once the engine has accepted the scenario.
-    let mut progress = None;
+    tracing::debug!(
+        "{}: {ticks} ticks of {} us",
+        args.scenario.display(),
+        scenario.tick_us
+    );
+    let progress = Progress::new("simulating", ticks);
     let mut done = 0u64;
     let summary = simulate(&scenario, |row, out, traced| {
         if traced {
@@ -56,15 +60,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if let Some(p) = plotted.as_mut() {
             p.add(row, out);
         }
-        progress
-            .get_or_insert_with(|| Progress::new(ticks))
-            .tick(done);
+        progress.at(done);
         done += 1;
         Ok(())
     })?;
-    if let Some(progress) = progress {
-        progress.finish();
-    }
+    progress.finish();
     if let Some(t) = trace {
         t.finish()?;
     }

@@ -89,6 +89,11 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 fn generate_table(args: GenArgs) -> anyhow::Result<()> {
     let output = args.generator.output().clone();
     let generated = generate::run(&args.generator)?;
+    tracing::debug!(
+        "{}: {} points",
+        generated.name,
+        generated.table.points().len()
+    );
     let file = TableFile {
         table: generated.table,
         sync: generated.sync,
@@ -109,7 +114,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         }
     }
     for (key, value) in &generated.outputs {
-        eprintln!("{key}: {value}");
+        tracing::info!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
         let exact = generated.exact.as_ref();
@@ -120,6 +125,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
 
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
     let table = io::read(&args.file)?;
+    tracing::debug!("{}: a {} table", args.file.display(), table.kind());
     let report = TableReport::of(&args.file.display().to_string(), &table).at(args.machine.into());
     // A handle, not `println!`: a closed pipe is an error, not a panic.
     let mut out = std::io::stdout().lock();
@@ -176,7 +182,9 @@ fn positive(text: &str) -> Result<f64, String> {
 }
 
 fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
-    let chart = match io::read(&args.file)? {
+    let table = io::read(&args.file)?;
+    tracing::debug!("{}: a {} table", args.file.display(), table.kind());
+    let chart = match table {
         AnyTable::Points(mut file) => {
             if args.sync.is_some() {
                 file.sync = args.sync;
