@@ -42,6 +42,12 @@ impl MasterFunction {
                 text.len()
             ));
         }
+        if let Some(name) = unknown_function(text) {
+            bail!(
+                "unknown function `{name}` in {text:?}; the functions are {}",
+                FUNCTIONS.join(", ")
+            );
+        }
         let plain = expand_exponents(text)?;
         let expr = exmex::parse::<f64>(&plain).map_err(|e| {
             anyhow!(
@@ -191,6 +197,36 @@ pub fn number(text: &str) -> anyhow::Result<f64> {
 /// The parser's message without its internal dumps: some name the Rust
 /// operator structs, function addresses included, which say nothing to
 /// the author of the expression.
+/// The functions an expression may call (`exmex`'s, as docs/cli.md lists
+/// them).
+const FUNCTIONS: [&str; 19] = [
+    "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh", "exp", "ln", "log10",
+    "log2", "sqrt", "abs", "floor", "ceil", "round", "signum",
+];
+
+/// The first name in `text` written as a call (`name(`) that is not one of
+/// [`FUNCTIONS`]: the parser's own message for it is about parentheses.
+fn unknown_function(text: &str) -> Option<&str> {
+    let bytes = text.as_bytes();
+    let mut start = None;
+    for (i, &b) in bytes.iter().enumerate() {
+        let word = b.is_ascii_alphanumeric() || b == b'_';
+        match (start, word) {
+            (None, true) if !b.is_ascii_digit() => start = Some(i),
+            (Some(from), false) => {
+                let name = &text[from..i];
+                let called = text[i..].trim_start().starts_with('(');
+                if called && !FUNCTIONS.contains(&name) {
+                    return Some(name);
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 fn plain_error(message: &str) -> String {
     match message
         .find(" Operator {")
@@ -216,6 +252,20 @@ mod tests {
         assert_eq!(number("1000").unwrap(), 1000.0);
         assert!(number("x").is_err());
         assert!(number("5/").is_err());
+    }
+
+    #[test]
+    fn an_unknown_function_is_named() {
+        let e = MasterFunction::parse("1000*sinn(x)")
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("unknown function `sinn`") && e.contains("sin, cos"),
+            "{e}"
+        );
+        assert!(MasterFunction::parse("sqrt (x) + log10(x+1)").is_ok());
+        assert_eq!(unknown_function("2(x)"), None);
     }
 
     #[test]
