@@ -183,6 +183,18 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
         Some(exact) => Steps::of(exact),
         None => Steps::of_columns(points, &kinematics),
     };
+    // The note `ecam table show` prints when the table's acceleration is
+    // mostly whole-pulse rounding.
+    let note = crate::TableReport::of(
+        g.name,
+        &ecam_core::io::AnyTable::Points(ecam_core::io::TableFile {
+            table: g.table.clone(),
+            sync: g.sync,
+            generator: None,
+            kinematics: g.exact.as_ref().map(|_| kinematics.clone()),
+        }),
+    )
+    .note();
     let outputs: serde_json::Map<String, Value> = g
         .outputs
         .iter()
@@ -224,6 +236,7 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
             "design_peak_acceleration": design_peaks.map(|(_, a)| a),
             "continuity": summary.continuity.to_string(),
             "seam": summary.seam.to_string(),
+            "note": note,
         },
     }))
 }

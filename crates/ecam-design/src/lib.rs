@@ -18,8 +18,9 @@
 //!   peaks of the design and the table, the rounding note, figures in
 //!   machine units, steps), as text or JSON;
 //! - the designer page's JSON API ([`laws_json`], [`law_curves_json`],
-//!   [`generators_json`], [`key_points_json`], [`generate_json`]): JSON in,
-//!   JSON out, no sockets.
+//!   [`generators_json`], [`key_points_json`], [`generate_json`],
+//!   [`table_check_json`], [`table_read_json`], [`table_convert_json`],
+//!   [`limits_json`]): JSON in, JSON out, no sockets.
 //!
 //! When not to use it: to generate a table from typed parameters, call
 //! the generators of [`ecam_core::generator`] directly (no allocation of
@@ -53,6 +54,7 @@ mod generate;
 mod machine;
 mod params;
 mod report;
+mod table_api;
 mod table_source;
 
 pub use designer::{
@@ -67,4 +69,5 @@ pub use generate::{
 pub use machine::{AtSpeed, Machine, Peaks, Source, Unit, short};
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
 pub use report::TableReport;
+pub use table_api::{limits_json, table_check_json, table_convert_json, table_read_json};
 pub use table_source::{load as load_table, resolve};

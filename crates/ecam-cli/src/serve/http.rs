@@ -14,6 +14,11 @@
 //! | `POST /api/table/gen` `{"generator": "rotary-cut", "params": {...}}` | a generated table with its curves |
 //! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
 //! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block, one durable write (409 while its cam runs, unless `at-seam`) |
+//! | `POST /api/table/check` `{"points": [[0, 0], ...]}` | a point table checked, with its section velocities, impulses and summary |
+//! | `POST /api/table/read` `{"name": "t.csv", "text": "..."}` | an uploaded table file read as `ecam table show` reads it |
+//! | `POST /api/table/convert` `{"format": "csv", "points": [...], ...}` | a table as `ecam table gen -o` writes it, `{"text": ...}` |
+//! | `GET /api/limits` | table and key-point limits, key-point curve names |
+//! | `GET /api/block?name=D2000` | where a DECAM block starts, or why it cannot |
 //! | `GET /api/live?block=2000&rate=20` (WebSocket) | the cam's master, slave, speeds and sync output, [`super::live`] |
 //! | `GET /api/ethercat` | `--ethercat`: the line and every drive (state, positions, faults, lateness) |
 //! | `POST /api/ethercat/enable`, `/disable`, `/reset` `{}` | `--ethercat`: enable or disable the drives, clear the faults (202: done at the next cycle) |
@@ -200,6 +205,23 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         )
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
+        .route(
+            "/api/table/check",
+            post(|b: Bytes| design(b, ecam_design::table_check_json)),
+        )
+        .route(
+            "/api/table/read",
+            post(|b: Bytes| design(b, ecam_design::table_read_json)),
+        )
+        .route(
+            "/api/table/convert",
+            post(|b: Bytes| design(b, ecam_design::table_convert_json)),
+        )
+        .route(
+            "/api/limits",
+            get(|| async { json_value(StatusCode::OK, &ecam_design::limits_json()) }),
+        )
+        .route("/api/block", get(block))
         .route("/api/table/load", post(table_load))
         .route("/api/live", get(super::live::live))
         .route("/api/ethercat", get(ethercat_status))
@@ -404,7 +426,20 @@ async fn table_gen(body: Bytes) -> Response {
 }
 
 async fn key_points(body: Bytes) -> Response {
-    off_the_network_threads(move || json_call(&body, ecam_design::key_points_json)).await
+    design(body, ecam_design::key_points_json).await
+}
+
+/// A design endpoint: `answer(body)` off the network threads.
+async fn design(body: Bytes, answer: fn(&Value) -> Result<Value, String>) -> Response {
+    off_the_network_threads(move || json_call(&body, answer)).await
+}
+
+async fn block(Query(query): Query<HashMap<String, String>>) -> Response {
+    let name = query.get("name").map_or("", String::as_str);
+    match ecam_plc::decam::block_at(name) {
+        Ok(block) => json_value(StatusCode::OK, &json!({ "block": block })),
+        Err(e) => error(StatusCode::BAD_REQUEST, &e.to_string()),
+    }
 }
 
 /// Longest a design request may compute before it is answered with 503.
