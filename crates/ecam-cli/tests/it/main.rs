@@ -6,6 +6,7 @@ mod common;
 
 mod docs;
 mod ethercat;
+mod impulses;
 mod install;
 mod law;
 mod limits;

@@ -363,6 +363,8 @@ impl CamCurve for SegmentProfile {
         let span = (seg.master_end - from.master) as f64;
         let rise = (seg.slave_end - from.slave) as f64;
         let u = (master - from.master as f64) / span;
-        seg.law.eval(u).scaled(from.slave as f64, rise, span)
+        // At a law's knot (the constant-acceleration law's middle) the value
+        // after it, as a joint belongs to the segment starting there.
+        seg.law.eval_after(u).scaled(from.slave as f64, rise, span)
     }
 }

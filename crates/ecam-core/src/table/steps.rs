@@ -171,7 +171,11 @@ impl Steps {
                 d2(i - 1).max(d2(i)) / 8.0
             };
             let da = unexplained(k1.a - k0.a, h, (k0.j, k1.j), bend(|k| k.j));
-            let dv = unexplained(k1.v - k0.v, h, (k0.a, k1.a), bend(|k| k.a));
+            // Acceleration with a corner inside the section (its jerk
+            // turning, an S-type ramp's peak) bends by up to h·|Δj|/8 on
+            // average beyond its end values.
+            let kink = h * (k1.j - k0.j).abs() / 8.0;
+            let dv = unexplained(k1.v - k0.v, h, (k0.a, k1.a), bend(|k| k.a).max(kink));
             if da != 0.0 || dv != 0.0 {
                 // What the next column explains on average is not part of
                 // the step (for a column held between points, none is).
