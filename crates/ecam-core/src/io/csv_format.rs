@@ -10,7 +10,7 @@
 //! assert_eq!(to_csv(&table), "master,slave\n0,0\n100,50\n");
 //! assert_eq!(
 //!     from_csv("master,slave\n0,0\n10,1.5\n").unwrap_err().to_string(),
-//!     "row 2: slave \"1.5\" is not an integer"
+//!     "line 3: slave `1.5` is not an integer"
 //! );
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
