@@ -5,6 +5,7 @@
 mod common;
 
 mod docs;
+mod docs_commands;
 mod ethercat;
 mod impulses;
 mod install;
