@@ -184,6 +184,9 @@ async function main() {
     assert.equal(jerk.arrows, 4, "an arrow per acceleration step");
     assert.ok(jerk.labels.length >= 3 && jerk.labels.every((l) => /Δa/.test(l.text)), JSON.stringify(jerk.labels));
     assert.equal((await impulsesDrawn(page, "a")).arrows, 0, "no acceleration impulse");
+    // The design's jerk is 0 between its impulses: an axis labelled 0 only,
+    // not a range of meaningless units.
+    assert.ok(await page.evaluate(() => charts.j.flat), "a flat jerk axis");
     await shot("05-jerk-impulses.png", page.locator("#plot-j"));
     // The address holds the design: a reload restores it.
     const url = page.url();

@@ -204,7 +204,11 @@ fn every_command_the_docs_show_runs_and_prints_what_they_show() {
     let (mut ran, mut compared) = (0, 0);
     let mut failures = Vec::new();
     for page in &pages {
-        let name = page.strip_prefix(root()).unwrap_or(page).display().to_string();
+        let name = page
+            .strip_prefix(root())
+            .unwrap_or(page)
+            .display()
+            .to_string();
         let text = std::fs::read_to_string(page).unwrap();
         for shown in commands(&name, &text) {
             let at = format!("{}:{}: {}", shown.page, shown.line, shown.command);
@@ -217,7 +221,10 @@ fn every_command_the_docs_show_runs_and_prints_what_they_show() {
                 continue;
             }
             let args: Vec<String> = words(&shown.command).into_iter().skip(1).collect();
-            let args: Vec<String> = args.into_iter().take_while(|a| a != ">" && a != "&").collect();
+            let args: Vec<String> = args
+                .into_iter()
+                .take_while(|a| a != ">" && a != "&")
+                .collect();
             ran += 1;
             if args.first().is_some_and(|a| a == "serve") {
                 if let Err(e) = serve(args, &dir) {
@@ -262,11 +269,16 @@ fn the_shown_output_rules_hold() {
     assert!(!matches(&shown, &["a", "d"]));
     assert_eq!(
         words(r#"ecam table gen fly-saw --ratio "3*pi" -o t.csv  # forward"#),
-        ["ecam", "table", "gen", "fly-saw", "--ratio", "3*pi", "-o", "t.csv"]
+        [
+            "ecam", "table", "gen", "fly-saw", "--ratio", "3*pi", "-o", "t.csv"
+        ]
     );
     let page = "```text\n$ ecam law --list\nconstant-velocity\n```\n```sh\necam table show \\\n    t.csv\n```\n";
     let c = commands("p", page);
     assert_eq!(c.len(), 2);
-    assert_eq!(c[0].output.as_deref(), Some(&["constant-velocity".to_string()][..]));
+    assert_eq!(
+        c[0].output.as_deref(),
+        Some(&["constant-velocity".to_string()][..])
+    );
     assert_eq!(c[1].command, "ecam table show t.csv");
 }

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod conventions;
 mod docs;
 mod docs_commands;
 mod ethercat;
@@ -16,6 +17,7 @@ mod messages;
 mod plc_examples;
 mod plc_rotary_knife;
 mod plc_run;
+mod plots_readable;
 mod pmd_run;
 mod safe_motion;
 mod serve;
