@@ -50,6 +50,8 @@ pub fn init(verbose: u8, quiet: u8, extra: &[&str], timed: bool) {
     } else {
         builder.event_format(Plain).try_init()
     };
+    // ethercrab's own log lines (target `ethercrab`).
+    ecam_ethercat::log_bridge::install(tracing::level_filters::LevelFilter::current());
 }
 
 /// A command's message as a plain line: the text alone at `info`, after

@@ -10,6 +10,7 @@ mod logging;
 mod paths;
 mod progress;
 mod serve;
+mod signals;
 mod values;
 
 use clap::{ArgAction, Parser, Subcommand};

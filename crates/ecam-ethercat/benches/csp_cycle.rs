@@ -112,7 +112,7 @@ fn running_line(n: usize) -> CamLine<PointTable> {
             master: Master::Virtual,
         })
         .collect();
-    let mut line = CamLine::new(segment, axes).unwrap();
+    let mut line = CamLine::new(segment, axes, 100, Duration::ZERO).unwrap();
     line.virtual_speed = 7;
     line.start().unwrap();
     while line.state() != LineState::Running {

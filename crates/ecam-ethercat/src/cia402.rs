@@ -33,9 +33,10 @@ pub const SW_CSP_FOLLOWING: u16 = 1 << 12;
 pub const SW_CSP_FOLLOWING_ERROR: u16 = 1 << 13;
 
 /// The states of the CiA 402 power drive system.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum DriveState {
     /// Initialising; the controlword is not obeyed yet.
+    #[default]
     NotReadyToSwitchOn,
     /// Initialised, power stage off, waiting for "shutdown".
     SwitchOnDisabled,
@@ -54,6 +55,21 @@ pub enum DriveState {
 }
 
 impl DriveState {
+    /// The state's code in registers and status images: its place in
+    /// [`DriveState::ALL`] (0 not ready to switch on … 7 fault).
+    pub const fn code(self) -> u16 {
+        match self {
+            Self::NotReadyToSwitchOn => 0,
+            Self::SwitchOnDisabled => 1,
+            Self::ReadyToSwitchOn => 2,
+            Self::SwitchedOn => 3,
+            Self::OperationEnabled => 4,
+            Self::QuickStopActive => 5,
+            Self::FaultReactionActive => 6,
+            Self::Fault => 7,
+        }
+    }
+
     /// Every state, for tables and tests.
     pub const ALL: [Self; 8] = [
         Self::NotReadyToSwitchOn,
@@ -254,21 +270,40 @@ pub enum Request {
 ///
 /// A fault is never cleared by [`Request::Operate`]: clearing it is an
 /// explicit [`Request::ResetFault`], as a motion engineer expects (a
-/// machine must not restart by itself after a drive fault).
+/// machine must not restart by itself after a drive fault). The reset is
+/// one rising edge of bit 7, then bit 7 held high until the drive leaves
+/// "fault" (some drives take several cycles and look at the level, not
+/// only the edge); a fault that comes back needs a new reset.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Sequencer {
     last: u16,
+    /// The rising edge of this reset has gone out; bit 7 stays high.
+    edge_sent: bool,
 }
 
 impl Sequencer {
     /// A sequencer whose last controlword was 0.
     pub const fn new() -> Self {
-        Self { last: 0 }
+        Self {
+            last: 0,
+            edge_sent: false,
+        }
+    }
+
+    /// Starts a new fault reset: bit 7 goes low for a cycle (if it is
+    /// high) so the next high is a new edge.
+    pub fn restart_fault_reset(&mut self) {
+        self.edge_sent = false;
     }
 
     /// The controlword to send this cycle, given the state the drive
     /// reports and the request.
     pub fn controlword(&mut self, state: DriveState, request: Request) -> u16 {
+        if state != DriveState::Fault {
+            // Out of the fault (or not in it yet): the next reset is a
+            // new edge.
+            self.edge_sent = false;
+        }
         let controlword = match request {
             Request::Disabled => Command::DisableVoltage.controlword(),
             Request::QuickStop => match state {
@@ -278,8 +313,10 @@ impl Sequencer {
                 _ => Command::DisableVoltage.controlword(),
             },
             Request::ResetFault => match state {
+                DriveState::Fault if self.edge_sent => Command::FaultReset.controlword(),
                 // Bit 7 low first so the next cycle makes a rising edge.
                 DriveState::Fault if self.last & CW_FAULT_RESET == 0 => {
+                    self.edge_sent = true;
                     Command::FaultReset.controlword()
                 }
                 _ => Command::DisableVoltage.controlword(),
@@ -300,6 +337,42 @@ impl Sequencer {
         };
         self.last = controlword;
         controlword
+    }
+}
+
+/// A CiA 402 / CiA 301 error code (object 0x603F, emergency messages) in
+/// words: the profile's codes ecam knows by name, else the class its
+/// first digits give (CiA 301 table 21), else "device specific".
+pub fn error_code_text(code: u16) -> &'static str {
+    match code {
+        0x0000 => "no error",
+        0x2310 => "continuous over-current",
+        0x2320 => "short circuit or earth leakage",
+        0x3210 => "DC link over-voltage",
+        0x3220 => "DC link under-voltage",
+        0x4210 => "excess temperature of the device",
+        0x4310 => "excess temperature of the drive",
+        0x5441 | 0x5442 => "safe torque off or enable input open",
+        0x7121 => "motor blocked",
+        0x7305 => "incremental encoder fault",
+        0x7500 => "communication error",
+        0x8130 => "life guard or heartbeat error (communication watchdog)",
+        0x8611 => "following error",
+        0x8612 => "reference limit",
+        0xFF00..=0xFFFF => "device specific",
+        _ => match code >> 12 {
+            0x1 => "generic error",
+            0x2 => "current",
+            0x3 => "voltage",
+            0x4 => "temperature",
+            0x5 => "device hardware",
+            0x6 => "device software",
+            0x7 => "additional modules",
+            0x8 => "monitoring (communication or control)",
+            0x9 => "external error",
+            0xF => "additional functions",
+            _ => "unknown error",
+        },
     }
 }
 
@@ -512,6 +585,53 @@ mod tests {
         assert_eq!(word, 0x0080);
         state = state.after(word, previous);
         assert_eq!(state, DriveState::SwitchOnDisabled);
+    }
+
+    /// Fault 7 of issue 24: the reset bit was high for one cycle and
+    /// repeated every second cycle; it is one edge, then held.
+    #[test]
+    fn fault_reset_is_one_edge_held_until_the_drive_answers() {
+        let mut sequencer = Sequencer::new();
+        // Quick stop was the last command (bit 7 low): the edge comes at once.
+        let words: Vec<u16> = (0..6)
+            .map(|_| sequencer.controlword(DriveState::Fault, Request::ResetFault))
+            .collect();
+        assert_eq!(words, vec![0x80; 6], "held, never dropped");
+        // The drive answers: bit 7 goes low.
+        assert_eq!(
+            sequencer.controlword(DriveState::SwitchOnDisabled, Request::ResetFault),
+            0
+        );
+        // A fault that comes back gets a new edge.
+        assert_eq!(
+            sequencer.controlword(DriveState::Fault, Request::ResetFault),
+            0x80
+        );
+        // A second reset while the bit is held: low one cycle, then a new edge.
+        sequencer.restart_fault_reset();
+        assert_eq!(
+            sequencer.controlword(DriveState::Fault, Request::ResetFault),
+            0
+        );
+        assert_eq!(
+            sequencer.controlword(DriveState::Fault, Request::ResetFault),
+            0x80
+        );
+        // During the fault reaction the bit stays low.
+        let mut fresh = Sequencer::new();
+        assert_eq!(
+            fresh.controlword(DriveState::FaultReactionActive, Request::ResetFault),
+            0
+        );
+    }
+
+    #[test]
+    fn error_codes_in_words() {
+        assert_eq!(error_code_text(0x8611), "following error");
+        assert_eq!(error_code_text(0x2310), "continuous over-current");
+        assert_eq!(error_code_text(0x3330), "voltage");
+        assert_eq!(error_code_text(0xFF12), "device specific");
+        assert_eq!(error_code_text(0), "no error");
     }
 
     #[test]

@@ -32,7 +32,79 @@ use serde::Deserialize;
 use crate::follow::{Follower, Scale, ScaleError};
 use crate::line::Master;
 use crate::rt::RtConfig;
-use crate::segment::MAX_DRIVES;
+use crate::segment::{MAX_DRIVES, SegmentConfig};
+use crate::supervisor::default_max_lost_cycles;
+
+/// Stop time when the file gives none, ms.
+pub const DEFAULT_STOP_MS: u32 = 500;
+
+/// The timing keys both file kinds share, checked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Timing {
+    /// Cycle time, µs.
+    pub cycle_us: u32,
+    /// How long a cycle waits for its reply, µs (omitted: 80 % of the
+    /// cycle).
+    pub reply_timeout_us: Option<u32>,
+    /// How long before SYNC0 the frame is due, µs (omitted: half a
+    /// cycle).
+    pub sync0_shift_us: Option<u32>,
+    /// Lost cycles in a row that fault the line (omitted: 100 ms worth).
+    pub max_lost_cycles: Option<u32>,
+    /// Deceleration time of a stop, ms.
+    pub stop_ms: Option<u32>,
+}
+
+impl Timing {
+    fn check(&self) -> Result<(), ConfigError> {
+        if !(MIN_CYCLE_US..=MAX_CYCLE_US).contains(&self.cycle_us) {
+            return Err(ConfigError::Cycle(self.cycle_us));
+        }
+        for (key, value) in [
+            ("reply_timeout_us", self.reply_timeout_us),
+            ("sync0_shift_us", self.sync0_shift_us),
+        ] {
+            if let Some(v) = value {
+                if v == 0 || v >= self.cycle_us {
+                    return Err(ConfigError::WithinCycle {
+                        key,
+                        value: v,
+                        cycle_us: self.cycle_us,
+                    });
+                }
+            }
+        }
+        if self.max_lost_cycles == Some(0) {
+            return Err(ConfigError::MaxLost);
+        }
+        Ok(())
+    }
+
+    /// The segment's timing.
+    pub fn segment(&self) -> SegmentConfig {
+        let cycle = Duration::from_micros(u64::from(self.cycle_us));
+        let mut config = SegmentConfig::for_cycle(cycle);
+        if let Some(us) = self.reply_timeout_us {
+            config.reply_timeout = Duration::from_micros(u64::from(us));
+        }
+        if let Some(us) = self.sync0_shift_us {
+            config.sync0_shift = Duration::from_micros(u64::from(us));
+        }
+        config
+    }
+
+    /// Lost cycles in a row that fault the line.
+    pub fn max_lost_cycles(&self) -> u32 {
+        self.max_lost_cycles.unwrap_or_else(|| {
+            default_max_lost_cycles(Duration::from_micros(u64::from(self.cycle_us)))
+        })
+    }
+
+    /// Deceleration time of a stop.
+    pub fn stop(&self) -> Duration {
+        Duration::from_millis(u64::from(self.stop_ms.unwrap_or(DEFAULT_STOP_MS)))
+    }
+}
 
 /// Shortest cycle accepted, µs.
 pub const MIN_CYCLE_US: u32 = 50;
@@ -107,6 +179,14 @@ pub struct LineConfig {
     /// Virtual master counts per cycle.
     #[serde(default)]
     pub master_speed: i64,
+    /// How long a cycle waits for its reply, µs.
+    pub reply_timeout_us: Option<u32>,
+    /// How long before SYNC0 the frame is due, µs.
+    pub sync0_shift_us: Option<u32>,
+    /// Lost cycles in a row that fault the line.
+    pub max_lost_cycles: Option<u32>,
+    /// Deceleration time of a stop, ms.
+    pub stop_ms: Option<u32>,
     /// The cams.
     #[serde(rename = "axis")]
     pub axes: Vec<AxisSpec>,
@@ -133,6 +213,17 @@ pub enum ConfigError {
     Output(String),
     /// A scale that cannot be.
     Scale(ScaleError),
+    /// A time that must lie within the cycle does not.
+    WithinCycle {
+        /// The key.
+        key: &'static str,
+        /// Its value, µs.
+        value: u32,
+        /// The cycle, µs.
+        cycle_us: u32,
+    },
+    /// `max_lost_cycles = 0`.
+    MaxLost,
 }
 
 impl core::fmt::Display for ConfigError {
@@ -160,17 +251,24 @@ impl core::fmt::Display for ConfigError {
                 "pulse = \"{y}\": the pulse outputs are Y0, Y1, Y2 and Y3"
             ),
             Self::Scale(e) => e.fmt(f),
+            Self::WithinCycle {
+                key,
+                value,
+                cycle_us,
+            } => write!(
+                f,
+                "{key} = {value} must be above 0 and below the cycle ({cycle_us} µs)"
+            ),
+            Self::MaxLost => f.write_str("max_lost_cycles = 0: at least one cycle must be allowed"),
         }
     }
 }
 
 impl std::error::Error for ConfigError {}
 
-/// Checks the cycle and the priority both file kinds carry.
-fn check_timing(cycle_us: u32, fifo_priority: Option<u8>) -> Result<(), ConfigError> {
-    if !(MIN_CYCLE_US..=MAX_CYCLE_US).contains(&cycle_us) {
-        return Err(ConfigError::Cycle(cycle_us));
-    }
+/// Checks the timing and the priority both file kinds carry.
+fn check_timing(timing: Timing, fifo_priority: Option<u8>) -> Result<(), ConfigError> {
+    timing.check()?;
     match fifo_priority {
         Some(p) if !(1..=99).contains(&p) => Err(ConfigError::Priority(p)),
         _ => Ok(()),
@@ -186,10 +284,21 @@ fn rt_config(cycle_us: u32, fifo_priority: Option<u8>, cpu: Option<usize>) -> Rt
 }
 
 impl LineConfig {
+    /// The timing keys.
+    pub fn timing(&self) -> Timing {
+        Timing {
+            cycle_us: self.cycle_us,
+            reply_timeout_us: self.reply_timeout_us,
+            sync0_shift_us: self.sync0_shift_us,
+            max_lost_cycles: self.max_lost_cycles,
+            stop_ms: self.stop_ms,
+        }
+    }
+
     /// Parses and checks a configuration.
     pub fn parse(text: &str) -> Result<Self, ConfigError> {
         let config: Self = toml::from_str(text).map_err(|e| ConfigError::Syntax(e.to_string()))?;
-        check_timing(config.cycle_us, config.fifo_priority)?;
+        check_timing(config.timing(), config.fifo_priority)?;
         if config.axes.is_empty() {
             return Err(ConfigError::NoAxes);
         }
@@ -282,6 +391,14 @@ pub struct FollowConfig {
     pub fifo_priority: Option<u8>,
     /// CPU to pin the cycle thread to.
     pub cpu: Option<usize>,
+    /// How long a cycle waits for its reply, µs.
+    pub reply_timeout_us: Option<u32>,
+    /// How long before SYNC0 the frame is due, µs.
+    pub sync0_shift_us: Option<u32>,
+    /// Lost cycles in a row that fault the line.
+    pub max_lost_cycles: Option<u32>,
+    /// Deceleration time of a stop, ms.
+    pub stop_ms: Option<u32>,
     /// Enable the drives when the server starts (default); with `false`
     /// they wait for the enable coil or `POST /api/ethercat/enable`.
     #[serde(default = "yes")]
@@ -301,13 +418,24 @@ fn yes() -> bool {
 }
 
 impl FollowConfig {
+    /// The timing keys.
+    pub fn timing(&self) -> Timing {
+        Timing {
+            cycle_us: self.cycle_us,
+            reply_timeout_us: self.reply_timeout_us,
+            sync0_shift_us: self.sync0_shift_us,
+            max_lost_cycles: self.max_lost_cycles,
+            stop_ms: self.stop_ms,
+        }
+    }
+
     /// Parses and checks a configuration.
     ///
     /// # Errors
     /// [`ConfigError`] for bad syntax, timing, outputs, scales or drives.
     pub fn parse(text: &str) -> Result<Self, ConfigError> {
         let config: Self = toml::from_str(text).map_err(|e| ConfigError::Syntax(e.to_string()))?;
-        check_timing(config.cycle_us, config.fifo_priority)?;
+        check_timing(config.timing(), config.fifo_priority)?;
         if config.outputs.is_empty() {
             return Err(ConfigError::NoOutputs);
         }
@@ -374,6 +502,10 @@ points = [[0, 0], [1000, 4000]]
         assert_eq!(c.axes[1].master(), Master::DriveActual { position: 0 });
         assert_eq!(c.axes[1].axis_config().coupling, Coupling::Periodic);
         assert_eq!(c.rt().fifo_priority, None);
+        // Lost-cycle limit: 100 ms worth by default.
+        assert_eq!(c.timing().max_lost_cycles(), 100);
+        assert_eq!(c.timing().segment().sync0_shift, Duration::from_micros(500));
+        assert_eq!(c.timing().stop(), Duration::from_millis(500));
     }
 
     const FOLLOW: &str = r#"
@@ -420,6 +552,18 @@ drive = 0
         assert_eq!(bad("drive = 1", "drive = 0"), ConfigError::DriveTwice(0));
         assert_eq!(bad("drive = 1", "drive = 99"), ConfigError::Drive(99));
         assert_eq!(bad("cycle_us = 500", "cycle_us = 1"), ConfigError::Cycle(1));
+        assert_eq!(
+            bad("cycle_us = 500", "cycle_us = 500\nsync0_shift_us = 500"),
+            ConfigError::WithinCycle {
+                key: "sync0_shift_us",
+                value: 500,
+                cycle_us: 500
+            }
+        );
+        assert_eq!(
+            bad("cycle_us = 500", "cycle_us = 500\nmax_lost_cycles = 0"),
+            ConfigError::MaxLost
+        );
         assert!(matches!(bad("scale", "scales"), ConfigError::Syntax(_)));
         assert_eq!(
             FollowConfig::parse("cycle_us = 1000").unwrap_err(),

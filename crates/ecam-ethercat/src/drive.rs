@@ -22,6 +22,8 @@ pub struct Cia402Drive {
     inputs: CspInputs,
     actual: Option<Unwrap32>,
     reachable: bool,
+    /// Exchanges in a row the drive did not answer.
+    missed: u32,
 }
 
 impl Cia402Drive {
@@ -33,6 +35,10 @@ impl Cia402Drive {
     /// What the master wants from the drive (enable, disable, quick stop,
     /// fault reset); it is walked there one state per cycle.
     pub fn set_request(&mut self, request: Request) {
+        if request == Request::ResetFault {
+            // Every reset asked for is a new rising edge of bit 7.
+            self.sequencer.restart_fault_reset();
+        }
         self.request = request;
     }
 
@@ -54,6 +60,12 @@ impl Cia402Drive {
     /// The drive answered in the last exchange.
     pub fn reachable(&self) -> bool {
         self.reachable
+    }
+
+    /// Exchanges in a row the drive has not answered (0: it answered the
+    /// last one). Its inputs are the last it sent.
+    pub fn missed_cycles(&self) -> u32 {
+        self.missed
     }
 
     /// Actual position, unwrapped (0 before the first answer).
@@ -81,7 +93,8 @@ impl Cia402Drive {
     }
 
     /// Takes the inputs of the last exchange; `None` when the drive did not
-    /// answer (working counter short, state not readable).
+    /// answer (frame lost, working counter short, state not readable): its
+    /// last inputs are kept and the miss is counted.
     pub fn update(&mut self, inputs: Option<CspInputs>) {
         match inputs {
             Some(inputs) => {
@@ -94,8 +107,12 @@ impl Cia402Drive {
                 }
                 self.inputs = inputs;
                 self.reachable = true;
+                self.missed = 0;
             }
-            None => self.reachable = false,
+            None => {
+                self.reachable = false;
+                self.missed = self.missed.saturating_add(1);
+            }
         }
     }
 }

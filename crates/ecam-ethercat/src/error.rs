@@ -35,6 +35,13 @@ pub enum EthercatError {
     Pdo(PdoSizeError),
     /// The drives did not all reach OP in time.
     NotOp,
+    /// Bringing the segment up again found another number of drives.
+    DriveCount {
+        /// Drives the line was built for.
+        expected: usize,
+        /// Drives that answered now.
+        found: usize,
+    },
     /// The cycle time is zero or longer than a second.
     CycleTime(Duration),
     /// Frame storage could not be set up.
@@ -66,6 +73,10 @@ impl core::fmt::Display for EthercatError {
             ),
             Self::Pdo(e) => e.fmt(f),
             Self::NotOp => f.write_str("not every drive reached OP in time"),
+            Self::DriveCount { expected, found } => write!(
+                f,
+                "bringing the segment up again found {found} drives, the line has {expected}"
+            ),
             Self::CycleTime(c) => write!(f, "cycle time {c:?} out of range (above 0, at most 1 s)"),
             Self::Storage => f.write_str("EtherCAT frame storage could not be set up"),
         }

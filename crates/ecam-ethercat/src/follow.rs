@@ -12,11 +12,13 @@
 //! position: enabling never jumps, and neither does re-enabling after a
 //! fault, wherever the PLC moved the output meanwhile.
 
+use std::time::Duration;
+
 use ecam_engine::drive::AxisDrive;
 
 use crate::error::EthercatError;
 use crate::segment::{CycleReport, Segment};
-use crate::supervisor::{LineFault, LineState, Supervisor, check_positions};
+use crate::supervisor::{LineFault, LineState, Supervision, Supervisor, check_positions};
 
 /// Pulse outputs a PLC has (Y0–Y3).
 pub const PULSE_OUTPUTS: u8 = 4;
@@ -148,15 +150,14 @@ impl From<EthercatError> for FollowError {
     }
 }
 
-/// What one cycle of a following line did.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// What one cycle of a following line did (the targets and faults are in
+/// [`FollowLine::target_of`] and [`FollowLine::new_faults`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FollowReport {
     /// The bus exchange.
     pub bus: CycleReport,
-    /// The target position each follower was sent, in follower order.
-    pub targets: Vec<i64>,
-    /// Faults first seen this cycle (they stopped the line).
-    pub new_faults: Vec<LineFault>,
+    /// What the supervisor saw.
+    pub seen: Supervision,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -165,6 +166,11 @@ struct Following {
     /// Target minus scaled pulses; re-set while the drive is not enabled.
     origin: i64,
     target: i64,
+    /// Target change of the last cycle (the drive's velocity, counts per
+    /// cycle).
+    velocity: i64,
+    /// The velocity when a stop began, and where.
+    stop_from: (i64, i64),
 }
 
 /// Drives on a segment following pulse outputs.
@@ -174,16 +180,29 @@ pub struct FollowLine {
     followers: Vec<Following>,
     supervisor: Supervisor,
     dt_us: u32,
+    stop_cycles: u32,
+    /// Cycles into the stop ramp (`None`: not stopping).
+    stopping: Option<u32>,
+    settling: u32,
+    /// The last exchange came back.
+    advanced: bool,
 }
 
 impl FollowLine {
     /// Binds outputs to drives: every drive must exist and be named once;
-    /// one output may drive several drives (a gantry).
+    /// one output may drive several drives (a gantry). More than
+    /// `max_lost_cycles` cycles in a row without a drive's answer fault the
+    /// line; a stop decelerates each drive to rest over `stop`.
     ///
     /// # Errors
     /// [`FollowError`] for a missing drive or output, a drive named twice,
     /// or no follower.
-    pub fn new(segment: Segment, followers: Vec<Follower>) -> Result<Self, FollowError> {
+    pub fn new(
+        segment: Segment,
+        followers: Vec<Follower>,
+        max_lost_cycles: u32,
+        stop: Duration,
+    ) -> Result<Self, FollowError> {
         if followers.is_empty() {
             return Err(FollowError::Empty);
         }
@@ -200,11 +219,16 @@ impl FollowLine {
             }
             used[f.drive] = true;
         }
-        let dt_us = u32::try_from(segment.config().cycle.as_micros()).unwrap_or(u32::MAX);
+        let cycle = segment.config().cycle;
+        let dt_us = u32::try_from(cycle.as_micros()).unwrap_or(u32::MAX);
+        let stop_cycles =
+            u32::try_from(stop.as_nanos() / cycle.as_nanos().max(1)).unwrap_or(u32::MAX);
         Ok(Self {
             supervisor: Supervisor::new(
                 followers.iter().map(|f| f.drive).collect(),
-                segment.config().cycle,
+                drives,
+                cycle,
+                max_lost_cycles,
             ),
             followers: followers
                 .into_iter()
@@ -212,10 +236,16 @@ impl FollowLine {
                     spec,
                     origin: 0,
                     target: 0,
+                    velocity: 0,
+                    stop_from: (0, 0),
                 })
                 .collect(),
             segment,
             dt_us,
+            stop_cycles,
+            stopping: None,
+            settling: 0,
+            advanced: true,
         })
     }
 
@@ -250,9 +280,25 @@ impl FollowLine {
         self.supervisor.state()
     }
 
-    /// The faults that stopped the line (until [`FollowLine::reset`]).
+    /// The faults that stopped the line (until a reset has recovered it).
     pub fn faults(&self) -> &[LineFault] {
         self.supervisor.faults()
+    }
+
+    /// The faults first seen in the last cycle.
+    pub fn new_faults(&self) -> &[LineFault] {
+        self.supervisor.new_faults()
+    }
+
+    /// The supervisor (limits, drives).
+    pub fn supervisor(&self) -> &Supervisor {
+        &self.supervisor
+    }
+
+    /// The last exchange came back (a PLC paced by the bus steps only then,
+    /// so no drive gets the motion of a lost cycle in one step).
+    pub fn advanced(&self) -> bool {
+        self.advanced
     }
 
     /// Enables the drives; each follows its output from the cycle it
@@ -266,24 +312,63 @@ impl FollowLine {
             .map_err(FollowError::State)
     }
 
-    /// Disables the drives.
+    /// Stops the line: each drive decelerates from its present velocity to
+    /// rest over the stop time (its output is no longer followed), then
+    /// the drives are disabled.
     pub fn stop(&mut self) {
-        self.supervisor.stop(&mut self.segment);
+        if self.state() == LineState::Running {
+            for f in &mut self.followers {
+                f.stop_from = (f.target, f.velocity);
+            }
+            self.stopping = Some(0);
+            self.settling = 0;
+        }
+        self.supervisor.begin_stop(&mut self.segment);
     }
 
-    /// Clears the faults; the line is stopped afterwards.
+    /// Disables the drives at once (no deceleration).
+    pub fn disable(&mut self) {
+        self.stopping = None;
+        self.supervisor.disable(&mut self.segment);
+    }
+
+    /// The drives are not enabled (stopped, faulted or recovering).
+    pub fn at_rest(&self) -> bool {
+        !matches!(
+            self.state(),
+            LineState::Running | LineState::Stopping | LineState::Enabling
+        )
+    }
+
+    /// Clears the faults (see [`crate::line::CamLine::reset`]); the line is
+    /// recovering, then stopped.
     ///
     /// # Errors
-    /// [`FollowError::State`] unless the line is faulted.
+    /// [`FollowError::State`] unless the line is faulted; the bus error
+    /// when the segment could not be brought up again.
     pub fn reset(&mut self) -> Result<(), FollowError> {
-        self.supervisor
+        let reinitialise = self
+            .supervisor
             .reset(&mut self.segment)
-            .map_err(FollowError::State)
+            .map_err(FollowError::State)?;
+        if reinitialise {
+            self.segment.reinitialise()?;
+            self.supervisor.reinitialised();
+        }
+        Ok(())
+    }
+
+    /// Runs the pending acyclic step (diagnosis, recovery), waiting at
+    /// most `budget`.
+    pub fn acyclic_step(&mut self, budget: Duration) {
+        if self.supervisor.has_acyclic_work() {
+            self.supervisor.acyclic_step(&mut self.segment, budget);
+        }
     }
 
     /// One cycle: `emitted[y]` is the total of signed pulses output `y`
     /// has emitted since power-up (ecam-plc's `Hardware::emitted`);
-    /// targets out, exchange, status in, fault check.
+    /// targets out, exchange, status in, supervision.
     ///
     /// # Errors
     /// [`FollowError::Bus`] when the exchange itself fails.
@@ -291,7 +376,8 @@ impl FollowLine {
         &mut self,
         emitted: &[i64; PULSE_OUTPUTS as usize],
     ) -> Result<FollowReport, FollowError> {
-        let mut targets = Vec::with_capacity(self.followers.len());
+        let stopping = self.stopping;
+        let n = i128::from(self.stop_cycles.max(1));
         for f in &mut self.followers {
             let pulses = emitted
                 .get(usize::from(f.spec.output))
@@ -301,21 +387,50 @@ impl FollowLine {
             let Some(drive) = self.segment.drives_mut().get_mut(f.spec.drive) else {
                 continue;
             };
-            if !drive.status().enabled {
-                // Not following yet: the target is where the drive stands.
-                f.origin = drive.actual().saturating_sub(counts);
+            let before = f.target;
+            if let Some(k) = stopping {
+                // A linear ramp from the velocity the stop began with.
+                let (from, v) = f.stop_from;
+                let k = i128::from(k.min(self.stop_cycles));
+                let travelled = (i128::from(v) * (k * n - k * (k + 1) / 2)).div_euclid(n);
+                f.target = from.saturating_add(i64::try_from(travelled).unwrap_or(0));
+            } else {
+                // The state last heard: a lost cycle does not re-origin.
+                if drive.state() != crate::cia402::DriveState::OperationEnabled {
+                    // Not following yet: the target is where the drive
+                    // stands.
+                    f.origin = drive.actual().saturating_sub(counts);
+                }
+                f.target = f.origin.saturating_add(counts);
             }
-            f.target = f.origin.saturating_add(counts);
+            f.velocity = f.target.saturating_sub(before);
             drive.command(f.target, self.dt_us);
-            targets.push(f.target);
         }
         let bus = self.segment.exchange()?;
+        self.advanced = !bus.frame_lost;
         let seen = self.supervisor.after_exchange(&mut self.segment, &bus);
-        Ok(FollowReport {
-            bus,
-            targets,
-            new_faults: seen.new_faults,
-        })
+        if let Some(k) = &mut self.stopping {
+            if self.advanced {
+                *k = k.saturating_add(1);
+            }
+            if *k > self.stop_cycles {
+                self.settling = self.settling.saturating_add(1);
+                let still = self.followers.iter().all(|f| {
+                    self.segment
+                        .drives()
+                        .get(f.spec.drive)
+                        .is_some_and(|d| d.actual() == f.target)
+                });
+                if still || self.settling > 1000 {
+                    self.stopping = None;
+                    self.supervisor.disable(&mut self.segment);
+                }
+            }
+            if self.state() != LineState::Stopping {
+                self.stopping = None;
+            }
+        }
+        Ok(FollowReport { bus, seen })
     }
 }
 

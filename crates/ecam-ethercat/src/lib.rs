@@ -34,17 +34,23 @@
 
 pub mod cia402;
 pub mod config;
+pub mod dc;
 pub mod drive;
+pub mod driver;
 pub mod emulation;
 mod error;
 pub mod follow;
 pub mod line;
 pub mod link;
+pub mod log_bridge;
+pub mod monitor;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
+pub mod summary;
 pub mod supervisor;
 
 pub use drive::Cia402Drive;
 pub use error::EthercatError;
+pub use link::LinkStats;
 pub use segment::{CycleReport, Segment, SegmentConfig, Transport};

@@ -205,6 +205,32 @@ impl CycleClock {
     }
 }
 
+impl CycleClock {
+    /// Moves the next deadline by `ns` (positive: later); the distributed
+    /// clock lock steers the cycle with it.
+    pub fn shift(&mut self, ns: i64) {
+        let by = Duration::from_nanos(ns.unsigned_abs());
+        self.next = if ns >= 0 {
+            self.next.saturating_add(by)
+        } else {
+            self.next.saturating_sub(by)
+        };
+    }
+
+    /// Time left until the next deadline (zero when it has passed).
+    pub fn until_next(&self) -> Duration {
+        monotonic().map_or(Duration::ZERO, |now| self.next.saturating_sub(now))
+    }
+
+    /// Starts afresh one period from now (after a blocking step such as
+    /// bringing the segment up again), without counting overruns.
+    pub fn restart(&mut self) {
+        if let Ok(now) = monotonic() {
+            self.next = now + self.period;
+        }
+    }
+}
+
 fn monotonic() -> nix::Result<Duration> {
     let t = clock_gettime(ClockId::CLOCK_MONOTONIC)?;
     Ok(Duration::from(t))

@@ -1,24 +1,21 @@
 //! A segment of CSP drives driven by `ethercrab`: bring-up to OP with
 //! distributed clocks (SYNC0 = the cycle time), then one process-data
-//! exchange per cycle.
+//! exchange per cycle on the caller's thread, a reply deadline of the
+//! cycle's own, and the acyclic steps the recovery of a drive needs.
 
-use std::sync::{Arc, Mutex};
-use std::thread::{self, JoinHandle};
 use std::time::{Duration, Instant};
 
 use ethercrab::subdevice_group::{DcConfiguration, HasDc, Op};
 use ethercrab::{
-    DcSync, DefaultLock, MainDevice, MainDeviceConfig, PduStorage, RetryBehaviour, SubDeviceGroup,
-    SubDeviceState, Timeouts,
+    DcSync, DefaultLock, EtherCrabWireRead, MainDevice, MainDeviceConfig, PduStorage,
+    RetryBehaviour, SubDeviceGroup, SubDeviceState, Timeouts,
 };
-use futures_lite::future::block_on;
 
 use crate::drive::Cia402Drive;
-use crate::emulation::EmulatedSegment;
 use crate::error::EthercatError;
-use crate::link::InProcessLink;
+pub use crate::link::Transport;
+use crate::link::{self, Link, LinkStats, LoopId};
 use crate::pdo::{CspInputs, INPUTS_LEN, OUTPUTS_LEN};
-use crate::rt::{RtConfig, configure_current_thread};
 
 /// Most drives one segment carries.
 pub const MAX_DRIVES: usize = 64;
@@ -26,47 +23,51 @@ pub const MAX_DRIVES: usize = 64;
 pub const MAX_PDI: usize = MAX_DRIVES * (OUTPUTS_LEN + INPUTS_LEN);
 const MAX_FRAMES: usize = 16;
 const MAX_PDU_DATA: usize = PduStorage::element_size(1100);
+/// Longest a bring-up may take as a whole, whatever ethercrab's own
+/// timeouts say (a bring-up never hangs).
+const BRING_UP_LIMIT: Duration = Duration::from_secs(60);
 
 type Storage = PduStorage<MAX_FRAMES, MAX_PDU_DATA>;
 type OpGroup = SubDeviceGroup<MAX_DRIVES, MAX_PDI, DefaultLock, Op, HasDc>;
-
-/// Where the frames go.
-#[derive(Clone, Debug)]
-pub enum Transport {
-    /// A network interface (raw socket; needs CAP_NET_RAW).
-    Interface(String),
-    /// An emulated segment in this process.
-    Emulated(Arc<Mutex<EmulatedSegment>>),
-}
 
 /// Timing of a segment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SegmentConfig {
     /// Process-data cycle, also the SYNC0 period.
     pub cycle: Duration,
-    /// How long a frame may take to come back before the cycle counts it
-    /// lost.
+    /// How long a cycle waits for its reply; a reply later than this is
+    /// counted lost and discarded when it comes.
+    pub reply_timeout: Duration,
+    /// How long a frame of the bring-up or of a recovery step may take to
+    /// come back (ethercrab retries it twice).
     pub frame_timeout: Duration,
     /// How long a state change (INIT → PRE-OP → SAFE-OP → OP) may take.
     pub state_timeout: Duration,
     /// Frames sent to settle the drives' clocks before SYNC0 starts.
     pub dc_static_sync_iterations: u32,
-    /// `SCHED_FIFO` priority of the thread that sends and receives the
-    /// frames (`None`: normal scheduling). With a real-time cycle it must
-    /// be real-time too, or the cycle waits on a thread the scheduler may
-    /// hold back.
-    pub link_fifo_priority: Option<u8>,
+    /// How long before the drives' SYNC0 edge the process data frame is
+    /// meant to leave the master.
+    pub sync0_shift: Duration,
+}
+
+impl SegmentConfig {
+    /// Defaults for a cycle: the reply may take up to 80 % of it, the
+    /// frame leaves half a cycle before SYNC0.
+    pub fn for_cycle(cycle: Duration) -> Self {
+        Self {
+            cycle,
+            reply_timeout: cycle * 4 / 5,
+            frame_timeout: Duration::from_millis(30),
+            state_timeout: Duration::from_secs(5),
+            dc_static_sync_iterations: 1000,
+            sync0_shift: cycle / 2,
+        }
+    }
 }
 
 impl Default for SegmentConfig {
     fn default() -> Self {
-        Self {
-            cycle: Duration::from_millis(1),
-            frame_timeout: Duration::from_millis(30),
-            state_timeout: Duration::from_secs(5),
-            dc_static_sync_iterations: 1000,
-            link_fifo_priority: None,
-        }
+        Self::for_cycle(Duration::from_millis(1))
     }
 }
 
@@ -78,39 +79,136 @@ pub struct CycleReport {
     pub working_counter: u16,
     /// The working counter the complete segment returned after bring-up.
     pub expected_working_counter: u16,
-    /// Drives that did not answer.
+    /// Drives that did not answer, or answered from a state other than OP.
     pub unreachable: usize,
-    /// The frame did not come back at all.
+    /// The reply did not come back by the deadline (lost, or late: a late
+    /// reply is discarded when it comes).
     pub frame_lost: bool,
-    /// DC system time of the reference drive, ns.
+    /// DC system time of the reference drive when the frame passed it,
+    /// ns (0 when the frame was lost).
     pub dc_system_time: u64,
-    /// Time to the next SYNC0-aligned cycle start, as ethercrab computes
-    /// it from the DC time.
-    pub next_cycle_wait: Duration,
 }
 
 impl CycleReport {
-    /// The working counter was short (a drive or a cable is missing).
+    /// The working counter was short (a drive or a cable is missing) or
+    /// nothing came back.
     pub fn working_counter_error(&self) -> bool {
         self.frame_lost || self.working_counter != self.expected_working_counter
     }
 }
 
-/// Kept only to live as long as the segment (dropping the emulated link
-/// stops its thread).
-enum Link {
-    Emulated { _link: InProcessLink },
-    Interface { _thread: JoinHandle<()> },
+/// EtherCAT state of a drive as the last exchange read it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AlState {
+    /// Not read (no answer).
+    #[default]
+    Unknown,
+    /// INIT.
+    Init,
+    /// PRE-OP.
+    PreOp,
+    /// BOOT.
+    Boot,
+    /// SAFE-OP (inputs valid, outputs ignored).
+    SafeOp,
+    /// OP.
+    Op,
+}
+
+impl AlState {
+    fn from_ethercrab(state: SubDeviceState) -> Self {
+        match state {
+            SubDeviceState::Init => Self::Init,
+            SubDeviceState::PreOp => Self::PreOp,
+            SubDeviceState::Bootstrap => Self::Boot,
+            SubDeviceState::SafeOp => Self::SafeOp,
+            SubDeviceState::Op => Self::Op,
+            _ => Self::Unknown,
+        }
+    }
+
+    /// From the state bits of the AL status register (0x0130).
+    pub fn from_register(value: u16) -> Self {
+        match value & 0x0F {
+            1 => Self::Init,
+            2 => Self::PreOp,
+            3 => Self::Boot,
+            4 => Self::SafeOp,
+            8 => Self::Op,
+            _ => Self::Unknown,
+        }
+    }
+
+    /// The name in status lines and JSON.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Unknown => "none",
+            Self::Init => "INIT",
+            Self::PreOp => "PRE-OP",
+            Self::Boot => "BOOT",
+            Self::SafeOp => "SAFE-OP",
+            Self::Op => "OP",
+        }
+    }
+}
+
+/// The AL status code (register 0x0134) in words, ETG1000.6 table 11.
+pub fn al_status_text(code: u16) -> String {
+    match ethercrab::AlStatusCode::unpack_from_slice(&code.to_le_bytes()) {
+        Ok(known) => known.to_string(),
+        Err(_) => format!("AL status code {code:#06x}"),
+    }
+}
+
+/// What the master learnt of a drive at bring-up.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DriveInfo {
+    /// The name the drive reports (its SII order string).
+    pub name: String,
+    /// Vendor id, product code, revision and serial number (SII).
+    pub identity: [u32; 4],
+}
+
+/// A single-register step of a drive's recovery, run between cycles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AcyclicStep {
+    /// Read AL status (0x0130) and AL status code (0x0134).
+    ReadAlStatus,
+    /// Write AL control (0x0120): the requested state, with the error
+    /// acknowledge bit.
+    RequestState(u8),
+}
+
+/// The answer of an [`AcyclicStep`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AcyclicAnswer {
+    /// AL status: state, error flag, status code.
+    AlStatus {
+        /// The state.
+        state: AlState,
+        /// The error flag (bit 4).
+        error: bool,
+        /// The AL status code.
+        code: u16,
+    },
+    /// The write was taken.
+    Written,
 }
 
 /// A segment in OP, ready to cycle.
 pub struct Segment {
-    maindevice: MainDevice<'static>,
+    link: Link,
+    /// Bring-up, recovery steps: ethercrab's timeouts and retries.
+    acyclic: MainDevice<'static>,
+    /// Process data: no timeout or retry of ethercrab's (the cycle's
+    /// deadline decides).
+    cyclic: MainDevice<'static>,
     group: OpGroup,
     drives: Vec<Cia402Drive>,
+    info: Vec<DriveInfo>,
+    al_states: Vec<AlState>,
     config: SegmentConfig,
     expected_working_counter: u16,
-    _link: Link,
 }
 
 impl core::fmt::Debug for Segment {
@@ -118,8 +216,23 @@ impl core::fmt::Debug for Segment {
         f.debug_struct("Segment")
             .field("drives", &self.drives.len())
             .field("config", &self.config)
+            .field("link", &self.link)
             .finish()
     }
+}
+
+fn storage() -> Result<
+    (
+        ethercrab::PduTx<'static>,
+        ethercrab::PduRx<'static>,
+        ethercrab::PduLoop<'static>,
+    ),
+    EthercatError,
+> {
+    // ethercrab's storage must outlive every frame in flight: each
+    // segment keeps its two for the life of the process.
+    let storage: &'static Storage = Box::leak(Box::new(PduStorage::new()));
+    storage.try_split().map_err(|()| EthercatError::Storage)
 }
 
 impl Segment {
@@ -131,40 +244,16 @@ impl Segment {
         if config.cycle.is_zero() || config.cycle > Duration::from_secs(1) {
             return Err(EthercatError::CycleTime(config.cycle));
         }
-        // Each segment owns its frame storage for the life of the process
-        // (ethercrab's storage must outlive every frame in flight).
-        let storage: &'static Storage = Box::leak(Box::new(PduStorage::new()));
-        let (tx, rx, pdu_loop) = storage.try_split().map_err(|()| EthercatError::Storage)?;
-        let link_rt = RtConfig {
-            period: config.cycle,
-            fifo_priority: config.link_fifo_priority,
-            cpu: None,
+        let (acyclic_tx, acyclic_rx, acyclic_loop) = storage()?;
+        let (cyclic_tx, cyclic_rx, cyclic_loop) = storage()?;
+        let name = match &transport {
+            Transport::Interface(name) => name.clone(),
+            Transport::Emulated(_) => String::new(),
         };
-        let link = match transport {
-            Transport::Emulated(segment) => Link::Emulated {
-                _link: InProcessLink::spawn(tx, rx, segment, link_rt)?,
-            },
-            Transport::Interface(name) => {
-                let task = ethercrab::std::tx_rx_task(&name, tx, rx).map_err(|source| {
-                    EthercatError::Interface {
-                        name: name.clone(),
-                        source,
-                    }
-                })?;
-                Link::Interface {
-                    _thread: thread::Builder::new()
-                        .name("ecam-ethercat-tx-rx".into())
-                        .spawn(move || {
-                            // Refusal falls back to normal scheduling; the
-                            // cycle thread reports what it got.
-                            let _ = configure_current_thread(&link_rt);
-                            let _ = block_on(task);
-                        })?,
-                }
-            }
-        };
-        let maindevice = MainDevice::new(
-            pdu_loop,
+        let mut link = Link::open(transport, (acyclic_tx, acyclic_rx), (cyclic_tx, cyclic_rx))
+            .map_err(|source| EthercatError::Interface { name, source })?;
+        let acyclic = MainDevice::new(
+            acyclic_loop,
             Timeouts {
                 pdu: config.frame_timeout,
                 state_transition: config.state_timeout,
@@ -178,7 +267,32 @@ impl Segment {
                 retry_behaviour: RetryBehaviour::Count(2),
             },
         );
-        let group = block_on(bring_up_group(&maindevice, config))?;
+        let cyclic = MainDevice::new(
+            cyclic_loop,
+            Timeouts {
+                // Never: a timer of ethercrab's would live in async-io's
+                // reactor thread; the cycle keeps its own deadline.
+                pdu: Duration::MAX,
+                ..Timeouts::default()
+            },
+            MainDeviceConfig {
+                dc_static_sync_iterations: 0,
+                retry_behaviour: RetryBehaviour::None,
+            },
+        );
+        let deadline = Instant::now() + BRING_UP_LIMIT;
+        let group = link::run(&mut link, bring_up_group(&acyclic, config), deadline)
+            .ok_or(EthercatError::NotOp)??;
+        let info = group
+            .iter(&acyclic)
+            .map(|sd| {
+                let id = sd.identity();
+                DriveInfo {
+                    name: sd.name().to_string(),
+                    identity: [id.vendor_id, id.product_id, id.revision, id.serial],
+                }
+            })
+            .collect::<Vec<_>>();
         let drives = vec![Cia402Drive::new(); group.len()];
         // 3 per drive (read and write of its process data); more when
         // ethercrab splits the image over frames and a drive's outputs
@@ -186,20 +300,29 @@ impl Segment {
         // tells.
         let minimum = u16::try_from(drives.len() * 3).unwrap_or(u16::MAX);
         let mut segment = Self {
-            maindevice,
+            link,
+            acyclic,
+            cyclic,
+            al_states: vec![AlState::Op; drives.len()],
             group,
             drives,
+            info,
             config,
             expected_working_counter: minimum,
-            _link: link,
         };
-        // One exchange so every drive's state and position are known.
-        let first = segment.exchange()?;
-        if first.unreachable > 0 || first.working_counter < minimum {
-            return Err(EthercatError::NotOp);
+        // One exchange so every drive's state and position are known (a
+        // loaded host gets a few tries).
+        for _ in 0..10 {
+            let first = segment.exchange()?;
+            if !first.frame_lost {
+                if first.unreachable > 0 || first.working_counter < minimum {
+                    return Err(EthercatError::NotOp);
+                }
+                segment.expected_working_counter = first.working_counter;
+                return Ok(segment);
+            }
         }
-        segment.expected_working_counter = first.working_counter;
-        Ok(segment)
+        Err(EthercatError::NotOp)
     }
 
     /// Number of drives.
@@ -229,25 +352,44 @@ impl Segment {
 
     /// Name a drive reports (its SII order string).
     pub fn drive_name(&self, position: usize) -> Option<String> {
-        self.group
-            .subdevice(&self.maindevice, position)
-            .ok()
-            .map(|sd| sd.name().to_string())
+        self.info.get(position).map(|i| i.name.clone())
+    }
+
+    /// What bring-up learnt of each drive.
+    pub fn drive_info(&self) -> &[DriveInfo] {
+        &self.info
+    }
+
+    /// The EtherCAT state of each drive as the last answered exchange read
+    /// it.
+    pub fn al_states(&self) -> &[AlState] {
+        &self.al_states
+    }
+
+    /// Counts of the link (frames sent, late replies discarded, …).
+    pub fn link_stats(&self) -> LinkStats {
+        self.link.stats()
     }
 
     /// Packs the outputs, exchanges process data (with the DC time), and
-    /// unpacks the inputs. A lost frame or a drive that does not answer
-    /// is reported, not an error: the cycle must go on.
+    /// unpacks the inputs. A reply that is not back by the reply timeout
+    /// is reported as a lost frame (the drives keep their last inputs),
+    /// not an error: the cycle goes on with the next frame.
     pub fn exchange(&mut self) -> Result<CycleReport, EthercatError> {
         for (position, drive) in self.drives.iter_mut().enumerate() {
-            let subdevice = self.group.subdevice(&self.maindevice, position)?;
+            let subdevice = self.group.subdevice(&self.cyclic, position)?;
             let mut io = subdevice.io_raw_mut();
             drive.outputs().pack(io.outputs())?;
         }
         let expected = self.expected_working_counter;
-        let response = match block_on(self.group.tx_rx_dc(&self.maindevice)) {
-            Ok(response) => response,
-            Err(ethercrab::error::Error::Timeout(_)) => {
+        let deadline = Instant::now() + self.config.reply_timeout;
+        let response = match link::run(&mut self.link, self.group.tx_rx_dc(&self.cyclic), deadline)
+        {
+            Some(Ok(response)) => response,
+            // No reply by the deadline, or ethercrab has no free frame
+            // (every one still waiting): this cycle is lost.
+            None | Some(Err(ethercrab::error::Error::Pdu(_))) => {
+                self.link.forget(LoopId::Cyclic);
                 for drive in &mut self.drives {
                     drive.update(None);
                 }
@@ -255,25 +397,30 @@ impl Segment {
                     expected_working_counter: expected,
                     unreachable: self.drives.len(),
                     frame_lost: true,
-                    next_cycle_wait: self.config.cycle,
                     ..CycleReport::default()
                 });
             }
-            Err(e) => return Err(e.into()),
+            Some(Err(e)) => return Err(e.into()),
         };
         let mut unreachable = 0;
         for (position, drive) in self.drives.iter_mut().enumerate() {
-            let answered = matches!(
-                response.subdevice_states.get(position),
-                Some(SubDeviceState::Op | SubDeviceState::SafeOp)
-            );
-            if answered {
-                let subdevice = self.group.subdevice(&self.maindevice, position)?;
+            let state = response
+                .subdevice_states
+                .get(position)
+                .map_or(AlState::Unknown, |&s| AlState::from_ethercrab(s));
+            if let Some(slot) = self.al_states.get_mut(position) {
+                *slot = state;
+            }
+            // SAFE-OP drives send valid inputs (and ignore outputs).
+            if matches!(state, AlState::Op | AlState::SafeOp) {
+                let subdevice = self.group.subdevice(&self.cyclic, position)?;
                 let io = subdevice.io_raw();
                 drive.update(Some(CspInputs::unpack(io.inputs())?));
             } else {
-                unreachable += 1;
                 drive.update(None);
+            }
+            if state != AlState::Op {
+                unreachable += 1;
             }
         }
         Ok(CycleReport {
@@ -282,8 +429,81 @@ impl Segment {
             unreachable,
             frame_lost: false,
             dc_system_time: response.extra.dc_system_time,
-            next_cycle_wait: response.extra.next_cycle_wait,
         })
+    }
+
+    /// Runs one recovery step for drive `position` on the acyclic loop,
+    /// waiting at most `budget`. `None` when it did not complete (try
+    /// again next cycle: every step may be repeated).
+    pub fn acyclic_step(
+        &mut self,
+        position: usize,
+        step: AcyclicStep,
+        budget: Duration,
+    ) -> Option<AcyclicAnswer> {
+        let deadline = Instant::now() + budget;
+        let subdevice = self.group.subdevice(&self.acyclic, position).ok()?;
+        let answer = match step {
+            AcyclicStep::ReadAlStatus => {
+                let read = async {
+                    let status = subdevice.register_read::<u16>(0x0130u16).await?;
+                    let code = subdevice.register_read::<u16>(0x0134u16).await?;
+                    Ok::<_, ethercrab::error::Error>((status, code))
+                };
+                let (status, code) = link::run(&mut self.link, read, deadline)?.ok()?;
+                AcyclicAnswer::AlStatus {
+                    state: AlState::from_register(status),
+                    error: status & 0x10 != 0,
+                    code,
+                }
+            }
+            AcyclicStep::RequestState(state) => {
+                let value = u16::from(state & 0x0F) | 0x10;
+                link::run(
+                    &mut self.link,
+                    subdevice.register_write::<u16>(0x0120u16, value),
+                    deadline,
+                )?
+                .ok()?;
+                AcyclicAnswer::Written
+            }
+        };
+        self.link.forget(LoopId::Acyclic);
+        Some(answer)
+    }
+
+    /// Brings the whole segment up again (INIT → OP, distributed clocks
+    /// afresh), for drives that lost their configuration (restarted,
+    /// power-cycled). The drives' positions are read again; every drive is
+    /// left disabled. Blocks for the bring-up (the line is stopped).
+    ///
+    /// # Errors
+    /// As [`Segment::bring_up`]; the old group stays in place.
+    pub fn reinitialise(&mut self) -> Result<(), EthercatError> {
+        let deadline = Instant::now() + BRING_UP_LIMIT;
+        let group = link::run(
+            &mut self.link,
+            bring_up_group(&self.acyclic, self.config),
+            deadline,
+        )
+        .ok_or(EthercatError::NotOp)??;
+        if group.len() != self.drives.len() {
+            return Err(EthercatError::DriveCount {
+                expected: self.drives.len(),
+                found: group.len(),
+            });
+        }
+        self.group = group;
+        self.link.forget(LoopId::Acyclic);
+        for drive in &mut self.drives {
+            *drive = Cia402Drive::new();
+        }
+        for _ in 0..10 {
+            if !self.exchange()?.frame_lost {
+                return Ok(());
+            }
+        }
+        Err(EthercatError::NotOp)
     }
 }
 
@@ -312,6 +532,7 @@ async fn bring_up_group(
             });
         }
     }
+    let shift = config.sync0_shift.min(config.cycle);
     let group = group
         .configure_dc_sync(
             maindevice,
@@ -320,9 +541,9 @@ async fn bring_up_group(
                 // whole multiple of the cycle (ethercrab rounds it).
                 start_delay: config.cycle * 10,
                 sync0_period: config.cycle,
-                // Outputs are sent half a cycle before the drives latch
-                // them, the usual margin for frame jitter.
-                sync0_shift: config.cycle / 2,
+                // ethercrab's shift is counted from the SYNC0 edge to the
+                // frame; ours from the frame to the next edge.
+                sync0_shift: config.cycle - shift,
             },
         )
         .await?;
@@ -337,6 +558,20 @@ async fn bring_up_group(
         if Instant::now() > deadline {
             return Err(EthercatError::NotOp);
         }
-        thread::sleep(config.cycle);
+        async_io_free_sleep(config.cycle).await;
     }
+}
+
+/// Waits `period` inside a future driven by [`link::run`] (which polls
+/// about every millisecond), without a timer of async-io's.
+async fn async_io_free_sleep(period: Duration) {
+    let until = Instant::now() + period;
+    std::future::poll_fn(|_| {
+        if Instant::now() >= until {
+            std::task::Poll::Ready(())
+        } else {
+            std::task::Poll::Pending
+        }
+    })
+    .await;
 }

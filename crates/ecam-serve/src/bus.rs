@@ -2,9 +2,10 @@
 //! status as input registers from 20000 and JSON, and three commands
 //! (enable, disable, fault reset) as coils 14000/14001 and HTTP posts.
 //!
-//! The fieldbus cycle (in the binary) publishes a [`BusSnapshot`] every
-//! cycle and takes the queued [`BusCommand`]s; this module only maps both
-//! to Modbus. The areas are new addresses outside the contract's D/M/X/Y
+//! The fieldbus cycle (ecam-ethercat's driver) publishes its status
+//! without a lock; a [`BusSource`] (the binary's wiring) turns it into a
+//! [`BusSnapshot`] when a client asks and queues [`BusCommand`]s for the
+//! cycle; this module maps both to Modbus and JSON. The areas are new addresses outside the contract's D/M/X/Y
 //! areas, so nothing a client used before moves; without `--ethercat`
 //! they are gaps (exception 02), as before.
 //!
@@ -15,13 +16,9 @@
 //! | 20000–20015 | input registers | the line (see [`HEADER_WORDS`]) |
 //! | 20016 + 16·n … | input registers | drive n (see [`DRIVE_WORDS`]) |
 
-use std::collections::VecDeque;
-use std::sync::Mutex;
-
 use serde::Serialize;
 
 use crate::pdu::Exception;
-use crate::state::lock;
 
 /// Coil of "drives enabled" (read) / enable and disable (write).
 pub const ENABLE_COIL: u16 = 14000;
@@ -30,11 +27,13 @@ pub const FAULT_COIL: u16 = 14001;
 /// First input register of the bus area.
 pub const BUS_REGISTER_BASE: u16 = 20000;
 /// Words of the line's block at 20000: 0 drives on the segment, 1 line
-/// state (0 stopped, 1 enabling, 2 running, 3 faulted), 2 faults holding
-/// the line, 3–4 cycle time µs, 5–6 cycles run, 7–8 working-counter
-/// errors (32-bit values low word first, as the PLC's), 9 worst wake-up
-/// lateness µs, 10 mean lateness µs, 11 overruns (16-bit values saturate),
-/// 12–15 reserved (0).
+/// state (0 stopped, 1 enabling, 2 running, 3 faulted, 4 stopping, 5
+/// recovering), 2 faults holding the line, 3–4 cycle time µs, 5–6 cycles
+/// run, 7–8 working-counter errors (32-bit values low word first, as the
+/// PLC's), 9 worst wake-up lateness µs, 10 mean lateness µs, 11 overruns,
+/// 12–13 lost cycles (replies not back in time), 14 late replies
+/// discarded, 15 lead of the last frame before SYNC0, µs (16-bit values
+/// saturate).
 pub const HEADER_WORDS: u16 = 16;
 /// Words of each drive's block: 0 CiA 402 state (0 not ready to switch
 /// on, 1 switch on disabled, 2 ready to switch on, 3 switched on, 4
@@ -43,7 +42,8 @@ pub const HEADER_WORDS: u16 = 16;
 /// enabled, 2 faulted, 3 follows an output), 4–5 actual position, 6–7
 /// target position, 8–9 following error (32-bit, low word first, the
 /// drive's own modulo-2³² counts), 10 the output it follows (0–3, 0xFFFF
-/// none), 11–15 reserved (0).
+/// none), 11 EtherCAT state (0 none, 1 INIT, 2 PRE-OP, 4 SAFE-OP, 8 OP),
+/// 12 cycles in a row without its answer, 13–15 reserved (0).
 pub const DRIVE_WORDS: u16 = 16;
 
 /// Where the line of drives is.
@@ -59,6 +59,10 @@ pub enum BusLineState {
     Running,
     /// A fault stopped the line; a fault reset clears it.
     Faulted,
+    /// The motion decelerates to rest before the drives are disabled.
+    Stopping,
+    /// A reset brings drives back to OP and out of their faults.
+    Recovering,
 }
 
 impl BusLineState {
@@ -68,6 +72,8 @@ impl BusLineState {
             Self::Enabling => 1,
             Self::Running => 2,
             Self::Faulted => 3,
+            Self::Stopping => 4,
+            Self::Recovering => 5,
         }
     }
 }
@@ -101,6 +107,14 @@ pub struct DriveView {
     pub following_error: i64,
     /// The pulse output it follows (0–3), if any.
     pub output: Option<u8>,
+    /// EtherCAT state code (0 none, 1 INIT, 2 PRE-OP, 4 SAFE-OP, 8 OP).
+    pub al_state_code: u16,
+    /// EtherCAT state in words.
+    pub al_state: String,
+    /// The error code (0x603F) in words.
+    pub error: String,
+    /// Cycles in a row without its answer.
+    pub missed_cycles: u32,
 }
 
 /// The line and its drives after a cycle.
@@ -124,6 +138,16 @@ pub struct BusSnapshot {
     pub lateness_mean_us: f64,
     /// Deadlines missed by more than a cycle.
     pub overruns: u64,
+    /// Cycles whose reply did not come back in time.
+    pub lost_cycles: u64,
+    /// The longest run of lost cycles.
+    pub lost_in_a_row_max: u64,
+    /// More lost cycles in a row than this fault the line.
+    pub max_lost_cycles: u32,
+    /// Late replies discarded.
+    pub late_replies: u64,
+    /// Lead of the last frame before the drives' SYNC0 edge, µs.
+    pub sync0_lead_us: f64,
     /// The drives, in line order.
     pub drives: Vec<DriveView>,
 }
@@ -148,15 +172,25 @@ pub enum BusCommand {
     },
 }
 
-/// The snapshot the cycle publishes and the commands it takes.
-#[derive(Debug, Default)]
-pub struct BusFace {
-    snapshot: Mutex<BusSnapshot>,
-    commands: Mutex<VecDeque<BusCommand>>,
+/// Where the face reads the line's state and sends its commands.
+pub trait BusSource: Send + Sync {
+    /// The line and its drives now.
+    fn snapshot(&self) -> BusSnapshot;
+    /// Queues a command for the cycle; false when the cycle has stopped
+    /// taking them.
+    fn command(&self, command: BusCommand) -> bool;
 }
 
-/// Most commands waiting for the cycle; more are refused (exception 06).
-const MAX_QUEUED: usize = 64;
+/// The line as Modbus and HTTP clients see it.
+pub struct BusFace {
+    source: Box<dyn BusSource>,
+}
+
+impl core::fmt::Debug for BusFace {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("BusFace").finish_non_exhaustive()
+    }
+}
 
 fn low(v: u32) -> u16 {
     (v & 0xFFFF) as u16
@@ -171,38 +205,29 @@ fn sat16(v: u64) -> u16 {
 }
 
 impl BusFace {
-    /// A face with an empty snapshot and no commands.
-    pub fn new() -> Self {
-        Self::default()
+    /// A face onto `source`.
+    pub fn new(source: impl BusSource + 'static) -> Self {
+        Self {
+            source: Box::new(source),
+        }
     }
 
-    /// Publishes the line's state (the cycle, once per cycle).
-    pub fn publish(&self, snapshot: BusSnapshot) {
-        *lock(&self.snapshot) = snapshot;
-    }
-
-    /// A copy of the last published state.
+    /// The line and its drives now.
     pub fn snapshot(&self) -> BusSnapshot {
-        lock(&self.snapshot).clone()
+        self.source.snapshot()
     }
 
     /// Queues a command for the next cycle.
     ///
     /// # Errors
     /// [`Exception::ServerDeviceBusy`] when the cycle has not taken the
-    /// last 64 commands (it has stopped).
+    /// commands queued before (it has stopped).
     pub fn command(&self, command: BusCommand) -> Result<(), Exception> {
-        let mut queue = lock(&self.commands);
-        if queue.len() >= MAX_QUEUED {
-            return Err(Exception::ServerDeviceBusy);
+        if self.source.command(command) {
+            Ok(())
+        } else {
+            Err(Exception::ServerDeviceBusy)
         }
-        queue.push_back(command);
-        Ok(())
-    }
-
-    /// Takes the queued commands, oldest first (the cycle).
-    pub fn take_commands(&self) -> Vec<BusCommand> {
-        lock(&self.commands).drain(..).collect()
     }
 
     /// Whether a coil range falls in the bus area (14000–14001).
@@ -216,7 +241,7 @@ impl BusFace {
     /// 02 when the range leaves the area, 03 for quantity 0.
     pub fn read_coils(&self, address: u16, quantity: u16) -> Result<Vec<bool>, Exception> {
         let range = coil_offsets(address, quantity)?;
-        let state = lock(&self.snapshot).state;
+        let state = self.snapshot().state;
         let bits = [
             matches!(state, BusLineState::Enabling | BusLineState::Running),
             state == BusLineState::Faulted,
@@ -256,8 +281,7 @@ impl BusFace {
         if quantity == 0 {
             return Err(Exception::IllegalDataValue);
         }
-        let snapshot = lock(&self.snapshot);
-        let words = registers(&snapshot);
+        let words = registers(&self.snapshot());
         let start = usize::from(address.saturating_sub(BUS_REGISTER_BASE));
         words
             .get(start..start + usize::from(quantity))
@@ -297,6 +321,9 @@ fn registers(s: &BusSnapshot) -> Vec<u16> {
     w[9] = sat16(s.lateness_max_us as u64);
     w[10] = sat16(s.lateness_mean_us as u64);
     w[11] = sat16(s.overruns);
+    put32(&mut w, 12, s.lost_cycles as u32);
+    w[14] = sat16(s.late_replies);
+    w[15] = sat16(s.sync0_lead_us.max(0.0) as u64);
     for (n, d) in s.drives.iter().enumerate() {
         let at = usize::from(HEADER_WORDS) + n * usize::from(DRIVE_WORDS);
         w[at] = d.state_code;
@@ -311,6 +338,8 @@ fn registers(s: &BusSnapshot) -> Vec<u16> {
         put32(&mut w, at + 6, d.target.unwrap_or(d.actual) as u32);
         put32(&mut w, at + 8, d.following_error as u32);
         w[at + 10] = d.output.map_or(0xFFFF, u16::from);
+        w[at + 11] = d.al_state_code;
+        w[at + 12] = sat16(u64::from(d.missed_cycles));
     }
     w
 }
@@ -318,10 +347,27 @@ fn registers(s: &BusSnapshot) -> Vec<u16> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::Mutex;
 
-    fn face() -> BusFace {
-        let face = BusFace::new();
-        face.publish(BusSnapshot {
+    /// A source that returns a fixed snapshot and keeps the commands.
+    struct Fixed(BusSnapshot, Mutex<Vec<BusCommand>>);
+
+    impl BusSource for Fixed {
+        fn snapshot(&self) -> BusSnapshot {
+            self.0.clone()
+        }
+        fn command(&self, command: BusCommand) -> bool {
+            let mut queue = self.1.lock().unwrap();
+            if queue.len() >= 4 {
+                return false;
+            }
+            queue.push(command);
+            true
+        }
+    }
+
+    fn snapshot() -> BusSnapshot {
+        BusSnapshot {
             transport: "emulated".into(),
             cycle_us: 100_000,
             state: BusLineState::Faulted,
@@ -331,6 +377,9 @@ mod tests {
             lateness_max_us: 70_000.4,
             lateness_mean_us: 12.6,
             overruns: 1,
+            lost_cycles: 0x2_0005,
+            late_replies: 4,
+            sync0_lead_us: 499.6,
             drives: vec![
                 DriveView {
                     position: 0,
@@ -342,6 +391,7 @@ mod tests {
                     target: Some(5_000_000_000),
                     following_error: 7,
                     output: Some(0),
+                    al_state_code: 8,
                     ..DriveView::default()
                 },
                 DriveView {
@@ -351,18 +401,27 @@ mod tests {
                     reachable: true,
                     fault: Some("fault".into()),
                     actual: 9,
+                    al_state_code: 4,
+                    missed_cycles: 70_000,
                     ..DriveView::default()
                 },
             ],
-        });
-        face
+            ..BusSnapshot::default()
+        }
+    }
+
+    fn face() -> BusFace {
+        BusFace::new(Fixed(snapshot(), Mutex::new(Vec::new())))
     }
 
     #[test]
     fn registers_carry_the_line_and_each_drive() {
         let f = face();
         let h = f.read_registers(20000, 16).unwrap();
-        assert_eq!(&h[..12], &[2, 3, 1, 0x86A0, 1, 2, 1, 3, 0, 65535, 12, 1]);
+        assert_eq!(
+            h,
+            vec![2, 3, 1, 0x86A0, 1, 2, 1, 3, 0, 65535, 12, 1, 5, 2, 4, 499]
+        );
         let d0 = f.read_registers(20016, 16).unwrap();
         // 5e9 mod 2^32 = 705032704 = 0x2A05_F200.
         assert_eq!(
@@ -372,7 +431,10 @@ mod tests {
             ]
         );
         let d1 = f.read_registers(20032, 16).unwrap();
-        assert_eq!(&d1[..11], &[7, 0, 0x7500, 0b0101, 9, 0, 9, 0, 0, 0, 0xFFFF]);
+        assert_eq!(
+            &d1[..13],
+            &[7, 0, 0x7500, 0b0101, 9, 0, 9, 0, 0, 0, 0xFFFF, 4, 0xFFFF]
+        );
         assert_eq!(f.read_registers(20047, 1), Ok(vec![0]));
         assert_eq!(
             f.read_registers(20047, 2),
@@ -390,20 +452,14 @@ mod tests {
         let f = face();
         assert_eq!(f.read_coils(14000, 2), Ok(vec![false, true]));
         assert_eq!(f.read_coils(14001, 2), Err(Exception::IllegalDataAddress));
+        let source = Fixed(snapshot(), Mutex::new(Vec::new()));
+        let f = BusFace::new(source);
         f.write_coils(14001, &[true]).unwrap();
         f.write_coils(14000, &[true, false]).unwrap();
-        f.write_coils(14000, &[false]).unwrap();
         assert_eq!(
-            f.take_commands(),
-            vec![BusCommand::Reset, BusCommand::Enable, BusCommand::Disable]
-        );
-        assert!(f.take_commands().is_empty());
-        for _ in 0..MAX_QUEUED {
-            f.command(BusCommand::Enable).unwrap();
-        }
-        assert_eq!(
-            f.command(BusCommand::Enable),
-            Err(Exception::ServerDeviceBusy)
+            f.write_coils(14000, &[false, true]),
+            Err(Exception::ServerDeviceBusy),
+            "the fifth command finds the queue full"
         );
     }
 }

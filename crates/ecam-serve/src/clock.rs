@@ -80,6 +80,62 @@ pub fn scan_loop(shared: &Shared, stop: &AtomicBool) {
     }
 }
 
+/// Ticks of a fieldbus cycle that paces the PLC (`ecam serve
+/// --ethercat`): the cycle counts one per cycle whose frame came back and
+/// wakes the PLC's thread; nothing blocks the cycle.
+#[derive(Debug, Default)]
+pub struct BusTicks {
+    pending: std::sync::atomic::AtomicU64,
+    thread: std::sync::OnceLock<std::thread::Thread>,
+}
+
+impl BusTicks {
+    /// No ticks yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// One bus cycle done (the cycle's thread): wakes the PLC.
+    pub fn tick(&self) {
+        self.pending.fetch_add(1, Ordering::Release);
+        if let Some(thread) = self.thread.get() {
+            thread.unpark();
+        }
+    }
+}
+
+/// Runs the PLC on the calling thread, `scans` scan periods per bus tick,
+/// until `stop`: `before` runs before each tick's scans (relays from the
+/// line's state), `after` after them (publishing the pulse totals). Ticks
+/// that pile up while the PLC is slow are all run: the PLC's clock stays
+/// the bus's.
+pub fn scan_on_bus_ticks(
+    shared: &Shared,
+    ticks: &BusTicks,
+    scans: u32,
+    stop: &AtomicBool,
+    mut before: impl FnMut(&Shared),
+    mut after: impl FnMut(&Shared),
+) {
+    let _ = ticks.thread.set(std::thread::current());
+    shared.stats.scanning.store(true, Ordering::Relaxed);
+    let _scanning = Scanning(&shared.stats.scanning);
+    while !stop.load(Ordering::Relaxed) {
+        let pending = ticks.pending.swap(0, Ordering::Acquire);
+        if pending == 0 {
+            std::thread::park_timeout(Duration::from_millis(50));
+            continue;
+        }
+        for _ in 0..pending {
+            before(shared);
+            for _ in 0..scans {
+                scan_period(shared);
+            }
+            after(shared);
+        }
+    }
+}
+
 /// Runs one scan period now (one scan, then the hardware ticks covering
 /// the scan period) and reports the operation errors it raised: each is
 /// counted and kept as the last one, and each distinct one (by line and

@@ -74,10 +74,10 @@ mod write;
 
 pub use answer::answer_request;
 pub use bus::{
-    BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, DRIVE_WORDS, DriveView,
-    ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
+    BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, DRIVE_WORDS,
+    DriveView, ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
 };
-pub use clock::{MAX_LAG, Step, next_step, scan_loop, scan_period};
+pub use clock::{BusTicks, MAX_LAG, Step, next_step, scan_loop, scan_on_bus_ticks, scan_period};
 pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
 pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,

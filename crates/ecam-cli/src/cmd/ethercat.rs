@@ -1,13 +1,12 @@
 //! `ecam ethercat`: cams on CiA 402 drives over EtherCAT.
 //!
-//! - `ecam ethercat run CONFIG [--emulated N]`: brings the segment of the
-//!   configuration file to OP, enables the drives, runs the cams in the
-//!   real-time cycle and prints status; at the end one JSON summary line
-//!   (drives, cycles, faults, lateness histogram). Ctrl-C or SIGTERM ends
-//!   the run the same way: the drives are disabled first.
+//! - `ecam ethercat run CONFIG [--emulated N] [--recover]`: brings the
+//!   segment of the configuration file to OP and runs its cams in
+//!   ecam-ethercat's cycle driver; this thread prints status lines and
+//!   faults from the driver's published image, and at the end one JSON
+//!   summary line. Ctrl-C or SIGTERM end the run as `--cycles` does.
 //! - `ecam ethercat emulate IFACE`: answers EtherCAT frames on an
-//!   interface as a line of emulated CSP drives (to try the raw-socket
-//!   path without hardware, e.g. on one end of a veth pair).
+//!   interface as a line of emulated CSP drives.
 //!
 //! The configuration file and the behaviour are described in
 //! docs/ethercat.md; the work is ecam-ethercat's.
@@ -20,13 +19,13 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, bail};
 use ecam_core::CamCurve;
 use ecam_engine::CamAxis;
-use ecam_engine::drive::AxisDrive;
 use ecam_ethercat::config::LineConfig;
+use ecam_ethercat::driver::{self, DriverConfig};
 use ecam_ethercat::emulation::{DriveBehaviour, EmulatedSegment, WireEmulation};
-use ecam_ethercat::line::{CamDrive, CamLine, LineState};
-use ecam_ethercat::rt::{BUCKETS_US, CycleClock, LatenessHistogram, configure_current_thread};
-use ecam_ethercat::{Segment, SegmentConfig, Transport};
-use serde_json::json;
+use ecam_ethercat::line::{CamDrive, CamLine};
+use ecam_ethercat::monitor::LineMonitor;
+use ecam_ethercat::summary::{status_line, summary_json};
+use ecam_ethercat::{Segment, Transport};
 
 /// `ecam ethercat` subcommands.
 #[derive(clap::Subcommand, Debug)]
@@ -52,6 +51,11 @@ pub struct RunArgs {
     /// Print a status line this often, ms (0: only at the end).
     #[arg(long, value_name = "MS", default_value_t = 1000)]
     pub status_ms: u64,
+    /// When the line faults, reset it once frames flow again (drives that
+    /// left OP are brought back, faults reset) and start it again from
+    /// where the drives stand. Without it a fault holds the line.
+    #[arg(long)]
+    pub recover: bool,
 }
 
 /// Arguments of `ecam ethercat emulate`.
@@ -91,72 +95,28 @@ fn load(path: &Path) -> anyhow::Result<(LineConfig, Vec<Box<dyn CamCurve>>)> {
     Ok((config, tables))
 }
 
-/// The frames' way: `emulated` drives in this process, or the
-/// configuration's interface; the emulated segment is handed back too, for
-/// fault injection.
+/// The frames' way, or why there is none.
 ///
 /// # Errors
-/// Neither is given.
-pub(crate) fn open_transport(
+/// Neither `--emulated` nor an interface is given.
+pub(crate) fn transport(
     emulated: Option<u16>,
     interface: Option<&str>,
     config: &Path,
 ) -> anyhow::Result<(Transport, Option<Arc<Mutex<EmulatedSegment>>>)> {
-    match (emulated, interface) {
-        (Some(n), _) => {
-            let segment = Arc::new(Mutex::new(EmulatedSegment::new(
-                usize::from(n),
-                DriveBehaviour::default(),
-            )));
-            Ok((Transport::Emulated(Arc::clone(&segment)), Some(segment)))
-        }
-        (None, Some(interface)) => Ok((Transport::Interface(interface.to_string()), None)),
-        (None, None) => bail!(
+    match Transport::choose(emulated, interface) {
+        Some(chosen) => Ok(chosen),
+        None => bail!(
             "{}: no interface; set interface = \"...\" or pass --emulated N",
             config.display()
         ),
     }
 }
 
-/// The lateness part of a summary line: mean, worst, overruns and the
-/// histogram as `[upper bound µs (null: open), count]` pairs.
-pub(crate) fn lateness_json(lateness: &LatenessHistogram) -> serde_json::Value {
-    let histogram: Vec<serde_json::Value> = lateness
-        .counts
-        .iter()
-        .enumerate()
-        .map(|(i, n)| json!([BUCKETS_US.get(i), n]))
-        .collect();
-    json!({
-        "mean_us": lateness.mean().as_secs_f64() * 1e6,
-        "max_us": lateness.max.as_secs_f64() * 1e6,
-        "overruns": lateness.overruns,
-        "histogram_us": histogram,
-    })
-}
-
-/// A flag that Ctrl-C or SIGTERM sets, so a cycle loop can leave the
-/// drives disabled before the process ends.
-pub(crate) fn stop_on_signal() -> anyhow::Result<Arc<AtomicBool>> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let runtime = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .context("cannot start the signal watcher")?;
-    let set = Arc::clone(&flag);
-    std::thread::Builder::new()
-        .name("ecam-signals".into())
-        .spawn(move || {
-            runtime.block_on(crate::cmd::serve::shutdown_signal());
-            set.store(true, Ordering::Relaxed);
-        })
-        .context("cannot start the signal watcher")?;
-    Ok(flag)
-}
-
 fn run_line(args: RunArgs) -> anyhow::Result<()> {
     let (config, tables) = load(&args.config)?;
-    let (transport, _) = open_transport(args.emulated, config.interface.as_deref(), &args.config)?;
+    let (transport, emulation) =
+        transport(args.emulated, config.interface.as_deref(), &args.config)?;
     let mut axes = Vec::with_capacity(tables.len());
     for (spec, table) in config.axes.iter().zip(tables) {
         let axis = CamAxis::new(table, spec.axis_config())
@@ -167,109 +127,90 @@ fn run_line(args: RunArgs) -> anyhow::Result<()> {
             master: spec.master(),
         });
     }
-    let segment = Segment::bring_up(
-        transport,
-        SegmentConfig {
-            cycle: config.cycle(),
-            // The frame thread runs just above the cycle that waits on it.
-            link_fifo_priority: config.fifo_priority.map(|p| p.saturating_add(1).min(99)),
-            ..SegmentConfig::default()
-        },
-    )?;
+    let timing = config.timing();
+    let segment = Segment::bring_up(transport, timing.segment())?;
     println!(
         "segment: {} drives in OP, SYNC0 every {} µs",
         segment.len(),
         config.cycle_us
     );
-    for position in 0..segment.len() {
-        println!(
-            "  drive {position}: {}",
-            segment.drive_name(position).unwrap_or_default()
-        );
+    for (position, info) in segment.drive_info().iter().enumerate() {
+        println!("  drive {position}: {}", info.name);
     }
-    let mut line = CamLine::new(segment, axes)?;
+    let drives = segment.len();
+    let mut line = CamLine::new(segment, axes, timing.max_lost_cycles(), timing.stop())?;
     line.virtual_speed = config.master_speed;
-    // From here on a signal must not end the process with drives enabled
-    // (during bring-up it may: nothing is enabled yet).
-    let interrupted = stop_on_signal()?;
-    line.start()?;
-    let setup = configure_current_thread(&config.rt());
-    println!("cycle: {setup}");
-
-    let mut lateness = LatenessHistogram::default();
-    let mut clock = CycleClock::start(config.cycle()).context("monotonic clock")?;
-    let status_every = Duration::from_millis(args.status_ms);
-    let started = Instant::now();
-    let mut last_status = started;
-    let mut faults = Vec::new();
-    let mut wkc_errors = 0u64;
-    let mut cycles = 0u64;
-    while args.cycles.is_none_or(|n| cycles < n) && !interrupted.load(Ordering::Relaxed) {
-        clock.wait(&mut lateness).context("clock_nanosleep")?;
-        let report = line.cycle()?;
-        cycles += 1;
-        if report.bus.working_counter_error() {
-            wkc_errors += 1;
-        }
-        for fault in &report.new_faults {
-            println!("fault at cycle {cycles}: {fault}; line stopped");
-            faults.push(fault.to_string());
-        }
-        if !status_every.is_zero() && last_status.elapsed() >= status_every {
-            last_status = Instant::now();
-            println!("{}", status_line(&line, started.elapsed()));
-        }
+    let monitor = Arc::new(LineMonitor::new(drives));
+    // From here on a signal stops the line (decelerating, then disabling);
+    // during bring-up it may end the process: nothing is enabled yet.
+    let on_signal = Arc::clone(&monitor);
+    crate::signals::on_signal(move || on_signal.request_stop())?;
+    let done = Arc::new(AtomicBool::new(false));
+    let watcher = {
+        let (monitor, done) = (Arc::clone(&monitor), Arc::clone(&done));
+        let every = Duration::from_millis(args.status_ms);
+        std::thread::Builder::new()
+            .name("ecam-status".into())
+            .spawn(move || watch(&monitor, every, &done))
+            .context("cannot start the status printer")?
+    };
+    // The cams' tables stay on this thread: it becomes the cycle.
+    let summary = driver::run_here(
+        line,
+        DriverConfig {
+            rt: config.rt(),
+            cycles: args.cycles,
+            enable_at_start: true,
+            recover: args.recover,
+            stop: timing.stop(),
+            emulation,
+        },
+        &monitor,
+        |_| {},
+    );
+    done.store(true, Ordering::Release);
+    let _ = watcher.join();
+    println!("{}", status_line(&monitor.snapshot(), Duration::ZERO));
+    if let Some(e) = &summary.error {
+        bail!("the cycle stopped: {e}");
     }
-    println!("{}", status_line(&line, started.elapsed()));
-    // Leave the drives disabled, and make sure they hear it.
-    line.stop();
-    for _ in 0..5 {
-        clock
-            .wait(&mut LatenessHistogram::default())
-            .context("clock_nanosleep")?;
-        line.cycle()?;
-    }
-    let summary = json!({
-        "drives": line.segment().len(),
-        "cycles": cycles,
-        "cycle_us": config.cycle_us,
-        "virtual_master": line.virtual_master(),
-        "state": line.state().name(),
-        "faults": faults,
-        "working_counter_errors": wkc_errors,
-        "actual": line.segment().drives().iter().map(|d| d.actual()).collect::<Vec<_>>(),
-        "scheduling": setup.to_string(),
-        "lateness": lateness_json(&lateness),
-    });
-    println!("{summary}");
+    println!("{}", summary_json(&summary, drives, config.cycle_us));
     Ok(())
 }
 
-fn status_line<C: CamCurve>(line: &CamLine<C>, t: Duration) -> String {
-    let mut s = format!(
-        "t={:.3}s master={} {}",
-        t.as_secs_f64(),
-        line.virtual_master(),
-        match line.state() {
-            LineState::Running => "running",
-            LineState::Enabling => "enabling",
-            LineState::Stopped => "stopped",
-            LineState::Faulted => "FAULTED",
+/// Prints faults as they appear and a status line every `every` until
+/// `done`.
+fn watch(monitor: &LineMonitor, every: Duration, done: &AtomicBool) {
+    let started = Instant::now();
+    let mut last_status = started;
+    let mut seen_faults = 0;
+    let mut told = false;
+    loop {
+        std::thread::sleep(Duration::from_millis(20));
+        if let (false, Some(scheduling)) = (told, monitor.scheduling()) {
+            println!("cycle: {scheduling}");
+            told = true;
         }
-    );
-    for (i, d) in line.segment().drives().iter().enumerate() {
-        let status = d.status();
-        s.push_str(&format!(
-            " | d{i} {} actual={} ferr={}",
-            d.state(),
-            status.actual,
-            status.following_error
-        ));
-        if let Some(fault) = status.fault {
-            s.push_str(&format!(" ({fault})"));
+        let snapshot = monitor.snapshot();
+        if snapshot.fault_events > seen_faults {
+            let new = usize::try_from(snapshot.fault_events - seen_faults).unwrap_or(usize::MAX);
+            let faults = &snapshot.faults;
+            for fault in &faults[faults.len().saturating_sub(new)..] {
+                println!(
+                    "fault at cycle {}: {fault}; line stopped",
+                    snapshot.counters.cycles
+                );
+            }
+            seen_faults = snapshot.fault_events;
+        }
+        if !every.is_zero() && last_status.elapsed() >= every {
+            last_status = Instant::now();
+            println!("{}", status_line(&snapshot, started.elapsed()));
+        }
+        if done.load(Ordering::Acquire) {
+            return;
         }
     }
-    s
 }
 
 fn emulate(args: EmulateArgs) -> anyhow::Result<()> {

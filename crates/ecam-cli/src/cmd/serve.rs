@@ -245,7 +245,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let served: anyhow::Result<()> = tokio::select! {
             () = modbus::serve(modbus_listener, Arc::clone(&shared), limits()) => Ok(()),
             () = http::serve(http_listener, http::router(Arc::clone(&shared), access), limits()) => Ok(()),
-            () = shutdown_signal() => Ok(()),
+            () = crate::signals::shutdown_signal() => Ok(()),
         };
         stop.store(true, Ordering::Relaxed);
         match scan_loop {
@@ -407,28 +407,4 @@ fn report_restore(
         ));
     }
     tracing::info!(target: LOG, "{summary}");
-}
-
-/// Ctrl-C, or SIGTERM on Unix. Nothing needs flushing: every acknowledged
-/// write is already on disk.
-pub(crate) async fn shutdown_signal() {
-    #[cfg(unix)]
-    {
-        use tokio::signal::unix::{SignalKind, signal};
-        match signal(SignalKind::terminate()) {
-            Ok(mut term) => {
-                tokio::select! {
-                    _ = tokio::signal::ctrl_c() => {}
-                    _ = term.recv() => {}
-                }
-            }
-            Err(_) => {
-                let _ = tokio::signal::ctrl_c().await;
-            }
-        }
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = tokio::signal::ctrl_c().await;
-    }
 }

@@ -1,52 +1,44 @@
 //! `ecam serve --ethercat CONFIG`: the PLC's pulse outputs on CiA 402
-//! drives. The fieldbus cycle replaces the wall-clock scan loop: each
-//! cycle runs the PLC for exactly one cycle time (a whole number of scan
-//! periods), then sends every mapped drive the pulses its output has
-//! emitted ([`ecam_ethercat::follow`]), so the drives see the PLC's motion
-//! cycle by cycle, without the beat a free-running scan loop would give
-//! against the bus. Status goes to [`ecam_serve::BusFace`] (Modbus input
-//! registers from 20000, `GET /api/ethercat`); commands come from it.
+//! drives. ecam-ethercat's cycle driver runs the drives; at the end of
+//! every cycle whose frame came back it wakes the PLC's thread, which runs
+//! exactly one cycle time of scans (ecam-serve's `scan_on_bus_ticks`) and
+//! publishes the pulse totals the drives follow next. The cycle shares no
+//! lock with the PLC, Modbus or HTTP: its status goes out through the
+//! driver's published image, which [`Source`] turns into ecam-serve's
+//! [`BusSnapshot`] when a client asks.
 
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
+use std::time::Duration;
 
 use anyhow::{Context as _, bail};
-use ecam_engine::drive::AxisDrive;
-use ecam_ethercat::cia402::DriveState;
+use ecam_ethercat::Segment;
+use ecam_ethercat::cia402::error_code_text;
 use ecam_ethercat::config::FollowConfig;
+use ecam_ethercat::driver::{self, DriverConfig, Following, PulseTotals};
 use ecam_ethercat::emulation::EmulatedSegment;
-use ecam_ethercat::follow::{FollowLine, PULSE_OUTPUTS};
-use ecam_ethercat::rt::{CycleClock, LatenessHistogram, configure_current_thread};
-use ecam_ethercat::supervisor::LineState;
-use ecam_ethercat::{Segment, SegmentConfig};
+use ecam_ethercat::follow::FollowLine;
+use ecam_ethercat::monitor::{LineCommand, LineMonitor};
+use ecam_ethercat::summary::summary_json;
+use ecam_ethercat::supervisor::{LineState, al_state_code};
 use ecam_plc::Device;
-use ecam_serve::{BusCommand, BusFace, BusLineState, BusSnapshot, DriveView, Shared};
-use serde_json::{Value, json};
-
-use crate::cmd::ethercat::{lateness_json, open_transport};
+use ecam_serve::{
+    BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, BusTicks, DriveView, Shared,
+};
+use serde_json::Value;
 
 /// The tracing target of the bus cycle's messages.
 const LOG: &str = "ecam::ethercat";
-
-/// Cycles the drives are given to hear "disable" before the server exits.
-const GOODBYE_CYCLES: u32 = 5;
 
 /// A segment brought up for the server, not yet cycling.
 pub struct Bus {
     config: FollowConfig,
     line: FollowLine,
-    emulated: Option<Arc<Mutex<EmulatedSegment>>>,
+    emulation: Option<Arc<Mutex<EmulatedSegment>>>,
     transport: String,
-    relays: Relays,
-}
-
-/// The M relays the server keeps for the program.
-#[derive(Clone, Copy, Debug, Default)]
-struct Relays {
-    fault: Option<u16>,
-    running: Option<u16>,
+    relays: [Option<u16>; 2],
 }
 
 fn relay(name: Option<&str>, key: &str) -> anyhow::Result<Option<u16>> {
@@ -67,7 +59,7 @@ pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> anyhow::Res
     let text =
         std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let config = FollowConfig::parse(&text).with_context(|| format!("{}", path.display()))?;
-    let file = path.display();
+    let file = path.display().to_string();
     if config.cycle_us % scan_us != 0 {
         bail!(
             "{file}: cycle_us = {} is not a whole number of scan periods (--scan-us {scan_us}): \
@@ -75,28 +67,18 @@ pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> anyhow::Res
             config.cycle_us
         );
     }
-    let relays = Relays {
-        fault: relay(config.fault_relay.as_deref(), "fault_relay").context(file.to_string())?,
-        running: relay(config.running_relay.as_deref(), "running_relay")
-            .context(file.to_string())?,
-    };
-    let followers = config.followers().with_context(|| file.to_string())?;
-    let (transport, emulated_segment) =
-        open_transport(emulated, config.interface.as_deref(), path)?;
-    let transport_name = match (&emulated_segment, &config.interface) {
-        (Some(_), _) => format!("emulated ({} drives)", emulated.unwrap_or(0)),
-        (None, Some(interface)) => interface.clone(),
-        (None, None) => String::new(),
-    };
-    let segment = Segment::bring_up(
-        transport,
-        SegmentConfig {
-            cycle: config.cycle(),
-            link_fifo_priority: config.fifo_priority.map(|p| p.saturating_add(1).min(99)),
-            ..SegmentConfig::default()
-        },
-    )?;
-    let line = FollowLine::new(segment, followers).with_context(|| file.to_string())?;
+    let relays = [
+        relay(config.fault_relay.as_deref(), "fault_relay").context(file.clone())?,
+        relay(config.running_relay.as_deref(), "running_relay").context(file.clone())?,
+    ];
+    let followers = config.followers().context(file.clone())?;
+    let (transport, emulation) =
+        crate::cmd::ethercat::transport(emulated, config.interface.as_deref(), path)?;
+    let transport_name = transport.describe();
+    let timing = config.timing();
+    let segment = Segment::bring_up(transport, timing.segment())?;
+    let line = FollowLine::new(segment, followers, timing.max_lost_cycles(), timing.stop())
+        .context(file)?;
     tracing::info!(
         target: LOG,
         "{} drives in OP on {transport_name}, SYNC0 every {} µs",
@@ -117,234 +99,223 @@ pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> anyhow::Res
     Ok(Bus {
         config,
         line,
-        emulated: emulated_segment,
+        emulation,
         transport: transport_name,
         relays,
     })
 }
 
 impl Bus {
-    /// Starts the cycle thread; it runs the PLC and the drives until
-    /// `stop`, then disables the drives and returns the summary line.
+    /// Starts the cycle driver and the PLC thread it paces; the returned
+    /// thread ends with the summary line once `stop` is set and the drives
+    /// have been stopped and disabled.
     ///
     /// # Errors
-    /// The thread could not be started.
+    /// A thread could not be started.
     pub fn spawn(
-        mut self,
+        self,
         shared: Arc<Shared>,
         stop: Arc<AtomicBool>,
     ) -> anyhow::Result<JoinHandle<Value>> {
+        let drives = self.line.segment().len();
+        let monitor = Arc::new(LineMonitor::new(drives));
+        let source = Source {
+            monitor: Arc::clone(&monitor),
+            transport: self.transport.clone(),
+            cycle_us: self.config.cycle_us,
+            max_lost: self.line.supervisor().max_lost_cycles(),
+            names: (0..drives)
+                .map(|p| self.line.segment().drive_name(p).unwrap_or_default())
+                .collect(),
+            outputs: (0..drives).map(|p| self.line.output_of(p)).collect(),
+        };
         // Set before any client is served, so the bus areas answer at once.
-        let _ = shared.bus.set(BusFace::new());
-        if self.config.enable_at_start {
-            self.line.start()?;
+        let _ = shared.bus.set(BusFace::new(source));
+        let pulses = Arc::new(PulseTotals::new());
+        let ticks = Arc::new(BusTicks::new());
+        let timing = self.config.timing();
+        let cycle_us = self.config.cycle_us;
+        let cycle = {
+            let ticks = Arc::clone(&ticks);
+            driver::spawn(
+                Following {
+                    line: self.line,
+                    pulses: Arc::clone(&pulses),
+                },
+                DriverConfig {
+                    rt: self.config.rt(),
+                    cycles: None,
+                    enable_at_start: self.config.enable_at_start,
+                    recover: false,
+                    stop: timing.stop(),
+                    emulation: self.emulation,
+                },
+                Arc::clone(&monitor),
+                move |f: &Following| {
+                    if f.line.advanced() {
+                        ticks.tick();
+                    }
+                },
+            )
+            .context("cannot start the fieldbus cycle")?
+        };
+        let scans = cycle_us / shared.info.timing.scan_us;
+        let relays = self.relays;
+        {
+            let (shared, stop, monitor) =
+                (Arc::clone(&shared), Arc::clone(&stop), Arc::clone(&monitor));
+            std::thread::Builder::new()
+                .name("plc-scan".into())
+                .spawn(move || {
+                    ecam_serve::scan_on_bus_ticks(
+                        &shared,
+                        &ticks,
+                        scans,
+                        &stop,
+                        |shared| set_relays(shared, relays, monitor.snapshot().state),
+                        |shared| {
+                            pulses.publish(shared.with_plc(|plc| {
+                                let hardware = plc.hardware();
+                                [0, 1, 2, 3].map(|y| hardware.emitted(y))
+                            }));
+                        },
+                    );
+                })
+                .context("cannot start the PLC thread")?;
         }
         std::thread::Builder::new()
-            .name("ecam-bus".into())
-            .spawn(move || self.run(&shared, &stop))
-            .context("cannot start the fieldbus cycle")
-    }
-
-    fn run(mut self, shared: &Shared, stop: &AtomicBool) -> Value {
-        let setup = configure_current_thread(&self.config.rt());
-        tracing::info!(target: LOG, "cycle: {setup}");
-        shared.stats.scanning.store(true, Ordering::Relaxed);
-        let scans = self.config.cycle_us / shared.info.timing.scan_us;
-        let mut lateness = LatenessHistogram::default();
-        let mut counters = Counters::default();
-        let mut clock = match CycleClock::start(self.config.cycle()) {
-            Ok(clock) => clock,
-            Err(e) => {
-                tracing::error!(target: LOG, "monotonic clock: {e}; the drives stay disabled");
-                shared.stats.scanning.store(false, Ordering::Relaxed);
-                return json!({"error": format!("monotonic clock: {e}")});
-            }
-        };
-        let mut goodbye = None;
-        loop {
-            if let Err(e) = clock.wait(&mut lateness) {
-                tracing::error!(target: LOG, "clock_nanosleep: {e}; stopping");
-                break;
-            }
-            if goodbye.is_none() && stop.load(Ordering::Relaxed) {
-                self.line.stop();
-                goodbye = Some(GOODBYE_CYCLES);
-            }
-            if let Some(face) = shared.bus.get() {
-                for command in face.take_commands() {
-                    self.obey(command);
-                }
-            }
-            let emitted = self.step_plc(shared, scans);
-            self.exchange(&emitted, &mut counters);
-            if let Some(face) = shared.bus.get() {
-                face.publish(self.snapshot(&counters, &lateness));
-            }
-            match &mut goodbye {
-                Some(0) => break,
-                Some(n) => *n -= 1,
-                None => {}
-            }
-        }
-        shared.stats.scanning.store(false, Ordering::Relaxed);
-        let drives = self.line.segment().drives();
-        json!({
-            "drives": drives.len(),
-            "cycles": counters.cycles,
-            "cycle_us": self.config.cycle_us,
-            "state": self.line.state().name(),
-            "faults": counters.faults,
-            "working_counter_errors": counters.wkc_errors,
-            "exchange_errors": counters.exchange_errors,
-            "actual": drives.iter().map(|d| d.actual()).collect::<Vec<_>>(),
-            "scheduling": setup.to_string(),
-            "lateness": lateness_json(&lateness),
-        })
-    }
-
-    /// Sets the relays, runs the PLC for one cycle time and reads what the
-    /// pulse outputs have emitted.
-    fn step_plc(&self, shared: &Shared, scans: u32) -> [i64; PULSE_OUTPUTS as usize] {
-        let state = self.line.state();
-        shared.with_plc(|plc| {
-            let devices = plc.devices_mut();
-            if let Some(m) = self.relays.fault {
-                let _ = devices.set_bit(Device::M(m), state == LineState::Faulted);
-            }
-            if let Some(m) = self.relays.running {
-                let _ = devices.set_bit(Device::M(m), state == LineState::Running);
-            }
-        });
-        for _ in 0..scans {
-            ecam_serve::scan_period(shared);
-        }
-        shared.with_plc(|plc| {
-            let hardware = plc.hardware();
-            [0, 1, 2, 3].map(|y| hardware.emitted(y))
-        })
-    }
-
-    fn exchange(&mut self, emitted: &[i64; PULSE_OUTPUTS as usize], counters: &mut Counters) {
-        counters.cycles += 1;
-        match self.line.cycle(emitted) {
-            Ok(report) => {
-                if report.bus.working_counter_error() {
-                    counters.wkc_errors += 1;
-                }
-                for fault in &report.new_faults {
-                    tracing::error!(
-                        target: LOG,
-                        "{fault}: every drive brakes on its quick-stop ramp; \
-                         clear it with a fault reset (coil 14001 or POST /api/ethercat/reset)"
-                    );
-                    counters.faults.push(fault.to_string());
-                }
-            }
-            Err(e) => {
-                // One lost exchange: the drives keep their last target.
-                counters.exchange_errors += 1;
-                if counters.exchange_errors == 1 || counters.exchange_errors.is_power_of_two() {
-                    tracing::error!(
-                        target: LOG,
-                        "exchange failed ({} so far): {e}",
-                        counters.exchange_errors
-                    );
-                }
-            }
-        }
-    }
-
-    fn obey(&mut self, command: BusCommand) {
-        let done = match command {
-            BusCommand::Enable => self.line.start().map_err(|e| e.to_string()),
-            BusCommand::Disable => {
-                self.line.stop();
-                Ok(())
-            }
-            BusCommand::Reset => match self.line.reset() {
-                // Nothing to clear is not worth a warning.
-                Err(_) if self.line.state() != LineState::Faulted => Ok(()),
-                other => other.map_err(|e| e.to_string()),
-            },
-            BusCommand::EmulateFault { drive, code } => match &self.emulated {
-                Some(segment) => {
-                    let mut segment = segment.lock().unwrap_or_else(|p| p.into_inner());
-                    match segment.esc_mut(drive) {
-                        Some(esc) => {
-                            esc.drive_mut().inject_fault(code);
-                            Ok(())
-                        }
-                        None => Err(format!("no emulated drive {drive}")),
+            .name("ecam-bus-watch".into())
+            .spawn(move || {
+                let mut seen = 0;
+                while !cycle.is_finished() {
+                    if stop.load(Ordering::Relaxed) {
+                        monitor.request_stop();
                     }
+                    std::thread::sleep(Duration::from_millis(20));
+                    seen = log_faults(&monitor, seen);
                 }
-                None => Err("faults can only be injected into emulated drives".into()),
-            },
-        };
-        match done {
-            Ok(()) => tracing::info!(target: LOG, "{command:?}: done"),
-            Err(e) => tracing::warn!(target: LOG, "{command:?} refused: {e}"),
-        }
+                match cycle.join() {
+                    Ok(summary) => {
+                        tracing::info!(target: LOG, "cycle: {}", summary.setup);
+                        summary_json(&summary, drives, cycle_us)
+                    }
+                    Err(_) => serde_json::json!({"error": "the fieldbus cycle panicked"}),
+                }
+            })
+            .context("cannot start the fieldbus watcher")
     }
+}
 
-    fn snapshot(&self, counters: &Counters, lateness: &LatenessHistogram) -> BusSnapshot {
-        let segment = self.line.segment();
-        let drives = segment
-            .drives()
+/// Logs the faults first seen since `seen` (of the fault events).
+fn log_faults(monitor: &LineMonitor, seen: u64) -> u64 {
+    let snapshot = monitor.snapshot();
+    let new = usize::try_from(snapshot.fault_events.saturating_sub(seen)).unwrap_or(usize::MAX);
+    let faults = &snapshot.faults;
+    for fault in &faults[faults.len().saturating_sub(new)..] {
+        tracing::error!(
+            target: LOG,
+            "{fault}: every drive brakes on its quick-stop ramp; \
+             clear it with a fault reset (coil 14001 or POST /api/ethercat/reset)"
+        );
+    }
+    snapshot.fault_events
+}
+
+/// `fault_relay` and `running_relay` from the line's state.
+fn set_relays(shared: &Shared, relays: [Option<u16>; 2], state: Option<LineState>) {
+    shared.with_plc(|plc| {
+        let devices = plc.devices_mut();
+        for (relay, on) in relays.into_iter().zip([
+            state == Some(LineState::Faulted),
+            state == Some(LineState::Running),
+        ]) {
+            if let Some(m) = relay {
+                let _ = devices.set_bit(Device::M(m), on);
+            }
+        }
+    });
+}
+
+/// The driver's published image as ecam-serve's snapshot, and its
+/// commands as the driver's.
+struct Source {
+    monitor: Arc<LineMonitor>,
+    transport: String,
+    cycle_us: u32,
+    max_lost: u32,
+    names: Vec<String>,
+    outputs: Vec<Option<u8>>,
+}
+
+impl BusSource for Source {
+    fn snapshot(&self) -> BusSnapshot {
+        let s = self.monitor.snapshot();
+        let c = s.counters;
+        let drives = s
+            .drives
             .iter()
             .enumerate()
-            .map(|(position, d)| {
-                let status = d.status();
-                let state = d.state();
-                DriveView {
-                    position,
-                    name: segment.drive_name(position).unwrap_or_default(),
-                    state_code: state_code(state),
-                    state: state.to_string(),
-                    statusword: d.inputs().statusword,
-                    error_code: d.inputs().error_code,
-                    reachable: d.reachable(),
-                    enabled: status.enabled,
-                    fault: status.fault.map(|f| f.to_string()),
-                    actual: status.actual,
-                    target: self.line.target_of(position),
-                    following_error: status.following_error,
-                    output: self.line.output_of(position),
-                }
+            .map(|(position, d)| DriveView {
+                position,
+                name: self.names.get(position).cloned().unwrap_or_default(),
+                state_code: d.state.code(),
+                state: d.state.to_string(),
+                statusword: d.statusword,
+                error_code: d.error_code,
+                error: error_code_text(d.error_code).to_string(),
+                reachable: d.reachable,
+                enabled: d.enabled,
+                fault: s
+                    .faults
+                    .iter()
+                    .find(|f| f.drive == Some(position))
+                    .map(|f| f.cause.to_string()),
+                actual: d.actual,
+                target: self
+                    .outputs
+                    .get(position)
+                    .copied()
+                    .flatten()
+                    .map(|_| d.target),
+                following_error: d.following_error,
+                output: self.outputs.get(position).copied().flatten(),
+                al_state_code: al_state_code(d.al_state),
+                al_state: d.al_state.name().to_string(),
+                missed_cycles: d.missed,
             })
             .collect();
         BusSnapshot {
             transport: self.transport.clone(),
-            cycle_us: self.config.cycle_us,
-            state: match self.line.state() {
-                LineState::Stopped => BusLineState::Stopped,
-                LineState::Enabling => BusLineState::Enabling,
-                LineState::Running => BusLineState::Running,
-                LineState::Faulted => BusLineState::Faulted,
+            cycle_us: self.cycle_us,
+            state: match s.state {
+                None | Some(LineState::Stopped) => BusLineState::Stopped,
+                Some(LineState::Enabling) => BusLineState::Enabling,
+                Some(LineState::Running) => BusLineState::Running,
+                Some(LineState::Faulted) => BusLineState::Faulted,
+                Some(LineState::Stopping) => BusLineState::Stopping,
+                Some(LineState::Recovering) => BusLineState::Recovering,
             },
-            faults: self.line.faults().iter().map(ToString::to_string).collect(),
-            cycles: counters.cycles,
-            working_counter_errors: counters.wkc_errors,
-            lateness_max_us: lateness.max.as_secs_f64() * 1e6,
-            lateness_mean_us: lateness.mean().as_secs_f64() * 1e6,
-            overruns: lateness.overruns,
+            faults: s.faults.iter().map(ToString::to_string).collect(),
+            cycles: c.cycles,
+            working_counter_errors: c.working_counter_errors,
+            lateness_max_us: c.lateness_max_ns as f64 / 1000.0,
+            lateness_mean_us: c.lateness_mean_ns as f64 / 1000.0,
+            overruns: c.overruns,
+            lost_cycles: c.lost_cycles,
+            lost_in_a_row_max: c.lost_in_a_row_max,
+            max_lost_cycles: self.max_lost,
+            late_replies: c.late_replies,
+            sync0_lead_us: c.sync0_lead_ns as f64 / 1000.0,
             drives,
         }
     }
-}
 
-/// What the cycle counts for the summary.
-#[derive(Debug, Default)]
-struct Counters {
-    cycles: u64,
-    wkc_errors: u64,
-    exchange_errors: u64,
-    faults: Vec<String>,
-}
-
-/// The state's code in the input registers (see `ecam_serve::DRIVE_WORDS`).
-fn state_code(state: DriveState) -> u16 {
-    DriveState::ALL
-        .iter()
-        .position(|&s| s == state)
-        .map_or(0, |i| u16::try_from(i).unwrap_or(0))
+    fn command(&self, command: BusCommand) -> bool {
+        self.monitor.command(match command {
+            BusCommand::Enable => LineCommand::Enable,
+            BusCommand::Disable => LineCommand::Disable,
+            BusCommand::Reset => LineCommand::Reset,
+            BusCommand::EmulateFault { drive, code } => LineCommand::InjectFault { drive, code },
+        })
+    }
 }

@@ -33,9 +33,13 @@ fn rotary_knife_runs_on_emulated_drives() {
     assert_eq!(summary["drives"], 2);
     assert_eq!(summary["cycles"], 400);
     assert_eq!(summary["faults"].as_array().unwrap().len(), 0);
-    assert_eq!(summary["working_counter_errors"], 0);
+    // A loaded host may delay a reply past the cycle's deadline: counted
+    // as a lost cycle, never as a fault.
+    assert_eq!(summary["working_counter_errors"], summary["lost_cycles"]);
+    assert!(summary["lost_cycles"].as_u64().unwrap() < 20, "{summary}");
     let master = summary["virtual_master"].as_i64().unwrap();
-    assert!(master > 7 * 380 && master <= 7 * 400, "{master}");
+    // 400 cycles at 7 counts, then the stop's 500 ms ramp (7 · 500 / 2).
+    assert!(master > 7 * 380 && master <= 7 * 400 + 1750, "{master}");
     // The shaft trails the master by the drive lag; the knife turned.
     let actual = summary["actual"].as_array().unwrap();
     assert!(actual[0].as_i64().unwrap() > master - 100);

@@ -11,6 +11,10 @@ use crate::pdo::{CspInputs, CspOutputs};
 /// CiA 402 error code the emulated drive reports when its following error
 /// leaves the window (the profile's "following error" code).
 pub const ERROR_FOLLOWING: u16 = 0x8611;
+/// Error code the emulated drive reports when its ESC's process-data
+/// watchdog runs out while the power stage is on (CiA 301's "life guard
+/// or heartbeat error": our choice for a communication watchdog).
+pub const ERROR_WATCHDOG: u16 = 0x8130;
 
 /// How an emulated drive behaves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -21,6 +25,9 @@ pub struct DriveBehaviour {
     /// Largest |target − actual| before the drive faults with
     /// [`ERROR_FOLLOWING`].
     pub following_error_window: u32,
+    /// Cycles the fault-reset bit must stay high after its rising edge
+    /// before the drive leaves "fault" (0: the edge alone).
+    pub reset_hold_cycles: u32,
 }
 
 impl Default for DriveBehaviour {
@@ -28,6 +35,7 @@ impl Default for DriveBehaviour {
         Self {
             lag_cycles: 2,
             following_error_window: 1_000_000,
+            reset_hold_cycles: 0,
         }
     }
 }
@@ -46,6 +54,10 @@ pub struct DriveModel {
     pending_fault: Option<u16>,
     window_exceeded: bool,
     cycles: u64,
+    /// Cycles the drive still stays in "switch on disabled".
+    switch_on_delay: u32,
+    /// Cycles bit 7 has been high since its edge (in "fault").
+    reset_held: Option<u32>,
 }
 
 impl DriveModel {
@@ -58,12 +70,45 @@ impl DriveModel {
             target: position,
             actual: position,
             mode: 0,
-            delay_line: VecDeque::new(),
+            // Sized once, so running the drive never allocates.
+            delay_line: VecDeque::with_capacity(behaviour.lag_cycles + 1),
             error_code: 0,
             pending_fault: None,
             window_exceeded: false,
             cycles: 0,
+            switch_on_delay: 0,
+            reset_held: None,
         }
+    }
+
+    /// Keeps the drive in "switch on disabled" for `cycles` more cycles
+    /// (a slow power stage).
+    pub fn delay_switch_on(&mut self, cycles: u32) {
+        self.switch_on_delay = cycles;
+    }
+
+    /// The ESC's process-data watchdog ran out: a drive with its power
+    /// stage on faults with [`ERROR_WATCHDOG`] at once (its own
+    /// application reacts; it does not wait for the next frame).
+    pub fn communication_lost(&mut self) {
+        if matches!(
+            self.state,
+            DriveState::ReadyToSwitchOn
+                | DriveState::SwitchedOn
+                | DriveState::OperationEnabled
+                | DriveState::QuickStopActive
+        ) {
+            self.state = DriveState::Fault;
+            self.error_code = ERROR_WATCHDOG;
+            self.delay_line.clear();
+        }
+    }
+
+    /// Puts the motor at `position` (a drive powered up where its motor
+    /// stands).
+    pub fn place(&mut self, position: i32) {
+        self.actual = position;
+        self.target = position;
     }
 
     /// Makes the drive fault with `code` at its next cycle.
@@ -105,6 +150,11 @@ impl DriveModel {
                 DriveState::NotReadyToSwitchOn => DriveState::SwitchOnDisabled,
                 // Transition 14: the fault reaction (an instant stop here).
                 DriveState::FaultReactionActive => DriveState::Fault,
+                DriveState::SwitchOnDisabled if self.switch_on_delay > 0 => {
+                    self.switch_on_delay -= 1;
+                    DriveState::SwitchOnDisabled
+                }
+                DriveState::Fault => self.fault_reset(controlword),
                 state => state.after(controlword, self.previous_controlword),
             }
         };
@@ -131,6 +181,25 @@ impl DriveModel {
         } else {
             // Not following: the motor holds where it is.
             self.delay_line.clear();
+        }
+    }
+
+    /// Transition 15, with the bit held for `reset_hold_cycles` after its
+    /// edge.
+    fn fault_reset(&mut self, controlword: u16) -> DriveState {
+        let high = controlword & crate::cia402::CW_FAULT_RESET != 0;
+        let edge = high && self.previous_controlword & crate::cia402::CW_FAULT_RESET == 0;
+        self.reset_held = match (self.reset_held, high, edge) {
+            (_, _, true) => Some(0),
+            (Some(n), true, false) => Some(n + 1),
+            _ => None,
+        };
+        match self.reset_held {
+            Some(n) if n >= self.behaviour.reset_hold_cycles => {
+                self.reset_held = None;
+                DriveState::SwitchOnDisabled
+            }
+            _ => DriveState::Fault,
         }
     }
 
@@ -244,6 +313,7 @@ mod tests {
         let behaviour = DriveBehaviour {
             lag_cycles: 1,
             following_error_window: 5,
+            ..DriveBehaviour::default()
         };
         let mut drive = DriveModel::new(behaviour, 0);
         enable(&mut drive);

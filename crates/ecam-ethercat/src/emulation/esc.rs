@@ -46,6 +46,11 @@ const AL_INVALID_STATE_CHANGE: u16 = 0x0011;
 const AL_INVALID_OUTPUT_CONFIG: u16 = 0x001D;
 const AL_INVALID_INPUT_CONFIG: u16 = 0x001E;
 const AL_INVALID_DC_SYNC: u16 = 0x0030;
+const AL_SYNC_MANAGER_WATCHDOG: u16 = 0x001B;
+
+/// The process-data watchdog an ESC starts with (ETG1000.4: divider 2498
+/// of 25 MHz = 100 µs ticks, 1000 ticks).
+pub(crate) const DEFAULT_WATCHDOG: std::time::Duration = std::time::Duration::from_millis(100);
 
 /// Delay the emulation books for each ESC a frame passes, per direction.
 const HOP_NS: u32 = 100;
@@ -102,6 +107,8 @@ pub(crate) struct Hop {
     pub(crate) reachable: usize,
     /// Local clock of this ESC when the frame arrived, ns.
     pub(crate) now_ns: u64,
+    /// The process-data watchdog, ns (`None`: off).
+    pub(crate) watchdog_ns: Option<u64>,
 }
 
 /// One emulated ESC with a CSP drive behind it.
@@ -110,6 +117,8 @@ pub struct Esc {
     memory: Vec<u8>,
     eeprom: Vec<u8>,
     drive: DriveModel,
+    /// When outputs last arrived in OP (`None`: not since entering OP).
+    last_outputs_ns: Option<u64>,
 }
 
 impl Esc {
@@ -128,6 +137,24 @@ impl Esc {
             memory,
             eeprom: sii::drive_eeprom(serial),
             drive: DriveModel::new(behaviour, 0),
+            last_outputs_ns: None,
+        }
+    }
+
+    /// The process-data watchdog ran out (no outputs for its time in OP):
+    /// the ESC falls back to SAFE-OP with the error flag and AL status code
+    /// 0x001B, and a drive with its power stage on faults.
+    pub fn watchdog_expired(&mut self) {
+        if self.al_state() == 8 {
+            put(&mut self.memory, REG_AL_STATUS, &0x0014u16.to_le_bytes());
+            put(
+                &mut self.memory,
+                REG_AL_STATUS_CODE,
+                &AL_SYNC_MANAGER_WATCHDOG.to_le_bytes(),
+            );
+            self.last_outputs_ns = None;
+            self.drive.communication_lost();
+            self.publish_inputs();
         }
     }
 
@@ -189,6 +216,11 @@ impl Esc {
         hop: Hop,
     ) {
         let logical = u32::from(ado) << 16 | u32::from(*adp);
+        if let (Some(last), Some(limit)) = (self.last_outputs_ns, hop.watchdog_ns) {
+            if hop.now_ns.saturating_sub(last) > limit {
+                self.watchdog_expired();
+            }
+        }
         match cmd {
             Cmd::Nop => {}
             Cmd::Aprd | Cmd::Apwr | Cmd::Aprw | Cmd::Armw => {
@@ -212,7 +244,7 @@ impl Esc {
                 *adp = adp.wrapping_add(1);
                 self.physical(cmd, ado, data, wkc, hop);
             }
-            Cmd::Lrd | Cmd::Lwr | Cmd::Lrw => self.logical(cmd, logical, data, wkc),
+            Cmd::Lrd | Cmd::Lwr | Cmd::Lrw => self.logical(cmd, logical, data, wkc, hop.now_ns),
         }
     }
 
@@ -254,29 +286,25 @@ impl Esc {
             *wkc = wkc.wrapping_add(1);
         }
         if write {
-            let old = if read {
-                Some(self.memory[start..end].to_vec())
-            } else {
-                None
-            };
-            for (offset, byte) in data.iter().enumerate() {
+            for (offset, byte) in data.iter_mut().enumerate() {
                 let address = start + offset;
+                let old = self.memory[address];
                 if writable(address) {
                     self.memory[address] = *byte;
                 }
+                if read {
+                    // Read-write commands return the memory as it was.
+                    *byte = old;
+                }
             }
             self.after_write(start, end, hop);
-            if let Some(old) = old {
-                // Read-write commands return the memory as it was.
-                data.copy_from_slice(&old);
-            }
             *wkc = wkc.wrapping_add(if read { 2 } else { 1 });
         }
     }
 
     /// Process data through the FMMUs: inputs are copied out, outputs in,
     /// then the drive runs one cycle on the new outputs.
-    fn logical(&mut self, cmd: Cmd, logical: u32, data: &mut [u8], wkc: &mut u16) {
+    fn logical(&mut self, cmd: Cmd, logical: u32, data: &mut [u8], wkc: &mut u16, now_ns: u64) {
         let al = self.al_state();
         if al != 4 && al != 8 {
             return;
@@ -333,6 +361,7 @@ impl Esc {
         // The drive's application takes new outputs only in OP
         // (SAFE-OP: inputs valid, outputs ignored), once per cycle.
         if outputs_complete && al == 8 {
+            self.last_outputs_ns = Some(now_ns);
             self.run_drive();
         } else if read_hit {
             self.publish_inputs();
@@ -517,6 +546,7 @@ mod tests {
         position: 0,
         reachable: 1,
         now_ns: 1_000,
+        watchdog_ns: None,
     };
 
     fn write(esc: &mut Esc, register: u16, bytes: &[u8]) -> u16 {

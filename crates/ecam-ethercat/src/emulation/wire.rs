@@ -39,6 +39,13 @@ impl WireEmulation {
         let thread = thread::Builder::new()
             .name("ecam-ethercat-emulated-wire".into())
             .spawn(move || {
+                // The drives answer at once on a loaded host too: ask for
+                // SCHED_FIFO (refusal falls back to normal scheduling).
+                let _ = crate::rt::configure_current_thread(&crate::rt::RtConfig {
+                    period: Duration::from_millis(1),
+                    fifo_priority: Some(70),
+                    cpu: None,
+                });
                 let opened = open(&name, netns.as_ref());
                 let (mut tx, mut rx) = match opened {
                     Ok(pair) => {

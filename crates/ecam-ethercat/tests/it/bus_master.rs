@@ -38,7 +38,7 @@ fn knife_follows_the_line_shaft_actual_position() {
             master: Master::DriveActual { position: 0 },
         },
     ];
-    let mut line = CamLine::new(segment, axes).unwrap();
+    let mut line = CamLine::new(segment, axes, crate::LOST, std::time::Duration::ZERO).unwrap();
     line.virtual_speed = 9;
     line.start().unwrap();
     while line.state() != LineState::Running {
@@ -51,9 +51,9 @@ fn knife_follows_the_line_shaft_actual_position() {
         // The master this cycle's tick reads: the shaft's last actual.
         let shaft_actual = line.segment().drives()[0].actual();
         let report = line.cycle().unwrap();
-        assert!(report.new_faults.is_empty());
+        assert!(line.new_faults().is_empty());
         let expected = reference.tick(&TickInput::at(shaft_actual, 1000)).slave;
-        assert_eq!(report.axes[1].slave, expected, "cycle {cycle}");
+        assert_eq!(line.outputs()[1].slave, expected, "cycle {cycle}");
         // The shaft trails the virtual master by a constant 7 cycles: the
         // drive's 4-cycle lag, its inputs one exchange late, the reading
         // taken before this cycle's master step, and the shaft cam's

@@ -4,17 +4,19 @@
 //! to back recovers without a jump; a drive that cannot enable is reported
 //! instead of hanging the line.
 
-use ecam_engine::drive::{AxisDrive, DriveFault};
+use std::time::Duration;
+
+use ecam_engine::drive::AxisDrive;
 use ecam_ethercat::cia402::DriveState;
 use ecam_ethercat::emulation::DriveBehaviour;
 use ecam_ethercat::follow::{FollowError, FollowLine, Follower, Scale};
-use ecam_ethercat::supervisor::{ENABLE_TIMEOUT, LineFault, LineState};
+use ecam_ethercat::supervisor::{FaultCause, LineFault, LineState, RECOVERY_TIMEOUT};
 
 use crate::emulated;
 
 fn line(drives: usize, followers: Vec<Follower>) -> FollowLine {
     let (segment, _) = emulated(drives, DriveBehaviour::default());
-    FollowLine::new(segment, followers).unwrap()
+    FollowLine::new(segment, followers, crate::LOST, Duration::ZERO).unwrap()
 }
 
 /// Cycles with fixed pulse totals until the line runs.
@@ -57,7 +59,7 @@ fn targets_are_the_exact_scaled_pulse_total_from_where_the_drive_stood() {
         // An uneven speed: 0–6 pulses per cycle.
         emitted[0] += cycle % 7;
         let report = line.cycle(&emitted).unwrap();
-        assert!(report.new_faults.is_empty());
+        assert_eq!(report.seen.new_faults, 0);
         let target = line.target_of(0).unwrap();
         // Exact, from the totals: no drift however the cycles fall.
         assert_eq!(
@@ -89,7 +91,7 @@ fn fault_stops_and_reset_then_enable_back_to_back_recovers_without_a_jump() {
             scale: Scale::ONE,
         })
         .collect();
-    let mut line = FollowLine::new(segment, followers).unwrap();
+    let mut line = FollowLine::new(segment, followers, crate::LOST, Duration::ZERO).unwrap();
     let mut emitted = [0i64; 4];
     run_up(&mut line, &emitted);
     for _ in 0..100 {
@@ -107,7 +109,8 @@ fn fault_stops_and_reset_then_enable_back_to_back_recovers_without_a_jump() {
     let mut faults = Vec::new();
     for _ in 0..5 {
         emitted[0] += 5;
-        faults.extend(line.cycle(&emitted).unwrap().new_faults);
+        line.cycle(&emitted).unwrap();
+        faults.extend_from_slice(line.new_faults());
         if !faults.is_empty() {
             break;
         }
@@ -116,7 +119,7 @@ fn fault_stops_and_reset_then_enable_back_to_back_recovers_without_a_jump() {
         faults,
         vec![LineFault {
             drive: Some(1),
-            fault: DriveFault::Drive { code: 0x7500 }
+            cause: FaultCause::Drive { code: 0x7500 }
         }]
     );
     assert_eq!(line.state(), LineState::Faulted);
@@ -141,8 +144,8 @@ fn fault_stops_and_reset_then_enable_back_to_back_recovers_without_a_jump() {
     line.start().unwrap();
     let mut previous = held.clone();
     for _ in 0..30 {
-        let report = line.cycle(&emitted).unwrap();
-        assert!(report.new_faults.is_empty(), "{:?}", report.new_faults);
+        line.cycle(&emitted).unwrap();
+        assert!(line.new_faults().is_empty(), "{:?}", line.new_faults());
         let now: Vec<i64> = line.segment().drives().iter().map(|d| d.actual()).collect();
         assert_eq!(now, previous, "re-enabling does not move a standing drive");
         previous = now;
@@ -173,6 +176,8 @@ fn a_fault_that_a_reset_does_not_clear_is_reported_not_waited_for() {
             drive: 0,
             scale: Scale::ONE,
         }],
+        crate::LOST,
+        Duration::ZERO,
     )
     .unwrap();
     let emitted = [0i64; 4];
@@ -194,12 +199,13 @@ fn a_fault_that_a_reset_does_not_clear_is_reported_not_waited_for() {
     line.reset().unwrap();
     line.start().unwrap();
     // The fault comes back every cycle (an overheated stage): the line is
-    // faulted again once the enable timeout has passed, not stuck enabling.
-    let limit = ENABLE_TIMEOUT.as_millis() as usize + 50;
+    // faulted again once the recovery timeout has passed, not stuck.
+    let limit = RECOVERY_TIMEOUT.as_millis() as usize + 50;
     let mut reported = Vec::new();
     for _ in 0..limit {
         inject(0x4310);
-        reported.extend(line.cycle(&emitted).unwrap().new_faults);
+        line.cycle(&emitted).unwrap();
+        reported.extend_from_slice(line.new_faults());
         if line.state() == LineState::Faulted {
             break;
         }
@@ -217,7 +223,7 @@ fn bad_bindings_are_refused() {
         scale: Scale::ONE,
     };
     assert!(matches!(
-        FollowLine::new(segment, vec![follower(0, 3)]),
+        FollowLine::new(segment, vec![follower(0, 3)], 1, Duration::ZERO),
         Err(FollowError::NoSuchDrive {
             drive: 3,
             drives: 1
@@ -225,17 +231,22 @@ fn bad_bindings_are_refused() {
     ));
     let (segment, _) = emulated(1, DriveBehaviour::default());
     assert!(matches!(
-        FollowLine::new(segment, vec![follower(4, 0)]),
+        FollowLine::new(segment, vec![follower(4, 0)], 1, Duration::ZERO),
         Err(FollowError::NoSuchOutput(4))
     ));
     let (segment, _) = emulated(1, DriveBehaviour::default());
     assert!(matches!(
-        FollowLine::new(segment, vec![follower(0, 0), follower(1, 0)]),
+        FollowLine::new(
+            segment,
+            vec![follower(0, 0), follower(1, 0)],
+            1,
+            Duration::ZERO
+        ),
         Err(FollowError::DriveTwice(0))
     ));
     let (segment, _) = emulated(1, DriveBehaviour::default());
     assert!(matches!(
-        FollowLine::new(segment, vec![]),
+        FollowLine::new(segment, vec![], 1, Duration::ZERO),
         Err(FollowError::Empty)
     ));
 }

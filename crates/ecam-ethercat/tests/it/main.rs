@@ -15,19 +15,38 @@ use std::time::Duration;
 use ecam_ethercat::emulation::{DriveBehaviour, EmulatedSegment};
 use ecam_ethercat::{Segment, SegmentConfig, Transport};
 
+/// Lost cycles in a row a test line allows before it faults.
+const LOST: u32 = 5;
+
+/// Timing for tests that call `cycle` back to back (no real-time clock).
+fn test_config() -> SegmentConfig {
+    SegmentConfig {
+        // Generous: a loaded CI host must not turn a slow reply into a
+        // lost frame (only the tests that lose frames lose them).
+        frame_timeout: Duration::from_millis(250),
+        reply_timeout: Duration::from_millis(250),
+        dc_static_sync_iterations: 50,
+        ..SegmentConfig::for_cycle(Duration::from_millis(1))
+    }
+}
+
 /// A segment of `drives` emulated drives brought to OP, and the handle
 /// to the emulation.
 fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
-    let emulation = Arc::new(Mutex::new(EmulatedSegment::new(drives, behaviour)));
-    let config = SegmentConfig {
-        cycle: Duration::from_millis(1),
-        // Generous: a loaded CI host must not turn a slow reply into a
-        // lost frame (only the cable tests lose frames, on purpose).
-        frame_timeout: Duration::from_millis(250),
-        state_timeout: Duration::from_secs(5),
-        dc_static_sync_iterations: 50,
-        link_fifo_priority: None,
-    };
+    emulated_with(drives, behaviour, test_config())
+}
+
+/// As [`emulated`], with this timing. The ESCs' watchdog is off: these
+/// tests cycle without a real-time clock, and a loaded host may pause
+/// them for longer than it.
+fn emulated_with(
+    drives: usize,
+    behaviour: DriveBehaviour,
+    config: SegmentConfig,
+) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
+    let mut segment = EmulatedSegment::new(drives, behaviour);
+    segment.set_watchdog(None);
+    let emulation = Arc::new(Mutex::new(segment));
     let segment =
         Segment::bring_up(Transport::Emulated(Arc::clone(&emulation)), config).expect("bring-up");
     (segment, emulation)

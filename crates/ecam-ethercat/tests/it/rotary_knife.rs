@@ -36,7 +36,7 @@ fn ten_thousand_cycles_on_eight_drives_are_exact() {
             master: Master::Virtual,
         })
         .collect();
-    let mut line = CamLine::new(segment, axes).unwrap();
+    let mut line = CamLine::new(segment, axes, crate::LOST, std::time::Duration::ZERO).unwrap();
     // 7 master counts per 1 ms cycle, uneven against the 3000-count cut.
     line.virtual_speed = 7;
     line.start().unwrap();
@@ -61,16 +61,16 @@ fn ten_thousand_cycles_on_eight_drives_are_exact() {
             .tick(&TickInput::at(report.virtual_master, 1000))
             .slave;
         assert!(
-            report.new_faults.is_empty(),
+            line.new_faults().is_empty(),
             "cycle {cycle}: {:?}",
-            report.new_faults
+            line.new_faults()
         );
         assert!(
             !report.bus.working_counter_error(),
             "cycle {cycle}: {:?}",
             report.bus
         );
-        let commanded: Vec<i64> = report.axes.iter().map(|o| o.slave).collect();
+        let commanded: Vec<i64> = line.outputs().iter().map(|o| o.slave).collect();
         assert!(
             commanded.iter().all(|&c| c == expected),
             "cycle {cycle}: {commanded:?} vs {expected}"
@@ -121,7 +121,7 @@ fn sixty_four_drives_over_two_frames_stay_exact() {
             master: Master::Virtual,
         })
         .collect();
-    let mut line = CamLine::new(segment, axes).unwrap();
+    let mut line = CamLine::new(segment, axes, crate::LOST, std::time::Duration::ZERO).unwrap();
     line.virtual_speed = 5;
     line.start().unwrap();
     while line.state() != LineState::Running {
@@ -136,7 +136,7 @@ fn sixty_four_drives_over_two_frames_stay_exact() {
             "cycle {cycle}: {:?}",
             report.bus
         );
-        let commanded: Vec<i64> = report.axes.iter().map(|o| o.slave).collect();
+        let commanded: Vec<i64> = line.outputs().iter().map(|o| o.slave).collect();
         let emulation = emulation.lock().unwrap();
         for (i, esc) in emulation.escs().iter().enumerate() {
             assert_eq!(

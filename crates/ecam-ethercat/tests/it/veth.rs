@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use ecam_ethercat::emulation::{DriveBehaviour, EmulatedSegment, WireEmulation};
 use ecam_ethercat::line::{CamDrive, CamLine, LineState, Master};
-use ecam_ethercat::{Segment, SegmentConfig, Transport};
+use ecam_ethercat::{Segment, Transport};
 
 use crate::rotary_knife::knife_axis;
 
@@ -100,13 +100,7 @@ fn cam_runs_over_a_veth_pair_in_a_namespace() {
         Arc::clone(&emulation),
     )
     .expect("emulation on the veth end");
-    let config = SegmentConfig {
-        cycle: Duration::from_millis(1),
-        frame_timeout: Duration::from_millis(250),
-        state_timeout: Duration::from_secs(5),
-        dc_static_sync_iterations: 50,
-        link_fifo_priority: None,
-    };
+    let config = crate::test_config();
     let segment = Segment::bring_up(Transport::Interface(pair.master_end.clone()), config)
         .expect("bring-up over veth");
     assert_eq!(segment.len(), 3);
@@ -117,7 +111,7 @@ fn cam_runs_over_a_veth_pair_in_a_namespace() {
             master: Master::Virtual,
         })
         .collect();
-    let mut line = CamLine::new(segment, axes).unwrap();
+    let mut line = CamLine::new(segment, axes, crate::LOST, Duration::ZERO).unwrap();
     line.virtual_speed = 13;
     line.start().unwrap();
     for _ in 0..20 {
@@ -127,11 +121,12 @@ fn cam_runs_over_a_veth_pair_in_a_namespace() {
     for cycle in 0..500 {
         let report = line.cycle().unwrap();
         assert!(!report.bus.working_counter_error(), "cycle {cycle}");
+        let outputs = line.outputs();
         let emu = emulation.lock().unwrap();
         for (i, esc) in emu.escs().iter().enumerate() {
             assert_eq!(
                 i64::from(esc.drive().target()),
-                report.axes[i].slave,
+                outputs[i].slave,
                 "cycle {cycle}"
             );
         }
