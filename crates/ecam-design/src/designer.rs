@@ -185,16 +185,19 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
     };
     // The note `ecam table show` prints when the table's acceleration is
     // mostly whole-pulse rounding.
-    let note = crate::TableReport::of(
-        g.name,
-        &ecam_core::io::AnyTable::Points(ecam_core::io::TableFile {
-            table: g.table.clone(),
-            sync: g.sync,
-            generator: None,
-            kinematics: g.exact.as_ref().map(|_| kinematics.clone()),
-        }),
-    )
-    .note();
+    let shortest = points
+        .windows(2)
+        .filter_map(|w| match w {
+            [a, b] => b.master.checked_sub(a.master),
+            _ => None,
+        })
+        .min();
+    let note = match (design_peaks, shortest) {
+        (Some((_, design_a)), Some(shortest)) => {
+            crate::report::ripple_note(summary.peak_acceleration, design_a, shortest)
+        }
+        _ => None,
+    };
     let outputs: serde_json::Map<String, Value> = g
         .outputs
         .iter()

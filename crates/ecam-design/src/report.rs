@@ -196,17 +196,11 @@ impl TableReport {
 
     /// The rounding note, when the table's acceleration is mostly ripple.
     pub fn note(&self) -> Option<String> {
-        let design = self.design?;
-        let ratio = ripple_ratio(self.summary.peak_acceleration, design.peak_acceleration)?;
-        let length = self.shortest?.max(1) as f64;
-        Some(format!(
-            "the table's acceleration is {ratio:.1} times the design's: its points are \
-             rounded to whole pulses, which moves a joint's estimate by up to 2/L² (L: section \
-             length; {} for the shortest, {} counts). The drive follows the table, the motion \
-             law asks for the design's value.",
-            short(rounding_ripple(length)),
-            short(length),
-        ))
+        ripple_note(
+            self.summary.peak_acceleration,
+            self.design?.peak_acceleration,
+            self.shortest?,
+        )
     }
 
     /// The report as `ecam table show` prints it.
@@ -317,6 +311,23 @@ impl TableReport {
         }
         Ok(())
     }
+}
+
+/// The note `ecam table show` prints (and the designer's summary carries)
+/// when a table's peak acceleration is mostly whole-pulse rounding ripple
+/// against its design's ([`ripple_ratio`]); `shortest` is its shortest
+/// section in counts.
+pub fn ripple_note(table_peak: f64, design_peak: f64, shortest: i64) -> Option<String> {
+    let ratio = ripple_ratio(table_peak, design_peak)?;
+    let length = shortest.max(1) as f64;
+    Some(format!(
+        "the table's acceleration is {ratio:.1} times the design's: its points are \
+         rounded to whole pulses, which moves a joint's estimate by up to 2/L² (L: section \
+         length; {} for the shortest, {} counts). The drive follows the table, the motion \
+         law asks for the design's value.",
+        short(rounding_ripple(length)),
+        short(length),
+    ))
 }
 
 /// `none`, each step as `MASTER: SIZE` (the seam's as `seam MASTER`), or,
