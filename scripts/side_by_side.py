@@ -63,10 +63,69 @@ def peer_ns(quick):
     return None, "the peer driver printed no cam513 figure"
 
 
+def instructions_per_path(binary, workdir):
+    """Instructions of every tick `binary` (the tick_paths example) measures.
+
+    callgrind counts only inside `instr_probe` and dumps after each call, so
+    each dump is one tick; the binary prints the path of each call in order.
+    Returns {path: [instructions of each tick]} or, when valgrind is
+    missing, why not.
+    """
+    if shutil.which("valgrind") is None:
+        return None, "valgrind is not installed (apt-get install valgrind)"
+    out = Path(workdir) / "callgrind.out"
+    if out.exists():
+        out.unlink()
+    probe = "tick_paths::instr_probe"
+    run = subprocess.run(
+        ["valgrind", "--tool=callgrind", "--collect-atstart=no",
+         f"--toggle-collect={probe}", f"--dump-after={probe}", "--combine-dumps=yes",
+         f"--callgrind-out-file={out}", binary],
+        capture_output=True, text=True)
+    if run.returncode != 0:
+        tail = (run.stderr.strip().splitlines() or ["no output"])[-1]
+        return None, f"callgrind failed: {tail}"
+    paths = [line[len("probe "):] for line in run.stdout.splitlines() if line.startswith("probe ")]
+    with open(out) as f:
+        totals = [int(line.split()[1]) for line in f if line.startswith("totals:")]
+    # One dump per probe call, then the (empty) one at the program's end.
+    if len(totals) < len(paths):
+        return None, f"callgrind gave {len(totals)} dumps for {len(paths)} ticks"
+    per_path = {}
+    for path, count in zip(paths, totals):
+        per_path.setdefault(path, []).append(count)
+    return per_path, None
+
+
+def worst_instructions_line(binary, workdir):
+    """The tick-worst-instr line: the most instructions any measured tick
+    took, its path, and the mean of the steady ticks."""
+    line = {"case": "tick-worst-instr"}
+    per_path, reason = instructions_per_path(binary, workdir)
+    if per_path is None:
+        return dict(line, skipped=reason)
+    steady = per_path.get("steady") or [float("nan")]
+    mean = sum(steady) / len(steady)
+    worst = {path: max(counts) for path, counts in per_path.items()}
+    path = max(worst, key=worst.get)
+    return dict(
+        line,
+        ecam_instr=worst[path],
+        path=path,
+        reference="mean instructions of a steady tick (tick-1 scenario, callgrind)",
+        reference_instr=round(mean, 1),
+        ratio=round(worst[path] / mean, 3),
+        goal=3.0,
+        worst_per_path={p: worst[p] for p in sorted(worst, key=worst.get, reverse=True)},
+    )
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--ecam", required=True, help="the side_by_side example binary")
     parser.add_argument("--data", required=True, help="where the binary writes the data")
+    parser.add_argument("--paths", help="the tick_paths example binary (tick-worst-instr)")
+    parser.add_argument("--cycle", help="ecam-ethercat's cycle_cost example binary (ethercat-cycle-N)")
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     data = Path(args.data)
@@ -103,11 +162,14 @@ def main():
         diff = float(np.max(np.abs(np.interp(queries[case], xp, fp) - mine)))
         line = {"case": case, "ecam_ns": round(float(np.median(ours[case])), 2)}
         ns = float(np.median(theirs[case]))
-        emit(with_reference(line, "numpy.interp " + np.__version__, ns, max_abs_diff=diff))
+        extra = {"goal": 0.5} if case == "lookup-batch-1M" else {}
+        emit(with_reference(line, "numpy.interp " + np.__version__, ns, max_abs_diff=diff, **extra))
 
     lines = ecam("--ticks")
     for case in ("tick-1", "tick-64", "tick-worst"):
         emit(lines[case])
+    if args.paths:
+        emit(worst_instructions_line(args.paths, data))
     peer = lines["tick-peer"]
     ns, reason = peer_ns(args.quick)
     if ns is None:
@@ -116,6 +178,10 @@ def main():
         emit(peer)
     else:
         emit(with_reference(peer, "pyplcopen 0.21.0 MC_CamIn (C++, scripts/plcopen-peer)", ns))
+    if args.cycle:
+        run = subprocess.run([args.cycle, *quick], check=True, capture_output=True, text=True)
+        for line in run.stdout.splitlines():
+            emit(json.loads(line))
     return 0
 
 

@@ -13,7 +13,10 @@ use clap::{Arg, ArgAction, ArgMatches, Args};
 use ecam_core::generator::Generator as Schema;
 use ecam_core::generator::key_points::KeyPoint;
 use ecam_core::generator::schema::{self, Field, FieldKind, Storage};
-use ecam_design::{Generated, Param, Values, default_values, parse_key};
+use ecam_core::segments::{InterpolationPoint, SegmentSpec};
+use ecam_design::{
+    Generated, Param, Values, default_values, parse_key, parse_point_flag, parse_segment_flag,
+};
 use serde_json::Value;
 
 // The output options every generator shares. (A plain comment: a doc
@@ -167,6 +170,15 @@ fn flag(field: &'static Field, default: Option<&Value>) -> Arg {
             .value_name("M:S[:CURVE[:RES]]")
             .action(ArgAction::Append)
             .value_parser(parse_key),
+        FieldKind::Point => arg
+            .value_name("M:S[:V[:A[:J]]]")
+            .allow_hyphen_values(true)
+            .value_parser(parse_point_flag),
+        FieldKind::Segments => arg
+            .value_name("LAW:M:S[:V[:A[:J[:POINTS]]]]")
+            .allow_hyphen_values(true)
+            .action(ArgAction::Append)
+            .value_parser(parse_segment_flag),
     }
 }
 
@@ -252,6 +264,16 @@ fn flag_value(field: &Field, matches: &ArgMatches) -> Option<Param> {
                 .map(|k| k.copied().collect())
                 .unwrap_or_default();
             (!keys.is_empty()).then_some(Param::Keys(keys))
+        }
+        FieldKind::Point => matches
+            .get_one::<InterpolationPoint>(key)
+            .map(|p| Param::Point(*p)),
+        FieldKind::Segments => {
+            let segments: Vec<SegmentSpec> = matches
+                .get_many::<SegmentSpec>(key)
+                .map(|s| s.copied().collect())
+                .unwrap_or_default();
+            (!segments.is_empty()).then_some(Param::Segments(segments))
         }
     }
 }

@@ -1,7 +1,9 @@
 // ecam designer page. Talks to `ecam serve` (docs/designer.md):
 //   GET /api/laws, /api/law/NAME, /api/generators, /api/status, /api/limits,
 //   /api/block?name=, POST /api/keypoints, /api/table/gen, /api/table/check,
-//   /api/table/read, /api/table/convert, /api/table/load, WebSocket /api/live.
+//   /api/table/read, /api/table/convert, /api/table/load,
+//   (segments.js: POST /api/segments/continuous, /api/drive/check),
+//   WebSocket /api/live.
 // The page keeps no copy of the Rust facts: file formats, table checks,
 // impulses, the rounding note, limits and option names come from the server.
 // The whole design lives in `state`; the address (#design=…) mirrors it, so
@@ -68,6 +70,8 @@ function defaultState() {
     law: { name: "cycloid", points: 1001 },
     block: "D2000",
     jerk: false,
+    seg: null, // segments.js: {start, segment, resolution}, the generator's defaults
+    drive: Segments.driveDefaults(),
   };
 }
 
@@ -220,7 +224,8 @@ function showInGrid(gridId, row, field, value) {
 // ------------------------------------------------------------ the panes
 
 function showSource() {
-  for (const source of ["keys", "gen", "points", "law"]) {
+  Segments.show(state.source === "segments");
+  for (const source of ["keys", "gen", "points", "law", "segments"]) {
     $("pane-" + source).hidden = state.source !== source;
     const tab = $("tab-" + source);
     tab.setAttribute("aria-selected", String(state.source === source));
@@ -321,6 +326,7 @@ async function redraw() {
     if (!current()) return;
     table = result.table;
     draw(result);
+    if (result.segments) Segments.report(result);
     $("plots").classList.remove("updating", "failed");
     $("plots-state").textContent = "";
   } catch (err) {
@@ -360,6 +366,8 @@ async function computeTable() {
   let body;
   if (state.source === "keys") {
     body = keysBody();
+  } else if (state.source === "segments") {
+    body = Segments.body();
   } else {
     const g = generator(state.gen.name);
     if (!g) throw new Error(`unknown generator \`${state.gen.name}\``);
@@ -380,7 +388,10 @@ async function computeTable() {
       master: t.master, slave: t.slave,
       velocity: t.velocity, acceleration: t.acceleration, jerk: t.jerk,
       sync: t.sync,
+      // A segment cam travels with its table (JSON downloads keep it).
+      segments: t.segments ? { start: t.segments.start, segments: t.segments.segment } : null,
     },
+    segments: t.segments,
   };
   if (t.design) {
     Object.assign(result, { x: t.design.master, s: t.design.s, v: t.design.v, a: t.design.a, j: t.design.j, exact: true, design: true });
@@ -391,6 +402,7 @@ async function computeTable() {
       ? "Velocity, acceleration and jerk of the exact curve at the table's points (dots; between points the table is straight); arrows: its steps as impulses."
       : "Velocity, acceleration and jerk are the slopes of the table's straight sections, each held to the next point.";
   }
+  if (state.source === "segments") result.keyMarkers = Segments.markers();
   if (state.source === "keys") result.keyMarkers = state.keys.map((k) => [Number(k.master), Number(k.slave) + Number(state.keyParams.initial_slave || 0)]);
   return result;
 }
@@ -463,6 +475,12 @@ function makeDesignCharts() {
 // A key point (or table point) dragged on the displacement chart: whole
 // counts, kept strictly between its neighbours' masters.
 function onDragMarker(i, x, y) {
+  if (state.source === "segments") {
+    Segments.drag(i, x, y);
+    moveMarkers(Segments.markers());
+    changed();
+    return;
+  }
   const list = state.source === "keys" ? state.keys : state.source === "points" ? state.points : null;
   if (!list || i >= list.length) return;
   const masterOf = (p) => Number(state.source === "keys" ? p.master : p[0]);
@@ -480,8 +498,12 @@ function onDragMarker(i, x, y) {
     showInGrid("points-grid", i, "master", master);
     showInGrid("points-grid", i, "slave", slave);
   }
-  // Move the marker at once; the curve follows when the server answers.
-  const markers = list.map((p) => [masterOf(p), (state.source === "keys" ? Number(p.slave) : p[1]) + offset]);
+  moveMarkers(list.map((p) => [masterOf(p), (state.source === "keys" ? Number(p.slave) : p[1]) + offset]));
+  changed();
+}
+
+// Moves the markers at once; the curve follows when the server answers.
+function moveMarkers(markers) {
   const u = charts.s.u;
   const data = Plots.join([
     { x: u.data[0].filter((_, k) => u.data[1][k] !== null), y: u.data[1].filter((v) => v !== null) },
@@ -490,7 +512,6 @@ function onDragMarker(i, x, y) {
   ]);
   u.setData(data, false);
   u.redraw();
-  changed();
 }
 
 function draw(r) {
@@ -570,6 +591,7 @@ async function downloadTable(format) {
   const body = { format, points: table.master.map((m, i) => [m, table.slave[i]]), sync: table.sync };
   if (table.name !== "table") body.generator = table.name;
   if (table.velocity) Object.assign(body, { velocity: table.velocity, acceleration: table.acceleration, jerk: table.jerk });
+  if (table.segments) body.segments = table.segments;
   try {
     const file = await post("/api/table/convert", body);
     download(fileStem() + "." + format, format === "csv" ? "text/csv" : "application/json", file.text);
@@ -758,8 +780,13 @@ async function start() {
   }
   for (const l of laws) $("law-name").append(el("option", { value: l.name, textContent: l.name }));
   // The Key points tab is the keypoints generator's grid; the dialog offers the others.
-  for (const g of generators.filter((g) => g.name !== "keypoints")) $("gen-name").append(el("option", { value: g.name, textContent: g.title }));
+  // Segments have their own tab too.
+  for (const g of generators.filter((g) => g.name !== "keypoints" && g.name !== "segments")) $("gen-name").append(el("option", { value: g.name, textContent: g.title }));
   if (state.keys.length === 0) state.keys = await defaultKeys();
+  if (!state.seg) state.seg = Segments.defaults(generator("segments"));
+  Segments.init({
+    state: () => state, changed, post, el, fmt, showError, laws: () => laws,
+  });
   renderKeyParams();
 
   for (const tab of document.querySelectorAll("[data-source]")) {
@@ -801,6 +828,8 @@ async function start() {
     if (location.hash === "#design=" + encodeURIComponent(JSON.stringify(state))) return;
     state = loadFromUrl();
     if (state.keys.length === 0) state.keys = await defaultKeys();
+    if (!state.seg) state.seg = Segments.defaults(generator("segments"));
+    Segments.refreshDriveFields();
     renderKeyParams();
     $("show-jerk").checked = !!state.jerk;
     $("plc-block").value = state.block;

@@ -68,6 +68,19 @@ pub trait CamCurve {
     fn stroke(&self) -> i64 {
         self.slave_last().saturating_sub(self.slave_first())
     }
+
+    /// Whether the slave turns back inside one cycle (it moves both up and
+    /// down between `master_first` and `master_last`). The engine's start
+    /// rule asks (docs/engine.md, "The start rule"): a cam that starts away
+    /// from its origin engages at the equivalent position ahead of the
+    /// slave when the table never turns back, so a start sends no reverse
+    /// pulse, and at the nearest one either way when it does (document
+    /// 001's example). O(1): tables work it out when they are built.
+    /// Curves that cannot tell answer `false` (the default), which is the
+    /// safe answer for a pulse output.
+    fn turns_back(&self) -> bool {
+        false
+    }
 }
 
 impl<C: CamCurve + ?Sized> CamCurve for &C {
@@ -95,6 +108,9 @@ impl<C: CamCurve + ?Sized> CamCurve for &C {
     fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
         (**self).positions_into(masters, out)
     }
+    fn turns_back(&self) -> bool {
+        (**self).turns_back()
+    }
 }
 
 impl<C: CamCurve + ?Sized> CamCurve for alloc::boxed::Box<C> {
@@ -121,5 +137,8 @@ impl<C: CamCurve + ?Sized> CamCurve for alloc::boxed::Box<C> {
     }
     fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
         (**self).positions_into(masters, out)
+    }
+    fn turns_back(&self) -> bool {
+        (**self).turns_back()
     }
 }

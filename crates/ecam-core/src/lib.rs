@@ -45,6 +45,7 @@ extern crate alloc;
 extern crate std;
 
 mod curve;
+pub mod drive_check;
 mod error;
 #[cfg(feature = "std")]
 #[doc(hidden)]
@@ -56,6 +57,7 @@ mod kinematics;
 pub mod law;
 pub mod limits;
 pub mod register_image;
+pub mod segments;
 pub mod table;
 
 pub use curve::{CamCurve, Cursor};

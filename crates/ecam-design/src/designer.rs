@@ -15,6 +15,7 @@ use ecam_core::generator::{ExactCurve, Field, FieldKind};
 use ecam_core::table::steps::Steps;
 use ecam_core::table::{Summary, derivatives};
 use ecam_core::{CamCurve, MotionLaw};
+use serde::de::DeserializeSeed;
 use serde_json::{Value, json};
 
 use crate::generate;
@@ -222,6 +223,9 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
         // Where velocity steps (acceleration impulses) and acceleration
         // steps (jerk impulses), the seam's at the last master.
         "steps": steps,
+        // A segment cam: its points with every boundary value it was
+        // solved for, the continuity at each point and each segment's peaks.
+        "segments": g.segments.as_ref().map(segments_json),
         "sync": g.sync.map(|(lo, hi)| vec![lo, hi]),
         "outputs": outputs,
         "summary": {
@@ -244,9 +248,114 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
     }))
 }
 
+/// What the designer shows of a segment cam: its points (as solved), the
+/// continuity at every point and each segment's peaks.
+pub fn segments_json(cam: &ecam_core::segments::SegmentCam) -> Value {
+    json!({
+        "start": cam.start(),
+        "segment": cam.segments(),
+        "continuity": cam.continuity(),
+        "peaks": cam.peaks(),
+    })
+}
+
+/// The lines `ecam table show` prints for a segment cam: the continuity at
+/// every point and each segment's law, `Cv`/`Ca`/`Cj` and peaks.
+pub fn segments_text(cam: &ecam_core::segments::SegmentCam) -> String {
+    let report = cam.continuity();
+    let short = |x: Option<f64>| match x {
+        None => "–".to_string(),
+        Some(v) if v.is_infinite() => "∞".to_string(),
+        Some(v) => format!("{v:.4}"),
+    };
+    let mut out = format!(
+        "segment cam:       continuity {} (seam {})\n",
+        report.cam, report.seam
+    );
+    let points: Vec<String> = report
+        .joints
+        .iter()
+        .map(|j| {
+            format!(
+                "{} at {}: {}",
+                if j.seam { "seam" } else { "point" },
+                j.master,
+                j.class
+            )
+        })
+        .collect();
+    out.push_str(&format!("  points:          {}\n", points.join(", ")));
+    for p in cam.peaks() {
+        out.push_str(&format!(
+            "  segment {:<2}      {:<26} master {} .. {}, rise {}: Cv {} Ca {} Cj {}; peaks {} pulses/count, {} pulses/count², {} pulses/count³\n",
+            p.segment,
+            p.law.name(),
+            p.master.0,
+            p.master.1,
+            p.rise,
+            short(p.cv),
+            short(p.ca),
+            short(p.cj),
+            sig(p.peak_velocity),
+            sig(p.peak_acceleration),
+            sig(p.peak_jerk),
+        ));
+    }
+    out
+}
+
+/// Six significant digits, plainly where that reads well.
+fn sig(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x.is_infinite() {
+            "∞".into()
+        } else {
+            "0".into()
+        };
+    }
+    if (1e-3..1e6).contains(&x.abs()) {
+        let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
+        let text = format!("{x:.decimals$}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        format!("{x:.5e}")
+    }
+}
+
+/// "Make continuous": `{"start": {...}, "segment": [...]}` → the same with
+/// every free velocity, acceleration and jerk filled in from the
+/// neighbouring segments ([`ecam_core::segments::make_continuous`]).
+///
+/// # Errors
+/// A body of the wrong shape, or a cam that cannot be made continuous (the
+/// message names the point).
+pub fn segments_continuous_json(body: &Value) -> Result<Value, String> {
+    let generator = schema::find("segments").ok_or("no segments generator")?;
+    let mut params = serde_json::Map::new();
+    for key in ["start", "segment"] {
+        if let Some(v) = body.get(key) {
+            params.insert(key.to_string(), v.clone());
+        }
+    }
+    let values = crate::params::ValuesSeed::new(generator, true)
+        .deserialize(Value::Object(params))
+        .map_err(|e| ecam_core::io::plain_serde_message(&e.to_string()))?;
+    let p: ecam_core::generator::segments::Params =
+        crate::params::typed(values).map_err(|e| format!("{e:#}"))?;
+    let (start, segment) =
+        ecam_core::segments::make_continuous(p.start, p.segment).map_err(|e| e.to_string())?;
+    Ok(json!({ "start": start, "segment": segment }))
+}
+
 /// The largest |velocity| and |acceleration| of the exact curve, from the
 /// same dense samples the page draws.
 fn design_peaks(exact: &ExactCurve) -> (f64, f64) {
+    // A segment cam's peaks are exact (closed forms).
+    if let ExactCurve::Segments(cam) = exact {
+        return cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
+            (v.max(p.peak_velocity), a.max(p.peak_acceleration))
+        });
+    }
     exact
         .samples(DESIGN_SAMPLES)
         .iter()

@@ -11,8 +11,9 @@ use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
     CutParams, DesignCurve, ExactCurve, Generator as Schema, flying_saw, function, rotary_cut,
-    s_curve,
+    s_curve, segments,
 };
+use ecam_core::segments::SegmentCam;
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
 use serde::de::DeserializeSeed;
 use serde_json::Value;
@@ -38,6 +39,9 @@ pub struct Generated {
     /// the design of the S-curve, rotary cut and flying saw before rounding,
     /// the key points' laws (what `--plot` draws, where steps are read).
     pub exact: Option<ExactCurve>,
+    /// The solved segment cam behind a `segments` table (exact; its
+    /// continuity and per-segment peaks; a table file keeps it).
+    pub segments: Option<SegmentCam>,
 }
 
 /// The design curve's derivatives at each point of `table`, keeping the
@@ -126,6 +130,7 @@ pub fn generate(generator: &Schema, mut values: Values) -> anyhow::Result<Genera
             fly_saw_table(&typed(values)?, cycle)
         }
         "keypoints" => key_points_table(&typed(values)?),
+        "segments" => segments_table(&typed(values)?),
         _ => function(&typed(values)?),
     }
 }
@@ -137,6 +142,7 @@ pub fn default_values(g: &Schema) -> serde_json::Map<String, Value> {
         "s-curve" => serde_json::to_value(s_curve::Params::default()),
         "rotary-cut" | "fly-saw" => serde_json::to_value(CutParams::default()),
         "keypoints" => serde_json::to_value(key_points::Params::default()),
+        "segments" => serde_json::to_value(segments::Params::default()),
         _ => serde_json::to_value(function::Params::default()),
     };
     match value {
@@ -165,6 +171,7 @@ fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
         sync: g.sync,
         name: "s-curve",
         exact: Some(ExactCurve::Design(g.design)),
+        segments: None,
     })
 }
 
@@ -194,6 +201,7 @@ fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
         sync: g.sync,
         name: "rotary-cut",
         exact: Some(ExactCurve::Design(g.design)),
+        segments: None,
     })
 }
 
@@ -214,6 +222,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
             sync: g.sync,
             name: "fly-saw",
             exact: Some(ExactCurve::Design(g.design)),
+            segments: None,
         });
     }
     let (forward, back) = flying_saw::generate_pair(params)?;
@@ -236,6 +245,7 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
         sync: forward.sync,
         name: "fly-saw",
         exact: Some(ExactCurve::Design(design)),
+        segments: None,
     })
 }
 
@@ -286,6 +296,7 @@ fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
         sync: generated.sync,
         name: "keypoints",
         exact: Some(ExactCurve::Profile(generated.profile)),
+        segments: None,
         outputs: vec![(
             "segment resolutions",
             generated
@@ -329,6 +340,124 @@ fn function(params: &function::Params) -> anyhow::Result<Generated> {
         outputs: Vec::new(),
         kinematics: Some(kinematics),
         exact: None,
+        segments: None,
+    })
+}
+
+// ---------------------------------------------------------------- segments
+
+fn segments_table(params: &segments::Params) -> anyhow::Result<Generated> {
+    let g = segments::generate(params)?;
+    let report = g.cam.continuity();
+    let joints: Vec<String> = report
+        .joints
+        .iter()
+        .map(|j| {
+            format!(
+                "{}{} {}",
+                if j.seam { "seam " } else { "" },
+                j.point,
+                j.class
+            )
+        })
+        .collect();
+    Ok(Generated {
+        kinematics: Some(kinematics_along(&g.table, &g.cam)),
+        table: g.table,
+        sync: g.sync,
+        name: "segments",
+        exact: Some(ExactCurve::Segments(g.cam.clone())),
+        outputs: vec![
+            (
+                "segment cam continuity",
+                format!("{} (seam {})", report.cam, report.seam),
+            ),
+            ("at the points", joints.join(", ")),
+            (
+                "segment resolutions",
+                g.resolutions
+                    .iter()
+                    .map(u16::to_string)
+                    .collect::<Vec<_>>()
+                    .join(","),
+            ),
+        ],
+        segments: Some(g.cam),
+    })
+}
+
+/// Reads one `--start` value of `ecam table gen segments`:
+/// `MASTER:SLAVE[:V[:A[:J]]]`, an empty field left free; values may be
+/// arithmetic (`5/3`).
+///
+/// # Errors
+/// What is wrong with `text`, naming the flag.
+pub fn parse_point_flag(text: &str) -> Result<ecam_core::segments::InterpolationPoint, String> {
+    let fields: Vec<&str> = text.split(':').map(str::trim).collect();
+    if fields.len() < 2 || fields.len() > 5 {
+        return Err(format!(
+            "--start {text:?}: expected MASTER:SLAVE[:V[:A[:J]]]"
+        ));
+    }
+    point_fields(&fields, "--start", text)
+}
+
+fn point_fields(
+    fields: &[&str],
+    flag: &str,
+    text: &str,
+) -> Result<ecam_core::segments::InterpolationPoint, String> {
+    let whole = |what: &str, f: &str| {
+        f.parse::<i64>()
+            .map_err(|_| format!("{what} {f:?} in {flag} {text:?} is not an integer"))
+    };
+    let value = |i: usize| -> Result<Option<f64>, String> {
+        match fields.get(i).copied().unwrap_or("") {
+            "" => Ok(None),
+            f => crate::expr::number(f)
+                .map(Some)
+                .map_err(|e| format!("{f:?} in {flag} {text:?}: {e:#}")),
+        }
+    };
+    Ok(ecam_core::segments::InterpolationPoint {
+        master: whole("master", fields[0])?,
+        slave: whole("slave", fields[1])?,
+        velocity: value(2)?,
+        acceleration: value(3)?,
+        jerk: value(4)?,
+    })
+}
+
+/// Reads one `--segment` value of `ecam table gen segments`:
+/// `LAW:MASTER:SLAVE[:V[:A[:J[:POINTS]]]]`, an empty field left free.
+///
+/// # Errors
+/// What is wrong with `text`, naming the flag.
+pub fn parse_segment_flag(text: &str) -> Result<ecam_core::segments::SegmentSpec, String> {
+    use ecam_core::segments::{SegmentLaw, SegmentSpec};
+    let fields: Vec<&str> = text.split(':').map(str::trim).collect();
+    if fields.len() < 3 || fields.len() > 7 {
+        return Err(format!(
+            "--segment {text:?}: expected LAW:MASTER:SLAVE[:V[:A[:J[:POINTS]]]]"
+        ));
+    }
+    let law = SegmentLaw::from_name(fields[0]).ok_or_else(|| {
+        format!(
+            "unknown segment law {:?} in --segment {text:?}; use poly-5, poly-7, vv-cycloid or a motion law (`ecam law --list`)",
+            fields[0]
+        )
+    })?;
+    let end = point_fields(&fields[1..fields.len().min(6)], "--segment", text)?;
+    let resolution = match fields.get(6).copied().unwrap_or("") {
+        "" => None,
+        f => Some(
+            f.parse::<u16>()
+                .map_err(|_| format!("points {f:?} in --segment {text:?} must be 1..=512"))?,
+        ),
+    };
+    Ok(SegmentSpec {
+        resolution,
+        ..SegmentSpec::new(law, 0, 0).with_end(end)
     })
 }
 

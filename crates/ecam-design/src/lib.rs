@@ -47,6 +47,7 @@
 //! ```
 
 mod designer;
+mod drive;
 mod expr;
 #[doc(hidden)]
 pub mod fuzz;
@@ -59,12 +60,13 @@ mod table_source;
 
 pub use designer::{
     DEFAULT_LAW_POINTS, MAX_LAW_POINTS, generate_json, generators_json, key_points_json,
-    law_curves_json, laws_json,
+    law_curves_json, laws_json, segments_continuous_json, segments_json, segments_text,
 };
+pub use drive::{check_table, drive_check_json, motion_of, motion_of_cam, read_drive};
 pub use expr::{MasterFunction, number};
 pub use generate::{
     Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,
-    parse_key_lines,
+    parse_key_lines, parse_point_flag, parse_segment_flag,
 };
 pub use machine::{AtSpeed, Machine, Peaks, Source, Unit, short};
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use ecam_core::generator::Generator as Schema;
 use ecam_core::generator::key_points::KeyPoint;
 use ecam_core::generator::schema::{Field, FieldKind, Storage};
+use ecam_core::segments::{InterpolationPoint, SegmentSpec};
 use serde::Deserialize;
 use serde::de::value::MapDeserializer;
 use serde::de::{
@@ -33,6 +34,10 @@ pub enum Param {
     Bool(bool),
     /// Key points.
     Keys(Vec<KeyPoint>),
+    /// An interpolation point.
+    Point(InterpolationPoint),
+    /// Segments between interpolation points.
+    Segments(Vec<SegmentSpec>),
 }
 
 /// Reads a map of parameters for one generator from any serde format:
@@ -87,6 +92,16 @@ impl<'de> Visitor<'de> for ValuesSeed {
                 FieldKind::Text => map.next_value::<String>().map(Param::Text),
                 FieldKind::Switch => map.next_value::<bool>().map(Param::Bool),
                 FieldKind::KeyPoints => map.next_value::<Vec<KeyPoint>>().map(Param::Keys),
+                FieldKind::Point => map
+                    .next_value::<serde_json::Value>()
+                    .and_then(|v| with_numbers(v).map_err(A::Error::custom))
+                    .and_then(|v| serde_json::from_value(v).map_err(A::Error::custom))
+                    .map(Param::Point),
+                FieldKind::Segments => map
+                    .next_value::<serde_json::Value>()
+                    .and_then(|v| with_numbers(v).map_err(A::Error::custom))
+                    .and_then(|v| serde_json::from_value(v).map_err(A::Error::custom))
+                    .map(Param::Segments),
             };
             let value = match value {
                 Err(e) if self.name_keys => {
@@ -162,6 +177,8 @@ impl<'de> serde::Deserializer<'de> for Param {
             Self::Text(v) => visitor.visit_string(v),
             Self::Bool(v) => visitor.visit_bool(v),
             Self::Keys(keys) => serde_json::to_value(keys)?.deserialize_any(visitor),
+            Self::Point(point) => serde_json::to_value(point)?.deserialize_any(visitor),
+            Self::Segments(s) => serde_json::to_value(s)?.deserialize_any(visitor),
         }
     }
 
@@ -173,6 +190,35 @@ impl<'de> serde::Deserializer<'de> for Param {
         bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
         bytes byte_buf unit unit_struct newtype_struct seq tuple
         tuple_struct map struct enum identifier ignored_any
+    }
+}
+
+/// The boundary values an interpolation point or a segment may write as
+/// arithmetic (`velocity = "5/3"`).
+const NUMBER_KEYS: [&str; 3] = ["velocity", "acceleration", "jerk"];
+
+/// `value` (a point, or a list of segments) with its boundary values
+/// written as arithmetic text turned into numbers.
+fn with_numbers(value: serde_json::Value) -> Result<serde_json::Value, String> {
+    use serde_json::Value;
+    match value {
+        Value::Array(items) => items
+            .into_iter()
+            .map(with_numbers)
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::Array),
+        Value::Object(mut map) => {
+            for key in NUMBER_KEYS {
+                if let Some(Value::String(text)) = map.get(key) {
+                    let n = expr::number(text).map_err(|e| format!("{key} {text:?}: {e:#}"))?;
+                    let n = serde_json::Number::from_f64(n)
+                        .ok_or_else(|| format!("{key} {text:?} is not a finite number"))?;
+                    map.insert(key.to_string(), Value::Number(n));
+                }
+            }
+            Ok(Value::Object(map))
+        }
+        other => Ok(other),
     }
 }
 

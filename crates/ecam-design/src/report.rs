@@ -9,6 +9,7 @@
 
 use std::io::Write;
 
+use ecam_core::drive_check::DriveReport;
 use ecam_core::io::{AnyTable, TableFile};
 use ecam_core::table::Summary;
 use ecam_core::table::derivatives::{ripple_ratio, rounding_ripple};
@@ -55,6 +56,16 @@ pub struct TableReport {
     /// Where velocity steps (acceleration impulses) and acceleration steps
     /// (jerk impulses), the seam's at the last master.
     pub steps: Steps,
+    /// A segment cam's points, continuity at every point and per-segment
+    /// peaks (files of `ecam table gen segments`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub segments: Option<serde_json::Value>,
+    /// The drive check (`--drive`), set by [`TableReport::with_drive`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drive: Option<DriveReport>,
+    /// The segment cam's lines for the text.
+    #[serde(skip)]
+    segments_text: Option<String>,
     /// The generator a file names.
     #[serde(skip)]
     generator: Option<String>,
@@ -76,6 +87,17 @@ fn peaks(summary: &Summary) -> Peaks {
     Peaks {
         peak_velocity: summary.peak_velocity,
         peak_acceleration: summary.peak_acceleration,
+    }
+}
+
+/// A segment cam's peaks, from its segments' closed forms.
+fn cam_peaks(cam: &ecam_core::segments::SegmentCam) -> Peaks {
+    let (v, a) = cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
+        (v.max(p.peak_velocity), a.max(p.peak_acceleration))
+    });
+    Peaks {
+        peak_velocity: v,
+        peak_acceleration: a,
     }
 }
 
@@ -139,6 +161,9 @@ impl TableReport {
             design: None,
             at_speed: None,
             steps: Steps::of(curve),
+            segments: None,
+            drive: None,
+            segments_text: None,
             generator: None,
             what: Some(what),
             source,
@@ -167,14 +192,24 @@ impl TableReport {
             slave_last: f.table.slave_last(),
             sync: f.sync,
             summary: Summary::of(&f.table),
-            design: known.map(column_peaks),
-            at_speed: None,
-            // The design the columns describe, where the file has them;
-            // else the straight sections the table is run as.
-            steps: match known {
-                Some(known) => Steps::of_columns(points, known),
-                None => Steps::of(&f.table),
+            // A segment cam's own peaks are exact (closed forms), not those
+            // at the points.
+            design: match &f.segments {
+                Some(cam) => Some(cam_peaks(cam)),
+                None => known.map(column_peaks),
             },
+            at_speed: None,
+            // A segment cam's corners; else the design the columns
+            // describe, where the file has them; else the straight sections
+            // the table is run as.
+            steps: match (&f.segments, known) {
+                (Some(cam), _) => Steps::of(&**cam),
+                (None, Some(known)) => Steps::of_columns(points, known),
+                (None, None) => Steps::of(&f.table),
+            },
+            segments: f.segments.as_deref().map(crate::segments_json),
+            drive: None,
+            segments_text: f.segments.as_deref().map(crate::segments_text),
             generator: f.generator.clone(),
             what: None,
             source: Source::SampledTable,
@@ -188,10 +223,25 @@ impl TableReport {
     pub fn at(mut self, machine: Machine) -> Self {
         self.machine = machine;
         self.at_speed = match &self.design {
-            Some(design) => machine.at_speed(design, Source::DesignColumns),
+            Some(design) => machine.at_speed(design, self.design_source()),
             None => machine.at_speed(&peaks(&self.summary), self.source),
         };
         self
+    }
+
+    /// This report with a drive check (`ecam table show --drive`).
+    pub fn with_drive(mut self, drive: Option<DriveReport>) -> Self {
+        self.drive = drive;
+        self
+    }
+
+    /// Whose the design peaks are: a segment cam's laws, or a file's columns.
+    fn design_source(&self) -> Source {
+        if self.segments.is_some() {
+            Source::ProfileLaws
+        } else {
+            Source::DesignColumns
+        }
     }
 
     /// The rounding note, when the table's acceleration is mostly ripple.
@@ -232,7 +282,7 @@ impl TableReport {
         let rows: Vec<(&Peaks, Source)> = self
             .design
             .iter()
-            .map(|d| (d, Source::DesignColumns))
+            .map(|d| (d, self.design_source()))
             .chain([(&table, self.source)])
             .collect();
         for (k, (p, source)) in rows.iter().enumerate() {
@@ -308,6 +358,12 @@ impl TableReport {
         )?;
         if let Some((lo, hi)) = self.sync {
             writeln!(out, "sync zone:         master {lo} .. {hi}")?;
+        }
+        if let Some(text) = &self.segments_text {
+            write!(out, "{text}")?;
+        }
+        if let Some(drive) = &self.drive {
+            writeln!(out, "{drive}")?;
         }
         Ok(())
     }

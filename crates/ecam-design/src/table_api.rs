@@ -121,7 +121,8 @@ pub fn table_read_json(body: &Value) -> Result<Value, String> {
 
 /// `POST /api/table/convert` `{"format": "csv" | "json", "generator",
 /// "sync": [lo, hi], "points": [[m, s], ...], "velocity": [...],
-/// "acceleration": [...], "jerk": [...]}`: the table as `ecam table gen -o`
+/// "acceleration": [...], "jerk": [...], "segments": {"start", "segments"}}`:
+/// the table as `ecam table gen -o`
 /// writes it, `{"text": "..."}` (the derivative columns as given, else
 /// estimated from the points).
 ///
@@ -170,6 +171,14 @@ pub fn table_convert_json(body: &Value) -> Result<Value, String> {
             .and_then(Value::as_str)
             .map(str::to_string),
         kinematics,
+        // A segment cam's own description (`{"start", "segments"}`), kept
+        // in the file as `ecam table gen segments` keeps it.
+        segments: match body.get("segments") {
+            None | Some(Value::Null) => None,
+            Some(cam) => Some(Box::new(
+                serde_json::from_value(cam.clone()).map_err(|e| format!("\"segments\": {e}"))?,
+            )),
+        },
     };
     let text = match body.get("format").and_then(Value::as_str) {
         Some("csv") => file.to_csv(Columns::Full),

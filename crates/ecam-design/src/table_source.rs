@@ -155,6 +155,21 @@ mod tests {
     }
 
     #[test]
+    fn a_segment_cam_from_a_scenario_table() {
+        let t = load(
+            &table(
+                "generator = \"segments\"\nresolution = 20\ncontinuous = true\n\
+                 [start]\nmaster = 0\nslave = 0\nvelocity = \"1/2\"\n\
+                 [[segment]]\nlaw = \"constant-velocity\"\nmaster = 100\nslave = 50\n\
+                 [[segment]]\nlaw = \"vv-cycloid\"\nmaster = 1000\nslave = 400\n",
+            ),
+            Path::new("."),
+        )
+        .unwrap();
+        assert_eq!((t.master_last(), t.slave_last()), (1000, 400));
+    }
+
+    #[test]
     fn expressions_sample_the_master() {
         let t = load(
             &table("expr = \"2*x\"\nfrom = 0\nto = 100\npoints = 11"),

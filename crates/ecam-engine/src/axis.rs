@@ -31,6 +31,7 @@ use crate::{
 
 mod cam_out;
 mod engage;
+mod lane;
 mod online;
 mod phase;
 #[cfg(test)]
@@ -406,6 +407,34 @@ impl<C: CamCurve> CamAxis<C> {
             });
         }
         let hz = effective_frequency(self.config.max_frequency_hz);
+        // A running cam with a ramp, blend or change on top: the general
+        // tick's fast lane (`lane.rs`), from the same constants.
+        if steady_allowed && settled.is_none() && estimate.fraction == 0 {
+            let Self {
+                phase,
+                curve,
+                geometry,
+                cursor,
+                ..
+            } = self;
+            let lane = match phase {
+                Phase::Running(engaged) => {
+                    engaged.follow_lane(geometry, curve, cursor, None, master)
+                }
+                Phase::Stopping(engaged, end) => {
+                    engaged.follow_lane(geometry, curve, cursor, Some(end), master)
+                }
+                _ => None,
+            };
+            if let Some((followed, happened)) = lane {
+                events.merge(happened);
+                self.commanded = followed.slave;
+                let pulses = self
+                    .pulse
+                    .step(self.commanded, input.output_enabled, hz, input.dt_us);
+                return self.report::<false>(master, Some(followed), pulses, events, fault);
+            }
+        }
         if let Some(followed) = settled {
             self.commanded = followed.slave;
             let pulses = self
@@ -479,8 +508,10 @@ impl<C: CamCurve> CamAxis<C> {
         }
     }
 
-    /// The general tick for any phase: moves the phase out, follows the
-    /// cam when engaged and puts the next phase back.
+    /// The general tick for any phase: follows the cam in place when
+    /// engaged (the phase is large, so it is borrowed apart from the rest
+    /// of the axis rather than moved out and back) and moves on to the
+    /// next phase when the run ended.
     fn follow_general(
         &mut self,
         events: &mut Events,
@@ -490,264 +521,64 @@ impl<C: CamCurve> CamAxis<C> {
         fraction: u32,
         dt_us: u32,
     ) {
-        let phase = core::mem::replace(&mut self.phase, Phase::Idle);
+        let Self {
+            phase,
+            curve,
+            geometry,
+            cursor,
+            config,
+            retired,
+            commanded,
+            missed_policy,
+            ..
+        } = self;
+        let mut coupled = Coupled {
+            curve,
+            geometry,
+            cursor,
+            config,
+            retired,
+            commanded,
+            missed_policy: *missed_policy,
+        };
         let followed = match phase {
-            Phase::Running(engaged) => self.follow(engaged, None, master, fraction),
-            Phase::Stopping(engaged, end) => self.follow(engaged, Some(end), master, fraction),
-            Phase::Velocity(mut coast) => {
+            Phase::Running(engaged) => coupled.follow(engaged, None, master, fraction),
+            Phase::Stopping(engaged, end) => {
+                let end = *end;
+                coupled.follow(engaged, Some(end), master, fraction)
+            }
+            Phase::Velocity(coast) => {
                 let (at, rest) = coast.advance(dt_us);
-                self.commanded = at;
+                *coupled.commanded = at;
                 let stopped = Events {
                     stopped: rest,
                     ..Events::default()
                 };
-                Ok((
-                    if rest {
-                        Phase::Idle
-                    } else {
-                        Phase::Velocity(coast)
-                    },
-                    None,
-                    stopped,
-                ))
+                Ok((rest, None, stopped))
             }
-            other => Ok((other, None, Events::default())),
+            _ => Ok((false, None, Events::default())),
         };
         match followed {
-            Ok((phase, followed, happened)) => {
-                self.phase = phase;
+            Ok((ended, followed, happened)) => {
+                if ended {
+                    // A cam's run ends in `Finished`, a coast at rest in `Idle`.
+                    if let Phase::Running(engaged) | Phase::Stopping(engaged, _) =
+                        core::mem::replace(&mut self.phase, Phase::Idle)
+                    {
+                        self.end_run(engaged);
+                        self.phase = Phase::Finished;
+                    }
+                }
                 *sample = followed;
                 events.merge(happened);
             }
             Err(e) => {
-                // The engaged phase was taken out: the axis is idle now.
+                // The engaged phase is given up: the axis is idle now.
+                self.phase = Phase::Idle;
                 *fault = Some(e);
                 events.stopped = true;
             }
         }
-    }
-
-    /// Where the cam stands for `master`: the place (clamped to a one-shot's
-    /// span or to the end of a requested end-of-cycle stop), whether a
-    /// one-shot finished, and whether the stop was reached (and forwards).
-    fn resolve(
-        &self,
-        engagement: &Engagement,
-        stop_at: Option<&CycleEnd>,
-        master: i64,
-    ) -> Resolved {
-        let geo = &self.geometry;
-        let t = engagement.table_input(geo, master);
-        let mut finished = false;
-        let t = match engagement.span {
-            Some((_, end)) if t >= end => {
-                finished = true;
-                end
-            }
-            Some((begin, _)) => t.max(begin),
-            None => t,
-        };
-        let mut place = geo.locate(t);
-        let mut stopped = None;
-        if let Some(end) = stop_at
-            && let Some((at, forward)) = end.reached(geo, t)
-        {
-            place = at;
-            stopped = Some(forward);
-            finished = false;
-        }
-        Resolved {
-            place,
-            finished,
-            stopped,
-        }
-    }
-
-    /// The commanded slave at `place` for `master`, ramp-in included;
-    /// returns the cam sample, the commanded position, the velocity ratio
-    /// and whether a ramp-in is still blending.
-    fn command_at(
-        &mut self,
-        engaged: &mut Engaged<C>,
-        place: Place,
-        master: i64,
-    ) -> Result<(Sample, i64, f64, bool), EngineError> {
-        let cam = engaged.engagement_at(master)?.sample(
-            &self.geometry,
-            &self.curve,
-            &mut self.cursor,
-            place,
-        )?;
-        let (slave, ratio) = match (&engaged.blend, &engaged.scaling) {
-            (Some(blend), _) => {
-                let blended = blend.command(master)?;
-                (blended.slave, blended.velocity_ratio)
-            }
-            (None, Some(scaling)) => {
-                let new = engaged.engagement_at(master)?.sample(
-                    &scaling.target,
-                    &self.curve,
-                    &mut self.cursor,
-                    place,
-                )?;
-                scaling.mix(
-                    master,
-                    (cam.slave, cam.velocity_ratio),
-                    (new.slave, new.velocity_ratio),
-                )
-            }
-            (None, None) => (cam.slave, cam.velocity_ratio),
-        };
-        match engaged
-            .ramp
-            .and_then(|ramp| Some((ramp, ramp.blend(master, slave)?)))
-        {
-            Some((ramp, blended)) => Ok((cam, blended, ratio * ramp.weight(master), true)),
-            None => Ok((cam, slave, ratio, false)),
-        }
-    }
-
-    /// Follows the cam for one tick; gives the phase after it, what was
-    /// followed and what happened.
-    fn follow(
-        &mut self,
-        mut engaged: Engaged<C>,
-        stop_at: Option<CycleEnd>,
-        master: i64,
-        fraction: u32,
-    ) -> Result<(Phase<C>, Option<FollowSample>, Events), EngineError> {
-        let mut events = Events::default();
-        engaged.steady = None;
-        // Ramps and blends end where the position itself reaches their
-        // end, not its whole count (below the position when the master
-        // runs backwards), so the straight line between counts never
-        // jumps from a ramp's value to the final cam's mid-count.
-        let at = MasterPosition {
-            counts: master,
-            fraction,
-        };
-        if let Some(ramp) = engaged.offsets
-            && ramp.finished_at(at)
-        {
-            engaged.engagement = ramp.apply(&engaged.engagement, master)?;
-            engaged.offsets = None;
-        }
-        if let Some(ramp) = engaged.scaling
-            && ramp.finished_at(at)
-        {
-            self.geometry = ramp.target;
-            engaged.scaling = None;
-        }
-        let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
-        if here.stopped.is_none() && self.switch_at_seam(&mut engaged, here.place)? {
-            events.table_switched = true;
-            events.cycle_completed = true;
-            here = self.resolve(&engaged.engagement, stop_at.as_ref(), master);
-            // Cycle indices restart with the new table.
-            engaged.place = here.place;
-        }
-        engaged.end_blend(at)?;
-        if here.stopped.is_none() && stop_at.is_none() {
-            let blending = engaged.blend.is_some();
-            let previous = engaged.followed;
-            let now = (i128::from(master) << 32) | i128::from(fraction);
-            let policy = self.missed_policy;
-            let turn = self.config.single_turn;
-            let fired = engaged
-                .pending
-                .as_mut()
-                .map(|p| p.fires(previous, now, blending, policy, turn));
-            events.activation_missed |= fired.is_some_and(|f| f.missed);
-            if let Some(switch) = fired.and_then(|f| f.at) {
-                self.switch_at(&mut engaged, switch)?;
-                events.table_switched = true;
-                here = self.resolve(&engaged.engagement, None, master);
-                engaged.place = here.place;
-                // A master that moved past the whole blend in this very
-                // tick is on the new cam already, not at the blend's end.
-                engaged.end_blend(at)?;
-            }
-        }
-        engaged.followed = (i128::from(master) << 32) | i128::from(fraction);
-        let place = here.place;
-        let (cam, mut slave, velocity_ratio, ramping) =
-            self.command_at(&mut engaged, place, master)?;
-        if fraction != 0 && here.stopped.is_none() && !here.finished {
-            // Between whole master counts (an exact time base, or a coarse
-            // master's estimate) the command moves along the straight line
-            // to the next count's value: exact at every whole count, and
-            // monotonic in between.
-            let next_master = master.saturating_add(1);
-            let ahead = self.resolve(
-                &engaged.engagement_at(next_master)?,
-                stop_at.as_ref(),
-                next_master,
-            );
-            // Across a seam, aim at the seam: a table may be queued for it
-            // (now, or by a call before the next tick), and then the old
-            // cam past the seam is not where the slave goes. Aiming beyond
-            // it would command a slave the switch then takes back, a
-            // reversal the master never made.
-            let aim = if ahead.place.k != place.k {
-                if ahead.place.k > place.k {
-                    self.geometry.cycle_end(place.k)
-                } else {
-                    Geometry::cycle_start(place.k)
-                }
-            } else {
-                ahead.place
-            };
-            let (_, next_slave, _, _) = self.command_at(&mut engaged, aim, next_master)?;
-            let gap = i128::from(next_slave) - i128::from(slave);
-            let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
-            slave =
-                i64::try_from(i128::from(slave) + step).map_err(|_| EngineError::SlaveOverflow)?;
-        }
-        if engaged.ramp.is_some_and(|ramp| ramp.finished_at(at)) {
-            engaged.ramp = None;
-        }
-        let blending = engaged.blend.is_some();
-        self.commanded = slave;
-        if engaged.place.k != place.k {
-            events.cycle_completed = true;
-            events.seam_jump |= self.geometry.jumps_at_seam;
-        }
-        engaged.place = place;
-        let followed = FollowSample {
-            master_in_cycle: self.geometry.input_in_cycle(place),
-            master_in_cycle_raw: self.geometry.raw_in_cycle(place),
-            cycle: clamp_i64(place.k.saturating_sub(engaged.engagement.k_engage)),
-            unzoomed: cam.unzoomed,
-            in_cycle_zoomed: cam.in_cycle_zoomed,
-            velocity_ratio,
-            following: !ramping
-                && !blending
-                && engaged.offsets.is_none()
-                && engaged.scaling.is_none(),
-            input_offset: engaged.engagement.input_offset(&self.geometry),
-            slave,
-        };
-        if engaged.ramp.is_none() && stop_at.is_none() && !engaged.changing() {
-            // Settled: the next ticks can take the steady path.
-            engaged.steady = engaged.engagement.steady(&self.geometry);
-        }
-        let phase = if let Some(forward) = here.stopped {
-            events.cycle_completed |= forward;
-            events.stopped = true;
-            self.end_run(engaged);
-            Phase::Finished
-        } else if here.finished {
-            events.finished = true;
-            events.cycle_completed = true;
-            self.end_run(engaged);
-            Phase::Finished
-        } else {
-            match stop_at {
-                Some(end) => Phase::Stopping(engaged, end),
-                None => Phase::Running(engaged),
-            }
-        };
-        Ok((phase, Some(followed), events))
     }
 
     /// Fills the output record in place. `RUNNING`: the steady tick's
@@ -808,6 +639,239 @@ impl<C: CamCurve> CamAxis<C> {
         out.events = events;
         out.fault = fault;
         out
+    }
+}
+
+/// The parts of an axis that following the cam reads and changes beside
+/// its phase, borrowed apart from it (`follow_general`).
+pub(super) struct Coupled<'a, C> {
+    pub(super) curve: &'a mut C,
+    pub(super) geometry: &'a mut Geometry,
+    pub(super) cursor: &'a mut Cursor,
+    pub(super) config: &'a mut AxisConfig,
+    /// Where a switch puts the table it replaced.
+    pub(super) retired: &'a mut Option<C>,
+    pub(super) commanded: &'a mut i64,
+    pub(super) missed_policy: MissedActivation,
+}
+
+impl<C: CamCurve> Coupled<'_, C> {
+    /// Where the cam stands for `master`: the place (clamped to a one-shot's
+    /// span or to the end of a requested end-of-cycle stop), whether a
+    /// one-shot finished, and whether the stop was reached (and forwards).
+    fn resolve(
+        &self,
+        engagement: &Engagement,
+        stop_at: Option<&CycleEnd>,
+        master: i64,
+    ) -> Resolved {
+        let geo = &self.geometry;
+        let t = engagement.table_input(geo, master);
+        let mut finished = false;
+        let t = match engagement.span {
+            Some((_, end)) if t >= end => {
+                finished = true;
+                end
+            }
+            Some((begin, _)) => t.max(begin),
+            None => t,
+        };
+        let mut place = geo.locate(t);
+        let mut stopped = None;
+        if let Some(end) = stop_at
+            && let Some((at, forward)) = end.reached(geo, t)
+        {
+            place = at;
+            stopped = Some(forward);
+            finished = false;
+        }
+        Resolved {
+            place,
+            finished,
+            stopped,
+        }
+    }
+
+    /// The commanded slave at `place` for `master`, ramp-in included;
+    /// returns the cam sample, the commanded position, the velocity ratio
+    /// and whether a ramp-in is still blending.
+    fn command_at(
+        &mut self,
+        engaged: &mut Engaged<C>,
+        place: Place,
+        master: i64,
+    ) -> Result<(Sample, i64, f64, bool), EngineError> {
+        let cam = engaged.engagement_at(master)?.sample(
+            self.geometry,
+            &*self.curve,
+            self.cursor,
+            place,
+        )?;
+        let (slave, ratio) = match (&engaged.blend, &engaged.scaling) {
+            (Some(blend), _) => {
+                let blended = blend.command(master)?;
+                (blended.slave, blended.velocity_ratio)
+            }
+            (None, Some(scaling)) => {
+                let new = engaged.engagement_at(master)?.sample(
+                    &scaling.target,
+                    &*self.curve,
+                    self.cursor,
+                    place,
+                )?;
+                scaling.mix(
+                    master,
+                    (cam.slave, cam.velocity_ratio),
+                    (new.slave, new.velocity_ratio),
+                )
+            }
+            (None, None) => (cam.slave, cam.velocity_ratio),
+        };
+        match engaged
+            .ramp
+            .and_then(|ramp| Some((ramp, ramp.blend(master, slave)?)))
+        {
+            Some((ramp, blended)) => Ok((cam, blended, ratio * ramp.weight(master), true)),
+            None => Ok((cam, slave, ratio, false)),
+        }
+    }
+
+    /// Follows the cam for one tick, in place; gives whether the run ended
+    /// (a stop reached or a one-shot finished: the caller ends it), what
+    /// was followed and what happened.
+    fn follow(
+        &mut self,
+        engaged: &mut Engaged<C>,
+        stop_at: Option<CycleEnd>,
+        master: i64,
+        fraction: u32,
+    ) -> Result<(bool, Option<FollowSample>, Events), EngineError> {
+        let mut events = Events::default();
+        engaged.steady = None;
+        // Ramps and blends end where the position itself reaches their
+        // end, not its whole count (below the position when the master
+        // runs backwards), so the straight line between counts never
+        // jumps from a ramp's value to the final cam's mid-count.
+        let at = MasterPosition {
+            counts: master,
+            fraction,
+        };
+        if let Some(ramp) = engaged.offsets
+            && ramp.finished_at(at)
+        {
+            engaged.engagement = ramp.apply(&engaged.engagement, master)?;
+            engaged.offsets = None;
+        }
+        if let Some(ramp) = engaged.scaling
+            && ramp.finished_at(at)
+        {
+            *self.geometry = ramp.target;
+            engaged.scaling = None;
+        }
+        let mut here = self.resolve(&engaged.engagement_at(master)?, stop_at.as_ref(), master);
+        if here.stopped.is_none() && self.switch_at_seam(engaged, here.place)? {
+            events.table_switched = true;
+            events.cycle_completed = true;
+            here = self.resolve(&engaged.engagement, stop_at.as_ref(), master);
+            // Cycle indices restart with the new table.
+            engaged.place = here.place;
+        }
+        engaged.end_blend(at)?;
+        if here.stopped.is_none() && stop_at.is_none() {
+            let blending = engaged.blend.is_some();
+            let previous = engaged.followed;
+            let now = (i128::from(master) << 32) | i128::from(fraction);
+            let policy = self.missed_policy;
+            let turn = self.config.single_turn;
+            let fired = engaged
+                .pending
+                .as_mut()
+                .map(|p| p.fires(previous, now, blending, policy, turn));
+            events.activation_missed |= fired.is_some_and(|f| f.missed);
+            if let Some(switch) = fired.and_then(|f| f.at) {
+                self.switch_at(engaged, switch)?;
+                events.table_switched = true;
+                here = self.resolve(&engaged.engagement, None, master);
+                engaged.place = here.place;
+                // A master that moved past the whole blend in this very
+                // tick is on the new cam already, not at the blend's end.
+                engaged.end_blend(at)?;
+            }
+        }
+        engaged.followed = (i128::from(master) << 32) | i128::from(fraction);
+        let place = here.place;
+        let (cam, mut slave, velocity_ratio, ramping) = self.command_at(engaged, place, master)?;
+        if fraction != 0 && here.stopped.is_none() && !here.finished {
+            // Between whole master counts (an exact time base, or a coarse
+            // master's estimate) the command moves along the straight line
+            // to the next count's value: exact at every whole count, and
+            // monotonic in between.
+            let next_master = master.saturating_add(1);
+            let ahead = self.resolve(
+                &engaged.engagement_at(next_master)?,
+                stop_at.as_ref(),
+                next_master,
+            );
+            // Across a seam, aim at the seam: a table may be queued for it
+            // (now, or by a call before the next tick), and then the old
+            // cam past the seam is not where the slave goes. Aiming beyond
+            // it would command a slave the switch then takes back, a
+            // reversal the master never made.
+            let aim = if ahead.place.k != place.k {
+                if ahead.place.k > place.k {
+                    self.geometry.cycle_end(place.k)
+                } else {
+                    Geometry::cycle_start(place.k)
+                }
+            } else {
+                ahead.place
+            };
+            let (_, next_slave, _, _) = self.command_at(engaged, aim, next_master)?;
+            let gap = i128::from(next_slave) - i128::from(slave);
+            let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
+            slave =
+                i64::try_from(i128::from(slave) + step).map_err(|_| EngineError::SlaveOverflow)?;
+        }
+        if engaged.ramp.is_some_and(|ramp| ramp.finished_at(at)) {
+            engaged.ramp = None;
+        }
+        let blending = engaged.blend.is_some();
+        *self.commanded = slave;
+        if engaged.place.k != place.k {
+            events.cycle_completed = true;
+            events.seam_jump |= self.geometry.jumps_at_seam;
+        }
+        engaged.place = place;
+        let followed = FollowSample {
+            master_in_cycle: self.geometry.input_in_cycle(place),
+            master_in_cycle_raw: self.geometry.raw_in_cycle(place),
+            cycle: clamp_i64(place.k.saturating_sub(engaged.engagement.k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
+            velocity_ratio,
+            following: !ramping
+                && !blending
+                && engaged.offsets.is_none()
+                && engaged.scaling.is_none(),
+            input_offset: engaged.engagement.input_offset(self.geometry),
+            slave,
+        };
+        if engaged.ramp.is_none() && stop_at.is_none() && !engaged.changing() {
+            // Settled: the next ticks can take the steady path.
+            engaged.steady = engaged.engagement.steady(self.geometry);
+        }
+        let ended = if let Some(forward) = here.stopped {
+            events.cycle_completed |= forward;
+            events.stopped = true;
+            true
+        } else if here.finished {
+            events.finished = true;
+            events.cycle_completed = true;
+            true
+        } else {
+            false
+        };
+        Ok((ended, Some(followed), events))
     }
 }
 

@@ -25,6 +25,7 @@
 
 use core::num::NonZeroU64;
 
+use crate::coupling::{round_half_away, unsigned_to_f64};
 use crate::ramp::quintic;
 use crate::{EngineError, MasterPosition};
 
@@ -144,12 +145,13 @@ impl Blend {
             return Err(EngineError::SlaveOverflow);
         };
         let d = self.distance as f64;
-        let u = (travelled.unsigned_abs() as f64 / d).min(1.0);
+        let u = (unsigned_to_f64(travelled.unsigned_abs()) / d).min(1.0);
         let dv = side.v1 - self.v0;
         let position = self.p0 as f64
             + sign * d * (self.v0 * u + dv * smoothstep_integral(u))
             + side.residual * quintic(u);
-        let position = libm::round(position);
+        // `libm::round`'s value, the common case without its routine.
+        let position = round_half_away(position);
         if !position.is_finite() || position.abs() > 9.0e18 {
             return Err(EngineError::SlaveOverflow);
         }

@@ -16,9 +16,8 @@ pub const MAX_FREQUENCY_HZ: u32 = 200_000;
 pub enum Coupling {
     /// The table repeats every cycle and the slave takes the table value of
     /// the master's place in the cycle: if the first and last slave values
-    /// differ, the slave jumps at the seam (document 003 cyclic cam,
-    /// document 001 Periodic type). The jump is output as pulses under the
-    /// frequency limit.
+    /// differ, the slave jumps at the seam (document 001 Periodic type). The
+    /// jump is output as pulses under the frequency limit.
     Periodic,
     /// The table repeats and the slave offset accumulates the stroke
     /// (`slave_last − slave_first`) each cycle, forwards and backwards, so
@@ -105,19 +104,32 @@ pub enum MasterAlign {
 }
 
 /// Where the slave output stands relative to the table at the engage instant.
+///
+/// Whatever the choice, a repeating cam counts its cycles (and the strokes
+/// it accumulates) from the cycle the master is in when it engages, never
+/// from the table's origin: the start rule of docs/engine.md.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SlaveAlign {
-    /// Commanded = table value. May jump at engage; the pulses then catch up
-    /// under the frequency limit (flagged as delayed).
+    /// Commanded = the table value of the master's place in its cycle. On a
+    /// cam with a stroke (repeat, one-shot) the start rule adds the whole
+    /// strokes that put it nearest the slave: for a table that never turns
+    /// back, at or ahead of the slave in the direction the cam moves it
+    /// with the master going forward (less than one stroke of travel, no
+    /// reverse pulse); for one that turns back, either way (document 001).
+    /// Without a stroke it is the table value itself and may jump at
+    /// engage; the pulses then catch up under the frequency limit
+    /// (flagged as delayed).
     Absolute,
     /// Commanded = table value + offset (PLCopen `SlaveOffset`).
     Offset(i64),
     /// Bumpless: the output offset is the current slave position minus the
     /// table value (document 002 `CamOutputOffset`, PLCopen relative slave).
     Relative,
-    /// Document 001, Repeat type on a single-turn master: commanded = the
-    /// table value plus the whole number of strokes that lands nearest the
-    /// current slave position. Without a stroke this is [`SlaveAlign::Absolute`].
+    /// Document 001, Repeat type on a single-turn master: the table value
+    /// plus the whole strokes that land nearest the current slave position.
+    /// Since the start rule covers every repeating cam this is the same as
+    /// [`SlaveAlign::Absolute`]; the name is kept for configurations (and
+    /// scenario files) that use it.
     NearestEquivalent,
     /// The commanded position is set to this value at engage (document 003
     /// function bit 6, registers 19/20).

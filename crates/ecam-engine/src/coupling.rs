@@ -12,6 +12,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::start_rule;
 use crate::steady::Steady;
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
 
@@ -35,7 +36,7 @@ pub(crate) struct Place {
 }
 
 /// The integer geometry of the cycle, fixed while a cam is engaged.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Geometry {
     origin: i64,
     origin_num: i128,
@@ -50,6 +51,68 @@ pub(crate) struct Geometry {
     /// slave values differ and whose stroke is not accumulated.
     pub(crate) jumps_at_seam: bool,
     pub(crate) extent: Extent,
+    /// Floats of the zooms, taken once here rather than at every sample
+    /// (the same values: each is the one conversion the sample made).
+    floats: ZoomFloats,
+    /// The integers in 64 bits when they all fit (nearly always), for the
+    /// 64-bit routes (`locate`, the steady constants).
+    narrow: Option<NarrowGeometry>,
+    /// The table moves the slave both ways inside a cycle (for the start
+    /// rule, `start_rule.rs`).
+    turns_back: bool,
+}
+
+/// A geometry's integers in 64 bits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct NarrowGeometry {
+    origin_num: i64,
+    /// Positive.
+    period_num: i64,
+    mnum: i64,
+    /// Positive.
+    mden: i64,
+    stroke: i64,
+    /// `stroke × snum`.
+    stroke_snum: i64,
+    /// Positive.
+    sden: i64,
+}
+
+impl NarrowGeometry {
+    fn of(geo: &Geometry) -> Option<Self> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let stroke = narrow(geo.stroke)?;
+        Some(Self {
+            origin_num: narrow(geo.origin_num)?,
+            period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
+            mnum: narrow(geo.mnum)?,
+            mden: narrow(geo.mden).filter(|&d| d > 0)?,
+            stroke,
+            stroke_snum: stroke.checked_mul(narrow(geo.snum)?)?,
+            sden: narrow(geo.sden).filter(|&d| d > 0)?,
+        })
+    }
+}
+
+/// The zoom factors as floats, and their product as the coupling law forms it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ZoomFloats {
+    mden: f64,
+    snum: f64,
+    sden: f64,
+    /// `(mnum / mden) × (snum / sden)`.
+    factor: f64,
+}
+
+impl ZoomFloats {
+    fn of(mnum: i128, mden: i128, snum: i128, sden: i128) -> Self {
+        Self {
+            mden: to_f64(mden),
+            snum: to_f64(snum),
+            sden: to_f64(sden),
+            factor: (to_f64(mnum) / to_f64(mden)) * (to_f64(snum) / to_f64(sden)),
+        }
+    }
 }
 
 /// Largest single-turn range accepted (keeps every product far from overflow).
@@ -103,23 +166,43 @@ impl Geometry {
             return Err(EngineError::ReversedOneShot);
         }
         let mden = i128::from(config.master_zoom.den());
-        Ok(Self {
+        let mnum = i128::from(config.master_zoom.signed_num());
+        let snum = i128::from(config.slave_zoom.signed_num());
+        let sden = i128::from(config.slave_zoom.den());
+        let mut geometry = Self {
             origin,
             origin_num: i128::from(origin) * mden,
             period_num: span * mden,
-            mnum: i128::from(config.master_zoom.signed_num()),
+            mnum,
             mden,
-            snum: i128::from(config.slave_zoom.signed_num()),
-            sden: i128::from(config.slave_zoom.den()),
+            snum,
+            sden,
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
-        })
+            turns_back: curve.turns_back(),
+            floats: ZoomFloats::of(mnum, mden, snum, sden),
+            narrow: None,
+        };
+        geometry.narrow = NarrowGeometry::of(&geometry);
+        Ok(geometry)
     }
 
     /// One stroke in output pulses (0 for a cam that does not accumulate).
     pub(crate) fn stroke_pulses(&self) -> f64 {
         to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+    }
+
+    /// What the start rule needs of the cycle: a stroke in pulses, which
+    /// way the slave goes while the master moves forward on a table that
+    /// never turns back (the sign of stroke × both zooms, 0 without a
+    /// stroke), and whether the table turns back.
+    pub(crate) fn strokes(&self) -> start_rule::StrokeGeometry {
+        start_rule::StrokeGeometry {
+            per_stroke: self.stroke_pulses(),
+            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
+            turns_back: self.turns_back,
+        }
     }
 
     /// The master zoom's denominator (the unit of table-input offsets).
@@ -129,11 +212,16 @@ impl Geometry {
 
     /// The same geometry with another slave zoom.
     pub(crate) fn with_slave_zoom(&self, zoom: crate::Zoom) -> Self {
-        Self {
-            snum: i128::from(zoom.signed_num()),
-            sden: i128::from(zoom.den()),
+        let snum = i128::from(zoom.signed_num());
+        let sden = i128::from(zoom.den());
+        let mut geometry = Self {
+            snum,
+            sden,
+            floats: ZoomFloats::of(self.mnum, self.mden, snum, sden),
             ..*self
-        }
+        };
+        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry
     }
 
     /// The zoomed master in table-input units.
@@ -143,6 +231,23 @@ impl Geometry {
 
     /// Where table input `t_num` lies.
     pub(crate) fn locate(&self, t_num: i128) -> Place {
+        // In 64 bits when the input and the offset from the origin fit
+        // (the same place: nothing saturates there).
+        if let Some(n) = &self.narrow
+            && let Ok(t) = i64::try_from(t_num)
+            && let Some(u) = t.checked_sub(n.origin_num)
+        {
+            return match self.extent {
+                Extent::Single => Place {
+                    k: 0,
+                    r_num: i128::from(u.clamp(0, n.period_num)),
+                },
+                Extent::Cyclic | Extent::Cycles(_) => Place {
+                    k: i128::from(u.div_euclid(n.period_num)),
+                    r_num: i128::from(u.rem_euclid(n.period_num)),
+                },
+            };
+        }
         let u = t_num.saturating_sub(self.origin_num);
         match self.extent {
             Extent::Single => Place {
@@ -190,28 +295,48 @@ impl Geometry {
 
     /// Table input as a float for the curve (the only float in the chain).
     pub(crate) fn table_x(&self, place: Place) -> f64 {
-        self.origin as f64 + to_f64(place.r_num) / to_f64(self.mden)
+        self.origin as f64 + to_f64(place.r_num) / self.floats.mden
     }
 
     /// d(slave)/d(master) factor of the two zooms.
     fn zoom_factor(&self) -> f64 {
-        (to_f64(self.mnum) / to_f64(self.mden)) * (to_f64(self.snum) / to_f64(self.sden))
+        self.floats.factor
     }
 
     /// Exact zoomed value of `table + strokes × stroke`, rounded once.
-    fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
+    pub(crate) fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
+        if let Some(value) = i64::try_from(strokes)
+            .ok()
+            .and_then(|strokes| self.zoomed_narrow(strokes, table))
+        {
+            return Ok(i128::from(value));
+        }
         let accumulated = mul_exact(strokes, self.stroke)
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
         let (whole, rem) = div_floor(accumulated, self.sden);
-        let fraction =
-            round_half_away((to_f64(rem) + table * to_f64(self.snum)) / to_f64(self.sden));
+        let fraction = round_half_away((to_f64(rem) + table * self.floats.snum) / self.floats.sden);
         if !fraction.is_finite() || fraction.abs() > 1e36 {
             return Err(EngineError::SlaveOverflow);
         }
         whole
             .checked_add(whole_to_i128(fraction))
             .ok_or(EngineError::SlaveOverflow)
+    }
+
+    /// [`Geometry::zoomed`] in 64 bits, the same steps: `None` when a
+    /// value leaves them (the 128-bit route then decides).
+    #[inline]
+    fn zoomed_narrow(&self, strokes: i64, table: f64) -> Option<i64> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let accumulated = strokes
+            .checked_mul(narrow(self.stroke)?)?
+            .checked_mul(narrow(self.snum)?)?;
+        let sden = narrow(self.sden)?;
+        let whole = accumulated.div_euclid(sden);
+        let rem = accumulated.rem_euclid(sden);
+        let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
+        whole.checked_add(fraction)
     }
 }
 
@@ -242,7 +367,7 @@ fn mul_exact(a: i128, b: i128) -> Option<i128> {
 /// ones are built from their two halves (within a rounding of the nearest
 /// float, which is all a float inside a cycle needs).
 #[inline]
-fn to_f64(v: i128) -> f64 {
+pub(crate) fn to_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
         Err(_) => ((v >> 64) as i64 as f64) * 18_446_744_073_709_551_616.0 + (v as u64) as f64,
@@ -288,6 +413,36 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
     }
 }
 
+/// `v as f64`, bit for bit, without the 128-bit library routine where
+/// `v` fits 64 bits (nearly always).
+#[inline]
+pub(crate) fn exact_f64(v: i128) -> f64 {
+    match i64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => v as f64,
+    }
+}
+
+/// `v` as a float, for a count that is never negative (travel, spans):
+/// one conversion below 2^64, where every such value lies in practice.
+#[inline]
+pub(crate) fn unsigned_to_f64(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(small) => small as f64,
+        Err(_) => v as f64,
+    }
+}
+
+/// `libm::round(v) as i128` (saturating, NaN as 0) with the fast rounding
+/// of [`round_to_i64`] where it applies: the same integer.
+#[inline]
+pub(crate) fn round_to_i128(v: f64) -> i128 {
+    match round_to_i64(v) {
+        Some(whole) => i128::from(whole),
+        None => libm::round(v) as i128,
+    }
+}
+
 /// A whole float (already rounded, finite) as an integer.
 #[inline]
 fn whole_to_i128(v: f64) -> i128 {
@@ -307,7 +462,9 @@ fn clamp_i64(v: i128) -> i64 {
 pub(crate) struct Engagement {
     /// Table input = master × num + `input_offset_num` (× den units).
     input_offset_num: i128,
-    /// Extra whole strokes chosen by [`SlaveAlign::NearestEquivalent`].
+    /// Whole strokes added to the master's cycle number: the cycle the
+    /// cam engaged in counts as the strokes the start rule chose
+    /// (`start_rule.rs`), not as its distance from the table's origin.
     shift: i128,
     /// Added to the zoomed table value.
     output_offset: i128,
@@ -361,13 +518,14 @@ impl Engagement {
         let place = geo.locate(t_engage);
         let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
-        let shift = match config.slave_align {
-            SlaveAlign::NearestEquivalent if geo.stroke != 0 => {
-                nearest_shift(geo, place.k, table, target)?
-            }
-            _ => 0,
-        };
-        let on_table = geo.zoomed(place.k.saturating_add(shift), table)?;
+        let strokes =
+            start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
+                geo.zoomed(n, table)
+            })?;
+        // The stroke count of the cycle the master is in is `strokes`:
+        // cycles count from there, not from the table's origin.
+        let shift = strokes.saturating_sub(place.k);
+        let on_table = geo.zoomed(strokes, table)?;
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
             SlaveAlign::Offset(o) => i128::from(o),
@@ -544,7 +702,14 @@ impl Engagement {
 
     /// Document 002 `CamInputOffset`, in table counts (floor).
     pub(crate) fn input_offset(&self, geo: &Geometry) -> i64 {
-        clamp_i64(div_floor(self.input_offset_num, geo.mden).0)
+        match (
+            i64::try_from(self.input_offset_num),
+            i64::try_from(geo.mden),
+        ) {
+            // The common case in one division (the denominator is positive).
+            (Ok(num), Ok(den)) if den > 0 => num.div_euclid(den),
+            _ => clamp_i64(div_floor(self.input_offset_num, geo.mden).0),
+        }
     }
 
     /// The 64-bit constants of this engagement on `geo` for the steady
@@ -555,22 +720,21 @@ impl Engagement {
             return None;
         }
         let narrow = |v: i128| i64::try_from(v).ok();
-        let stroke = narrow(geo.stroke)?;
-        let snum = narrow(geo.snum)?;
+        let n = geo.narrow.as_ref()?;
         Some(Steady {
-            mnum: narrow(geo.mnum)?,
-            offset_num: narrow(self.input_offset_num.checked_sub(geo.origin_num)?)?,
-            period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
+            mnum: n.mnum,
+            offset_num: narrow(self.input_offset_num)?.checked_sub(n.origin_num)?,
+            period_num: n.period_num,
             origin: geo.origin,
             origin_f: geo.origin as f64,
-            mden: narrow(geo.mden).filter(|&d| d > 0)?,
-            mden_f: to_f64(geo.mden),
+            mden: n.mden,
+            mden_f: geo.floats.mden,
             shift: narrow(self.shift)?,
-            stroke,
-            stroke_snum: stroke.checked_mul(snum)?,
-            snum_f: to_f64(geo.snum),
-            sden: narrow(geo.sden).filter(|&d| d > 0)?,
-            sden_f: to_f64(geo.sden),
+            stroke: n.stroke,
+            stroke_snum: n.stroke_snum,
+            snum_f: geo.floats.snum,
+            sden: n.sden,
+            sden_f: geo.floats.sden,
             zoom_factor: geo.zoom_factor(),
             output_offset: narrow(self.output_offset)?,
             k_engage: narrow(self.k_engage)?,
@@ -587,6 +751,54 @@ impl Engagement {
         place: Place,
     ) -> Result<Sample, EngineError> {
         let (table, slope) = table_value(curve, cursor, geo.table_x(place))?;
+        match self.sample_narrow(geo, place, table, slope) {
+            Some(sample) => Ok(sample),
+            None => self.sample_wide(geo, place, table, slope),
+        }
+    }
+
+    /// [`Engagement::sample`] in 64-bit integers, for the table value
+    /// `table` and slope `slope` at `place`: the same steps in the same
+    /// order as [`Engagement::sample_wide`] (as the steady tick takes them),
+    /// so the same results; `None` as soon as a value would leave 64 bits,
+    /// and the wide path decides (and reports any error).
+    #[inline]
+    fn sample_narrow(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: f64,
+        slope: f64,
+    ) -> Option<Sample> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let strokes = narrow(place.k)?.checked_add(narrow(self.shift)?)?;
+        let stroke = narrow(geo.stroke)?;
+        let slave = geo
+            .zoomed_narrow(strokes, table)?
+            .checked_add(narrow(self.output_offset)?)?;
+        let unzoomed = strokes
+            .checked_mul(stroke)?
+            .checked_add(round_to_i64(table)?)?;
+        let in_cycle = table * geo.floats.snum / geo.floats.sden;
+        Some(Sample {
+            place,
+            slave,
+            unzoomed,
+            // Saturating, as the wide path reports it.
+            in_cycle_zoomed: round_to_i64(in_cycle)
+                .unwrap_or_else(|| round_half_away(in_cycle) as i64),
+            velocity_ratio: slope * geo.zoom_factor(),
+        })
+    }
+
+    /// [`Engagement::sample`] in 128-bit integers (any value).
+    fn sample_wide(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: f64,
+        slope: f64,
+    ) -> Result<Sample, EngineError> {
         let strokes = place.k.saturating_add(self.shift);
         let zoomed = geo.zoomed(strokes, table)?;
         let slave = zoomed
@@ -596,7 +808,7 @@ impl Engagement {
         let unzoomed = mul_exact(strokes, geo.stroke)
             .unwrap_or(i128::MAX)
             .saturating_add(whole_to_i128(round_half_away(table)));
-        let in_cycle_zoomed = round_half_away(table * to_f64(geo.snum) / to_f64(geo.sden)) as i64;
+        let in_cycle_zoomed = round_half_away(table * geo.floats.snum / geo.floats.sden) as i64;
         Ok(Sample {
             place,
             slave,
@@ -605,29 +817,6 @@ impl Engagement {
             velocity_ratio: slope * geo.zoom_factor(),
         })
     }
-}
-
-/// Whole strokes to add so the zoomed table value lands nearest `target`
-/// (document 001: start at master 20000 with slave −1500 → −2000).
-fn nearest_shift(geo: &Geometry, k: i128, table: f64, target: i128) -> Result<i128, EngineError> {
-    let base = geo.zoomed(k, table)?;
-    // One stroke moves the output by stroke × snum / sden.
-    let per_stroke = geo.stroke as f64 * geo.snum as f64 / geo.sden as f64;
-    let gap = target.checked_sub(base).ok_or(EngineError::SlaveOverflow)?;
-    let guess = libm::round(gap as f64 / per_stroke);
-    if !guess.is_finite() {
-        return Err(EngineError::SlaveOverflow);
-    }
-    let guess = guess as i128;
-    let mut best: Option<(i128, u128)> = None;
-    for shift in [guess.saturating_sub(1), guess, guess.saturating_add(1)] {
-        let value = geo.zoomed(k.saturating_add(shift), table)?;
-        let distance = value.abs_diff(target);
-        if best.is_none_or(|(_, d)| distance < d) {
-            best = Some((shift, distance));
-        }
-    }
-    Ok(best.map_or(0, |(shift, _)| shift))
 }
 
 #[cfg(test)]
@@ -718,6 +907,55 @@ mod tests {
                 assert_eq!(round_to_i64(w), reference(w), "{w}");
             }
         }
+    }
+
+    /// The 64-bit sample is the 128-bit one wherever it gives a value, and
+    /// gives one for every value of ordinary size.
+    #[test]
+    fn narrow_sample_equals_wide_sample() {
+        let mut words = xorshift(0x5851_F42D_4C95_7F2D);
+        let mut next = move || words.next().unwrap_or(1);
+        let mut compared = 0;
+        for _ in 0..20_000 {
+            let pick = |w: u64, scale: u32| (w >> (64 - scale)) as i64 - (1i64 << (scale - 1));
+            let config = AxisConfig {
+                coupling: Coupling::Repeat { min_stroke: 1 },
+                master_zoom: Zoom::new(1 + (next() % 9) as u16, 1 + (next() % 7) as u16).unwrap(),
+                slave_zoom: Zoom::signed(
+                    if next() % 2 == 0 { 1 } else { -1 } * (1 + (next() % 11) as i32),
+                    1 + (next() % 13) as u16,
+                )
+                .unwrap(),
+                ..AxisConfig::default()
+            };
+            let scale = [20, 40, 62][(next() % 3) as usize];
+            let t =
+                PointTable::from_pairs(&[(0, pick(next(), scale)), (1000, pick(next(), scale))])
+                    .unwrap();
+            let geo = Geometry::new(&t, &config).unwrap();
+            let e = Engagement {
+                input_offset_num: 0,
+                shift: i128::from(pick(next(), scale)),
+                output_offset: i128::from(pick(next(), scale)),
+                k_engage: 0,
+                span: None,
+            };
+            let place = Place {
+                k: i128::from(pick(next(), scale)),
+                r_num: i128::from((next() % 1000) as i64),
+            };
+            let table = (pick(next(), scale) as f64) * 0.37;
+            let slope = 0.25;
+            let wide = e.sample_wide(&geo, place, table, slope);
+            match e.sample_narrow(&geo, place, table, slope) {
+                Some(narrow) => {
+                    assert_eq!(Ok(narrow), wide, "{e:?} {place:?} {table}");
+                    compared += 1;
+                }
+                None => assert!(scale > 20, "small values stay narrow: {e:?} {place:?}"),
+            }
+        }
+        assert!(compared > 5000, "{compared}");
     }
 
     #[test]

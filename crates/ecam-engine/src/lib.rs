@@ -62,6 +62,7 @@ mod ramp_in;
 mod scaling;
 mod speed;
 mod start;
+mod start_rule;
 mod steady;
 mod stop;
 mod switch;

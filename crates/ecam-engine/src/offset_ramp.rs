@@ -13,7 +13,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::coupling::Engagement;
+use crate::coupling::{Engagement, exact_f64, round_to_i128, unsigned_to_f64};
 use crate::ramp::quintic;
 use crate::{EngineError, MasterPosition};
 
@@ -81,8 +81,8 @@ impl OffsetRamp {
         let (input, output) = if self.finished(master) {
             (self.input_num, self.output)
         } else {
-            let w = quintic(self.travelled(master) as f64 / self.distance as f64);
-            let part = |v: i128| libm::round(v as f64 * w) as i128;
+            let w = quintic(unsigned_to_f64(self.travelled(master)) / self.distance as f64);
+            let part = |v: i128| round_to_i128(exact_f64(v) * w);
             (part(self.input_num), part(self.output))
         };
         engagement.shifted(input, output)

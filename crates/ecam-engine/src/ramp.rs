@@ -9,6 +9,7 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
+use crate::coupling::{exact_f64, round_to_i128, unsigned_to_f64};
 use crate::{MasterPosition, RampIn};
 
 /// The smooth-step `w(u) = 10u³ − 15u⁴ + 6u⁵` on `0 ≤ u ≤ 1`: 0 and 1 at
@@ -48,9 +49,9 @@ impl Ramp {
         if travelled >= u128::from(self.distance) {
             return None;
         }
-        let w = quintic(travelled as f64 / self.distance as f64);
-        let gap = (i128::from(self.hold) - i128::from(cam)) as f64;
-        let offset = libm::round((1.0 - w) * gap) as i128;
+        let w = quintic(unsigned_to_f64(travelled) / self.distance as f64);
+        let gap = exact_f64(i128::from(self.hold) - i128::from(cam));
+        let offset = round_to_i128((1.0 - w) * gap);
         i64::try_from(i128::from(cam) + offset).ok()
     }
 
@@ -62,7 +63,7 @@ impl Ramp {
 
     /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
     pub(crate) fn weight(&self, master: i64) -> f64 {
-        quintic((self.travelled(master) as f64 / self.distance as f64).min(1.0))
+        quintic((unsigned_to_f64(self.travelled(master)) / self.distance as f64).min(1.0))
     }
 }
 

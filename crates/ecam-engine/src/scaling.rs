@@ -14,11 +14,11 @@
 use core::num::NonZeroU64;
 
 use crate::MasterPosition;
-use crate::coupling::Geometry;
+use crate::coupling::{Geometry, exact_f64, round_to_i64, unsigned_to_f64};
 use crate::ramp::quintic;
 
 /// A slave-scaling change being ramped in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ScalingRamp {
     from: i64,
     distance: u64,
@@ -61,10 +61,13 @@ impl ScalingRamp {
             return new;
         }
         let d = self.distance as f64;
-        let u = self.travelled(master) as f64 / d;
+        let u = unsigned_to_f64(self.travelled(master)) / d;
         let w = quintic(u);
-        let gap = (i128::from(new.0) - i128::from(old.0)) as f64;
-        let slave = old.0.saturating_add(libm::round(w * gap) as i64);
+        let gap = exact_f64(i128::from(new.0) - i128::from(old.0));
+        let step = w * gap;
+        // `libm::round(step) as i64`, the common case without its routine.
+        let step = round_to_i64(step).unwrap_or_else(|| libm::round(step) as i64);
+        let slave = old.0.saturating_add(step);
         let sign = if master < self.from { -1.0 } else { 1.0 };
         let ratio = (1.0 - w) * old.1 + w * new.1 + sign * quintic_slope(u) * gap / d;
         (slave, ratio)

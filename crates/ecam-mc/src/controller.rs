@@ -179,11 +179,14 @@ impl MotionController {
 
     /// Starts an E-CAM now, at the master's current position.
     ///
-    /// The slave takes the table's position for the master — for a Repeat
-    /// cam on a single-turn master, the equivalent position (table value
-    /// plus whole strokes) nearest its current command position (document
-    /// 001). A non-single-turn master's cycles count from the table's
-    /// first master position.
+    /// The slave takes the table's position for the master, by the
+    /// engine's start rule (docs/mc.md, "Starting"): cycles count from the
+    /// one the master is in, and a Repeat cam lands on the equivalent
+    /// position (table value plus whole strokes) nearest the slave's
+    /// command position: ahead of it, less than one stroke on, for a table
+    /// that never turns back; either way for one that does (document 001:
+    /// master 20000, slave −1500 → −2000). Normal and Periodic cams take
+    /// the table value itself.
     ///
     /// # Errors
     /// Unknown or equal axes, a slave already camming, or a table the
@@ -201,16 +204,11 @@ impl MotionController {
                 axis: data.slave_axis,
             });
         }
-        let nearest = data.cam_type == CamType::Repeat && master.single_turn.is_some();
         let config = AxisConfig {
             coupling: data.cam_type.coupling(slave.user_unit),
             start: StartMode::Immediate,
             master_align: MasterAlign::Absolute,
-            slave_align: if nearest {
-                SlaveAlign::NearestEquivalent
-            } else {
-                SlaveAlign::Absolute
-            },
+            slave_align: SlaveAlign::Absolute,
             single_turn: master.single_turn.map(SingleTurn::counts),
             max_master_step: master.max_step,
             ..AxisConfig::default()

@@ -62,8 +62,6 @@ use crate::operation_error::OperationError;
 
 /// Offset of the point count in the target block (`D1 + 38`).
 pub const TABLE_SECTIONS: u16 = crate::decam::offsets::SECTIONS;
-/// Offset of the first point (`D1 + 40`).
-pub const TABLE_START: u16 = crate::decam::offsets::TABLE;
 /// Most points a DECAM table holds.
 pub const MAX_POINTS: usize = register_image::MAX_SECTIONS;
 
@@ -250,8 +248,8 @@ pub fn execute(
 /// `D1 + 38` (count), `D1 + 39` and 4 words per point from `D1 + 40`.
 fn table_words(table: u16, points: usize) -> core::ops::Range<u32> {
     let first = u32::from(table) + u32::from(TABLE_SECTIONS);
-    let points = u32::try_from(points.min(MAX_POINTS)).unwrap_or(0);
-    first..u32::from(table) + u32::from(TABLE_START) + 4 * points
+    let points = u16::try_from(points.min(MAX_POINTS)).unwrap_or(0);
+    first..u32::from(table) + crate::decam::offsets::block_words(points)
 }
 
 /// The point count of the table already in block `table` (0 when `D1 + 38`

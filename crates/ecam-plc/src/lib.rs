@@ -37,6 +37,7 @@ mod devices;
 mod hardware;
 mod interpreter;
 mod operation_error;
+mod remote_write;
 mod scan;
 mod timers;
 mod view;
@@ -53,6 +54,7 @@ pub use interpreter::MAX_STEPS_PER_SCAN;
 pub use operation_error::{
     CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, CODE_SCAN_LIMIT, OperationError,
 };
+pub use remote_write::WriteRefusal;
 pub use scan::Plc;
 pub use timers::{T_COUNT, Timers, timer_clock};
 pub use view::{Value, View, ViewError};

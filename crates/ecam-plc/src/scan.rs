@@ -84,6 +84,22 @@ impl Plc {
             .any(|d| d.operands().block == block && d.is_running())
     }
 
+    /// The master span of the table the cam at `D{block}` follows while it
+    /// runs: its cycle length in table counts, which a table written into
+    /// the block changes only at the next seam. `None` while no cam runs
+    /// there.
+    pub fn cam_table_span(&self, block: u16) -> Option<i64> {
+        self.decams
+            .iter()
+            .filter(|d| d.operands().block == block)
+            .find_map(Decam::running_table_span)
+    }
+
+    /// The program's DECAM instances, in program order.
+    pub(crate) fn decams(&self) -> &[Decam] {
+        &self.decams
+    }
+
     /// Device memory.
     pub fn devices(&self) -> &Devices {
         &self.devices

@@ -372,6 +372,29 @@ pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &
     chart_over(title, panels, sync)
 }
 
+/// The plot of a segment cam ([`ecam_core::segments::SegmentCam`]): each
+/// segment's solved law evaluated exactly at dense samples (both ends of
+/// every segment, so a step at a point is a vertical edge and an impulse in
+/// the next panel), its interpolation points dotted over the displacement.
+pub fn segment_cam_chart(
+    cam: &ecam_core::segments::SegmentCam,
+    sync: Option<(i64, i64)>,
+    name: &str,
+) -> Chart {
+    let points: Vec<CamPoint> = cam
+        .points()
+        .iter()
+        .map(|p| CamPoint::new(p.master, p.slave))
+        .collect();
+    let title = format!(
+        "segment cam {name}: each segment's law, exact; arrows: its steps as impulses ({} interpolation points dotted)",
+        points.len()
+    );
+    let exact = ExactCurve::Segments(cam.clone());
+    let panels = exact_panels(&exact, "profile", ("interpolation points", &points));
+    chart_over(title, panels, sync)
+}
+
 /// The machine a cam table runs on, for a plot in physical units: the
 /// master's speed and, optionally, the slave's length unit.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -457,6 +480,7 @@ mod tests {
             sync: Some((0, 10)),
             generator: None,
             kinematics,
+            segments: None,
         }
     }
 

@@ -5,14 +5,19 @@
 use crate::bus::BusFace;
 use crate::map;
 use crate::pdu::{Exception, Request, Response};
+use crate::state::WriteError;
 use crate::state::{Event, Shared};
 use crate::write::WriteBatch;
 
-/// Makes `batch` durable and applies it, or reports exception 04.
+/// Makes `batch` durable and applies it, or answers the exception: 03
+/// when the running cams refuse it, 04 when the journal failed (reported).
 fn commit(shared: &Shared, batch: &WriteBatch) -> Result<(), Exception> {
     shared.write(batch).map_err(|err| {
-        shared.report(Event::WriteRefused(err));
-        Exception::ServerDeviceFailure
+        let exception = err.exception();
+        if let WriteError::Journal(err) = err {
+            shared.report(Event::WriteRefused(err));
+        }
+        exception
     })
 }
 
@@ -24,8 +29,9 @@ fn commit(shared: &Shared, batch: &WriteBatch) -> Result<(), Exception> {
 /// workers (see [`Request::is_write`]).
 ///
 /// # Errors
-/// 02 for addresses outside the map or writes to Y, 03 for quantity 0,
-/// 04 when a write cannot be made durable.
+/// 02 for addresses outside the map or writes to Y, 03 for quantity 0 and
+/// for a write that would leave a running cam's table invalid, 04 when a
+/// write cannot be made durable.
 pub fn answer_request(shared: &Shared, request: &Request) -> Result<Response, Exception> {
     if let Some(bus) = shared.bus.get() {
         if let Some(reply) = answer_bus(bus, request) {

@@ -456,8 +456,9 @@ mod tests {
         let f = BusFace::new(source);
         f.write_coils(14001, &[true]).unwrap();
         f.write_coils(14000, &[true, false]).unwrap();
+        f.write_coils(14000, &[false, true]).unwrap();
         assert_eq!(
-            f.write_coils(14000, &[false, true]),
+            f.write_coils(14001, &[true]),
             Err(Exception::ServerDeviceBusy),
             "the fifth command finds the queue full"
         );

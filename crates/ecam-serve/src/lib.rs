@@ -96,7 +96,7 @@ pub use pdu::{
 pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
-pub use state::{Event, ServeInfo, Shared, Stats};
+pub use state::{Event, ServeInfo, Shared, Stats, WriteError};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
-pub use table_load::{TableLoad, WhileRunning, parse_table_load};
+pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use write::{LineError, Slot, WriteBatch};

@@ -16,7 +16,7 @@ pub const MAX_LIVE_RATE: u32 = 50;
 
 /// Words of a DECAM block the live view reads (offsets 0–39 and the
 /// first point; the last point is read when it lies within D8511).
-const BLOCK_WORDS: u16 = offsets::TABLE + offsets::WORDS_PER_SECTION;
+const BLOCK_WORDS: u32 = offsets::block_words(1);
 
 /// What `GET /api/live` was asked to stream.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,7 +40,7 @@ impl LiveRequest {
         let block: u16 = digits
             .parse()
             .map_err(|_| format!("block must be a D register number, not `{text}`"))?;
-        if u32::from(block) + u32::from(BLOCK_WORDS) > u32::from(D_COUNT) {
+        if u32::from(block) + BLOCK_WORDS > u32::from(D_COUNT) {
             return Err(format!(
                 "block D{block} runs past D{}: a DECAM block needs 40 words and its table",
                 D_COUNT - 1
@@ -78,9 +78,12 @@ pub struct LiveSample {
     pub master: i32,
     /// Master position in the cycle, after zoom (offsets 25/26): the table input.
     pub master_in_cycle: i32,
-    /// The table's master span (last point's master − first's), 0 when the
-    /// point count (offset 38) is out of range: the cycle length in the
-    /// units of [`Self::master_in_cycle`].
+    /// The cycle length in the units of [`Self::master_in_cycle`]: the
+    /// master span (last point's master − first's) of the table the cam
+    /// follows while it runs (a table written into the block meanwhile
+    /// waits for the next seam, and so does its span here); otherwise that
+    /// of the block's table words, 0 when the point count (offset 38) is
+    /// out of range.
     pub table_span: i64,
     /// Commanded slave position after zoom (offsets 19/20).
     pub slave: i32,
@@ -104,13 +107,16 @@ impl LiveSample {
         let dword = |offset: u16| d.dword(block.saturating_add(offset)).unwrap_or(0);
         let sync_output = word(offsets::SYNC_OUTPUT);
         let points = word(offsets::SECTIONS);
-        let table_span = if (2..=offsets::MAX_SECTIONS).contains(&points) {
-            let last = offsets::TABLE + offsets::WORDS_PER_SECTION * (points - 1);
+        let words_span = || {
+            if !(2..=offsets::MAX_SECTIONS).contains(&points) {
+                return 0;
+            }
+            // Point `points − 1` is below offset 40 + 4 × 512: fits u16.
+            let last = offsets::block_words(points - 1) as u16;
             d.dword(block.saturating_add(last))
                 .map_or(0, |last| i64::from(last) - i64::from(dword(offsets::TABLE)))
-        } else {
-            0
         };
+        let table_span = plc.cam_table_span(block).unwrap_or_else(words_span);
         Self {
             time_us: plc.now_us(),
             scans: plc.scans(),
@@ -143,15 +149,16 @@ impl LiveSample {
         // The master in the cycle falls back by one span at each seam: the
         // master's own travel is the step unwrapped by that span (a sample
         // period shorter than half a cycle is assumed, as for any sampled
-        // angle).
+        // angle). Forwards the cycle left is the previous sample's, going
+        // backwards the one entered is this sample's: at a table switch the
+        // two differ, and the other span would make a spike.
         let master_speed = previous.zip(dt).map(|(p, dt)| {
             let mut step = i64::from(self.master_in_cycle) - i64::from(p.master_in_cycle);
-            let span = self.table_span;
-            if span > 0 && self.running && p.running {
-                if step < -span / 2 {
-                    step += span;
-                } else if step > span / 2 {
-                    step -= span;
+            if self.running && p.running {
+                if p.table_span > 0 && step < -p.table_span / 2 {
+                    step += p.table_span;
+                } else if self.table_span > 0 && step > self.table_span / 2 {
+                    step -= self.table_span;
                 }
             }
             step as f64 * 1e6 / dt as f64
@@ -254,6 +261,15 @@ mod tests {
         assert_eq!(b.to_json(2000, Some(&a))["master_velocity"], json!(4000.0));
         // Backwards across the seam.
         assert_eq!(a.to_json(2000, Some(&b))["master_velocity"], Value::Null);
+        // A switch at the seam to a 2500-count table: forwards the span
+        // unwrapped is the one left, backwards the one entered.
+        let mut d = b.clone();
+        d.table_span = 2500;
+        assert_eq!(d.to_json(2000, Some(&a))["master_velocity"], json!(4000.0));
+        let mut e = d.clone();
+        e.time_us = 1_100_000;
+        e.master_in_cycle = 2400;
+        assert_eq!(e.to_json(2000, Some(&d))["master_velocity"], json!(-4000.0));
         let mut c = a.clone();
         c.time_us = 1_100_000;
         assert_eq!(c.to_json(2000, Some(&b))["master_velocity"], json!(-4000.0));

@@ -18,6 +18,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use ecam_plc::Devices;
 use ecam_plc::Plc;
+use ecam_plc::WriteRefusal;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
@@ -99,6 +100,72 @@ pub enum Event {
     LatchedSavesResumed,
 }
 
+/// A client's write that was not made; device memory is as it was.
+#[derive(Debug)]
+pub enum WriteError {
+    /// The program's cams refuse it: it would leave a running cam's table
+    /// invalid, or a table load aims where no table may go.
+    Refused(WriteRefusal),
+    /// The journal could not be written (`--state`), so the write was not
+    /// applied either.
+    Journal(JournalError),
+}
+
+impl WriteError {
+    /// The Modbus exception a client gets: 03 (illegal data value) for a
+    /// write the cams refuse, 04 (server device failure) for one that
+    /// could not be made durable.
+    pub fn exception(&self) -> Exception {
+        match self {
+            Self::Refused(_) => Exception::IllegalDataValue,
+            Self::Journal(_) => Exception::ServerDeviceFailure,
+        }
+    }
+
+    /// The HTTP status a client gets: 409 (conflict with the running
+    /// program) for a refusal, except 400 for a table load into the
+    /// special registers (never right); 500 when it could not be made
+    /// durable.
+    pub fn http_status(&self) -> u16 {
+        match self {
+            Self::Refused(WriteRefusal::SpecialRegisters { .. }) => 400,
+            Self::Refused(_) => 409,
+            Self::Journal(_) => 500,
+        }
+    }
+
+    /// The PLC error code behind a refusal, if any (6781, 6782, 6783).
+    pub fn code(&self) -> Option<u16> {
+        match self {
+            Self::Refused(refusal) => refusal.code(),
+            Self::Journal(_) => None,
+        }
+    }
+}
+
+impl core::fmt::Display for WriteError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Refused(refusal) => write!(f, "{refusal}"),
+            Self::Journal(err) => write!(f, "not written: {err}"),
+        }
+    }
+}
+
+impl std::error::Error for WriteError {}
+
+impl From<WriteRefusal> for WriteError {
+    fn from(refusal: WriteRefusal) -> Self {
+        Self::Refused(refusal)
+    }
+}
+
+impl From<JournalError> for WriteError {
+    fn from(err: JournalError) -> Self {
+        Self::Journal(err)
+    }
+}
+
 /// Locks `mutex`, carrying on after a panic elsewhere: device memory is
 /// plain data, always in a usable state.
 pub(crate) fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -162,14 +229,22 @@ impl Shared {
         f(lock(&self.plc).devices())
     }
 
-    /// Makes `batch` durable (when there is a state directory), then applies
-    /// it to device memory. Once this returns `Ok` the write may be
+    /// Checks `batch` against the program's running cams, makes it
+    /// durable (when there is a state directory), then applies it to
+    /// device memory. Once this returns `Ok` the write may be
     /// acknowledged.
     ///
     /// # Errors
-    /// The journal could not be written; nothing was applied.
-    pub fn write(&self, batch: &WriteBatch) -> Result<(), JournalError> {
+    /// [`WriteError::Refused`] when it would leave a running cam's table
+    /// invalid ([`Plc::check_register_writes`]); [`WriteError::Journal`]
+    /// when the journal could not be written. Either way nothing was
+    /// applied.
+    pub fn write(&self, batch: &WriteBatch) -> Result<(), WriteError> {
         let mut journal = lock(&self.journal);
+        let words: Vec<(u16, i16)> = batch.words().collect();
+        if !words.is_empty() {
+            lock(&self.plc).check_register_writes(&words)?;
+        }
         if let Some(journal) = journal.as_mut() {
             self.append(journal, batch)?;
         }

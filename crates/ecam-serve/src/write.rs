@@ -145,6 +145,14 @@ impl WriteBatch {
         &self.writes
     }
 
+    /// The data-register writes, in order: `(n, value)` for each `Dn`.
+    pub fn words(&self) -> impl Iterator<Item = (u16, i16)> + '_ {
+        self.writes.iter().filter_map(|&(slot, value)| match slot {
+            Slot::D(n) => Some((n, value as i16)),
+            Slot::M(_) | Slot::X(_) | Slot::C(_) => None,
+        })
+    }
+
     /// Writes the batch into device memory, in order.
     pub fn apply(&self, devices: &mut Devices) {
         for &(slot, value) in &self.writes {

@@ -10,6 +10,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use anyhow::Context;
 use ecam_core::io::{self, AnyTable, Columns, TableFile};
 use ecam_design::{Machine, TableReport, Unit};
 use ecam_plot::cam_table;
@@ -46,6 +47,11 @@ pub struct ShowArgs {
     /// The machine, for peaks in physical units.
     #[command(flatten)]
     pub machine: MachineArgs,
+    /// Check the cam against a drive (TOML: `[mechanics]`, `[limits]`; see
+    /// docs/design.md): motor speed, torque and RMS torque at
+    /// --master-speed, and the fastest machine speed the drive allows.
+    #[arg(long, value_name = "FILE.toml")]
+    pub drive: Option<PathBuf>,
 }
 
 /// Arguments of `ecam table plot`.
@@ -99,6 +105,7 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         sync: generated.sync,
         generator: Some(generated.name.to_string()),
         kinematics: generated.kinematics,
+        segments: generated.segments.map(Box::new),
     };
     let columns = if output.minimal {
         Columns::Minimal
@@ -117,8 +124,11 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         tracing::info!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
-        let exact = generated.exact.as_ref();
-        ecam_plot::draw_chart(&cam_table::chart(&file, exact, generated.name), path)?;
+        let chart = match &file.segments {
+            Some(cam) => cam_table::segment_cam_chart(cam, file.sync, generated.name),
+            None => cam_table::chart(&file, generated.exact.as_ref(), generated.name),
+        };
+        ecam_plot::draw_chart(&chart, path)?;
     }
     Ok(())
 }
@@ -126,7 +136,19 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
     let table = io::read(&args.file)?;
     tracing::debug!("{}: a {} table", args.file.display(), table.kind());
-    let report = TableReport::of(&args.file.display().to_string(), &table).at(args.machine.into());
+    let drive = match &args.drive {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read drive file {}", path.display()))?;
+            let report = ecam_design::check_table(&table, &text, args.machine.master_speed)
+                .with_context(|| format!("drive file {}", path.display()))?;
+            Some(report)
+        }
+        None => None,
+    };
+    let report = TableReport::of(&args.file.display().to_string(), &table)
+        .at(args.machine.into())
+        .with_drive(drive);
     // A handle, not `println!`: a closed pipe is an error, not a panic.
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -193,7 +215,10 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
                 .generator
                 .clone()
                 .unwrap_or_else(|| display_name(&args.file));
-            cam_table::chart(&file, None, &name)
+            match &file.segments {
+                Some(cam) => cam_table::segment_cam_chart(cam, file.sync, &name),
+                None => cam_table::chart(&file, None, &name),
+            }
         }
         AnyTable::Uniform(table) => {
             cam_table::uniform_chart(&table, args.sync, &display_name(&args.file))

@@ -41,6 +41,11 @@ pub const ASSETS: &[Asset] = &[
         body: web_file!("app.js"),
     },
     Asset {
+        path: "/segments.js",
+        content_type: JS,
+        body: web_file!("segments.js"),
+    },
+    Asset {
         path: "/plots.js",
         content_type: JS,
         body: web_file!("plots.js"),

@@ -13,7 +13,9 @@
 //! | `GET /api/generators` | generator names, parameters, defaults |
 //! | `POST /api/table/gen` `{"generator": "rotary-cut", "params": {...}}` | a generated table with its curves |
 //! | `POST /api/keypoints` `{"lines": "600 0 cycloid\n..."}` | key points typed one per line, as `{"key": [...]}` |
-//! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block, one durable write (409 while its cam runs, unless `at-seam`) |
+//! | `POST /api/segments/continuous` `{"start": {...}, "segment": [...]}` | a segment cam's free boundary values filled in from the neighbours |
+//! | `POST /api/drive/check` `{"generator", "params", "drive", "master_speed"}` | the design checked against a drive (docs/design.md) |
+//! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block the program names (or one clear of them, below D8000), one durable write (409 while its cam runs, unless `at-seam`) |
 //! | `POST /api/table/check` `{"points": [[0, 0], ...]}` | a point table checked, with its section velocities, impulses and summary |
 //! | `POST /api/table/read` `{"name": "t.csv", "text": "..."}` | an uploaded table file read as `ecam table show` reads it |
 //! | `POST /api/table/convert` `{"format": "csv", "points": [...], ...}` | a table as `ecam table gen -o` writes it, `{"text": ...}` |
@@ -25,7 +27,9 @@
 //! | `POST /api/ethercat/fault` `{"drive": 1, "code": 29456}` | `--emulated`: make an emulated drive fault |
 //!
 //! Errors answer `{"error": "message"}` with status 400 (bad request), 404
-//! (unknown route) or 500 (the write could not be made durable).
+//! (unknown route), 409 (a write the program's cams refuse, with the PLC
+//! error `"code"` when there is one) or 500 (the write could not be made
+//! durable).
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -206,6 +210,14 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
         .route(
+            "/api/segments/continuous",
+            post(|b: Bytes| design(b, ecam_design::segments_continuous_json)),
+        )
+        .route(
+            "/api/drive/check",
+            post(|b: Bytes| design(b, ecam_design::drive_check_json)),
+        )
+        .route(
             "/api/table/check",
             post(|b: Bytes| design(b, ecam_design::table_check_json)),
         )
@@ -349,20 +361,24 @@ async fn post_devices(State(shared): State<Arc<Shared>>, body: Bytes) -> Respons
     };
     // The journal syncs to disk: keep that off the async workers.
     let writer = Arc::clone(&shared);
-    let written = tokio::task::spawn_blocking(move || writer.write(&batch))
-        .await
-        .map_err(|e| e.to_string())
-        .and_then(|r| r.map_err(|e| e.to_string()));
-    match written {
-        Ok(()) => json_text(
+    match tokio::task::spawn_blocking(move || writer.write(&batch)).await {
+        Ok(Ok(())) => json_text(
             StatusCode::OK,
             shared.read(|devices| devices_to_json(&views, devices)),
         ),
-        Err(message) => error(
-            StatusCode::INTERNAL_SERVER_ERROR,
-            &format!("not written: {message}"),
-        ),
+        Ok(Err(e)) => refused(e.http_status(), &e.to_string(), e.code()),
+        Err(e) => error(StatusCode::INTERNAL_SERVER_ERROR, &e.to_string()),
     }
+}
+
+/// `{"error": message, "code": 6782}` (the code when there is one).
+fn refused(status: u16, message: &str, code: Option<u16>) -> Response {
+    let status = StatusCode::from_u16(status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+    let mut body = json!({ "error": message });
+    if let Some(code) = code {
+        body["code"] = json!(code);
+    }
+    json_value(status, &body)
 }
 
 async fn law(Path(name): Path<String>, Query(query): Query<HashMap<String, String>>) -> Response {
@@ -387,37 +403,16 @@ async fn table_load(State(shared): State<Arc<Shared>>, body: Bytes) -> Response 
         Ok(load) => load,
         Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
-    let running = shared.with_plc(|plc| plc.cam_running(load.block));
-    if running && load.while_running == ecam_serve::WhileRunning::Refuse {
-        return error(
-            StatusCode::CONFLICT,
-            &format!(
-                "the cam of the block at D{} is running: send \"while_running\": \"at-seam\" to switch tables at its next seam",
-                load.block
-            ),
-        );
-    }
     let (block, points) = (load.block, load.points);
     // One journal record for the whole image (a sync to disk: off the
     // async workers); the scan sees the table complete or not at all.
-    let writer = Arc::clone(&shared);
-    let written = tokio::task::spawn_blocking(move || writer.write(&load.batch))
-        .await
-        .map_err(|e| e.to_string())
-        .and_then(|r| r.map_err(|e| e.to_string()));
-    match written {
-        Ok(()) => json_value(
+    match tokio::task::spawn_blocking(move || shared.load_table(&load)).await {
+        Ok(Ok(switch)) => json_value(
             StatusCode::OK,
-            &json!({
-                "block": block,
-                "points": points,
-                "switch": if running { "at-seam" } else { "now" },
-            }),
+            &json!({ "block": block, "points": points, "switch": switch.name() }),
         ),
-        Err(message) => error(
-            StatusCode::INTERNAL_SERVER_ERROR,
-            &format!("not written: {message}"),
-        ),
+        Ok(Err(e)) => refused(e.http_status(), &e.to_string(), e.code()),
+        Err(e) => error(StatusCode::INTERNAL_SERVER_ERROR, &e.to_string()),
     }
 }
 

@@ -5,7 +5,9 @@
 // live view, meet the 409 of a running cam and switch at the seam, drag a
 // key point, reload from the address; impulses where the server's steps
 // are, labelled without overlap; a point table's jerk switch off; the
-// DECAM block named by the server. Screenshots go to
+// DECAM block named by the server; edit a segment cam (change a law, make
+// it continuous, drag a point, see the plots, the continuity report and
+// the drive check change, write it to the PLC). Screenshots go to
 // target/browser-artifacts/; with ECAM_DOCS_SCREENSHOTS=1 the two the
 // user guide shows are refreshed in docs/img/.
 //
@@ -217,6 +219,72 @@ async function main() {
     const dragged = Number(await page.inputValue('#keys-grid [data-row="1"][data-field="slave"]'));
     assert.ok(dragged > marker.slave, `the dragged key point rose (${marker.slave} → ${dragged})`);
     await shot("02-key-points.png");
+
+    // ---- segments: change a law, make continuous, drag a point, write to the PLC
+    const settled = () => until("a settled plot", async () => !(await page.getAttribute("#plots", "class") || "").includes("updating"));
+    await page.click("#tab-segments");
+    await until("the segment cam", async () => (await page.textContent("#plots-title")).includes("Segments between"));
+    await settled();
+    await until("the continuity report", async () => (await page.textContent("#seg-class")).includes("cam C2"));
+    assert.match(await page.textContent("#seg-grid"), /1\.7596 \/ 5\.528/, "Cv / Ca of the modified sine");
+    await until("the drive check", async () => /cycles\/min/.test(await page.textContent("#drive-result")));
+    const driveBefore = await page.textContent("#drive-result");
+    const segBefore = await page.locator("#plot-v canvas").screenshot();
+    // A constant velocity out of a dwell: the velocity steps at both of its points.
+    await page.selectOption('#seg-grid select[data-row="2"]', "constant-velocity");
+    await until("the velocity steps reported", async () => (await page.textContent("#seg-class")).includes("cam C0"));
+    assert.equal(await page.getAttribute('#seg-grid td.joint[data-point="1"]', "data-class"), "C0");
+    await settled();
+    const segAfter = await page.locator("#plot-v canvas").screenshot();
+    assert.ok(!segBefore.equals(segAfter), "the velocity plot changed with the law");
+    await until("the drive check to follow", async () => (await page.textContent("#drive-result")) !== driveBefore);
+    assert.match(await page.textContent("#drive-note"), /velocity steps/);
+    // Let the dwells adapt, then make the cam continuous in one step.
+    await page.selectOption('#seg-grid select[data-row="1"]', "poly-5");
+    await page.selectOption('#seg-grid select[data-row="3"]', "poly-5");
+    await settled();
+    await page.click("#seg-continuous");
+    await until("the filled velocity", async () => (await page.inputValue('#seg-grid [data-row="1"][data-field="velocity"]')).startsWith("4.1666"));
+    await until("a continuous cam", async () => (await page.textContent("#seg-class")).includes("cam C2"));
+    await settled();
+    // Drag point 3 up on the displacement plot: the grid follows (its
+    // neighbours adapt, so the values just filled in still hold).
+    const segOver = page.locator("#plot-s .u-over");
+    await segOver.scrollIntoViewIfNeeded();
+    const segBox = await segOver.boundingBox();
+    const p2 = await page.evaluate(() => {
+      const u = charts.s.u;
+      const p = state.seg.segment[2];
+      return { x: u.valToPos(Number(p.master), "x"), y: u.valToPos(Number(p.slave), "y"), slave: Number(p.slave) };
+    });
+    await page.mouse.move(segBox.x + p2.x, segBox.y + p2.y);
+    await page.mouse.down();
+    await page.mouse.move(segBox.x + p2.x, segBox.y + p2.y - 25, { steps: 5 });
+    await page.mouse.up();
+    const draggedSlave = await until("the grid to follow the drag", async () => {
+      const v = await page.inputValue('#seg-grid [data-row="3"][data-field="slave"]');
+      return v !== "" && Number(v) > p2.slave ? Number(v) : null;
+    });
+    await settled();
+    await until("the report after the drag", async () => (await page.textContent("#seg-class")).includes("cam C2"));
+    // Keep continuous: free values follow every change, shown grey.
+    await page.fill('#seg-grid [data-row="1"][data-field="velocity"]', "");
+    await page.check("#seg-keep");
+    await until("the filled value as a hint", async () =>
+      (await page.getAttribute('#seg-grid [data-row="1"][data-field="velocity"]', "placeholder")) === "4.1667");
+    await shot("05-segments.png");
+    // The address holds the segments; a reload restores them.
+    await page.reload();
+    await until("the restored segments", async () => (await page.inputValue('#seg-grid [data-row="3"][data-field="slave"]')) === String(draggedSlave));
+    await settled();
+    // Write the segment cam's table to the PLC (the cam is idle: taken now).
+    await page.click("#plc-write");
+    await until("the segments written", async () => (await page.textContent("#plc-result")).includes("Written to D2000"))
+      .catch(async (err) => { throw new Error(`${err.message}: ${await page.textContent("#plc-result")} ${await page.textContent("#error")}`); });
+    const segLoaded = await (await fetch(base + "/api/devices?names=D2038,DD2436,DD2438")).json();
+    assert.equal(segLoaded.D2038, 100, "the block holds the segment table's 100 points");
+    // Point 99 (the last): master at 40 + 4·99 = 436, slave at 438.
+    assert.deepEqual([segLoaded.DD2436, segLoaded.DD2438], [3600, 0]);
 
     // ---- back to the rotary cut; download it
     await page.goto(url);

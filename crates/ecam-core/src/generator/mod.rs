@@ -21,6 +21,7 @@ pub mod rotary_cut;
 pub mod s_curve;
 mod sampling;
 pub mod schema;
+pub mod segments;
 mod sync_zone;
 
 pub use accel_curve::AccelCurve;

@@ -13,7 +13,7 @@ use super::motion_path::Path;
 use crate::{CamPoint, PointTable, TableError};
 
 /// Most sections a DECAM register block holds (document 003).
-pub(crate) const MAX_SECTIONS: usize = 512;
+pub(crate) const MAX_SECTIONS: usize = crate::register_image::MAX_SECTIONS;
 
 /// Samples `path` over `[0, master_end]` into at most `points` points.
 /// `pinned` points (table ends, sync-zone ends) get exactly their slave value.

@@ -127,6 +127,12 @@ pub enum FieldKind {
     /// Key points: a list of `{master, slave, curve, resolution}`, typed as
     /// lines ([`KeyPoint::parse_line`](super::key_points::KeyPoint::parse_line)).
     KeyPoints,
+    /// An interpolation point `{master, slave, velocity, acceleration,
+    /// jerk}` ([`InterpolationPoint`](crate::segments::InterpolationPoint)).
+    Point,
+    /// Segments: a list of `{law, master, slave, velocity, acceleration,
+    /// jerk, resolution}` ([`SegmentSpec`](crate::segments::SegmentSpec)).
+    Segments,
     /// Free text.
     Text,
     /// On or off.
@@ -135,13 +141,15 @@ pub enum FieldKind {
 
 impl FieldKind {
     /// The kind's name in `GET /api/generators` (`int`, `number`, `choice`,
-    /// `keys`, `text`, `bool`).
+    /// `keys`, `point`, `segments`, `text`, `bool`).
     pub const fn name(self) -> &'static str {
         match self {
             Self::Integer { .. } => "int",
             Self::Number => "number",
             Self::Choice(_) => "choice",
             Self::KeyPoints => "keys",
+            Self::Point => "point",
+            Self::Segments => "segments",
             Self::Text => "text",
             Self::Switch => "bool",
         }
@@ -454,6 +462,58 @@ pub const FUNCTION: &[Field] = &[
     },
 ];
 
+/// Segments between interpolation points, [`segments::Params`](super::segments::Params).
+pub const SEGMENTS: &[Field] = &[
+    Field {
+        key: "start",
+        param: None,
+        name: "first point",
+        help: "the first interpolation point: master, slave and, if the task fixes them, velocity \
+               (pulses/count), acceleration (pulses/count²) and jerk (pulses/count³); \
+               as a flag MASTER:SLAVE[:V[:A[:J]]], an empty field left free",
+        unit: "",
+        kind: FieldKind::Point,
+        shown_default: None,
+        register: None,
+    },
+    Field {
+        key: "segment",
+        param: None,
+        name: "segments",
+        help: "the segments in master order, each the law it follows to its end point \
+               (poly-5, poly-7, vv-cycloid or a motion law) and that point; \
+               as a flag LAW:MASTER:SLAVE[:V[:A[:J[:POINTS]]]], an empty field left free",
+        unit: "",
+        kind: FieldKind::Segments,
+        shown_default: None,
+        register: None,
+    },
+    Field {
+        key: "resolution",
+        param: None,
+        name: "total points",
+        help: "total points in the sampled table",
+        unit: "",
+        kind: int(
+            Storage::U16,
+            MIN_TOTAL_RESOLUTION as i64,
+            MAX_TOTAL_RESOLUTION as i64,
+        ),
+        shown_default: None,
+        register: None,
+    },
+    Field {
+        key: "continuous",
+        param: None,
+        name: "make continuous",
+        help: "fill every free velocity, acceleration and jerk from the neighbouring segments first",
+        unit: "",
+        kind: FieldKind::Switch,
+        shown_default: None,
+        register: None,
+    },
+];
+
 /// Every generator, in the order front ends list them.
 pub const GENERATORS: &[Generator] = &[
     Generator {
@@ -490,6 +550,13 @@ pub const GENERATORS: &[Generator] = &[
         title: "Function of the master x",
         about: "A function of the master, sampled evenly (the PC editor's \"data setting\", document 003 §6.2).",
         fields: FUNCTION,
+    },
+    Generator {
+        name: "segments",
+        aliases: &[],
+        title: "Segments between interpolation points (VDI 2143)",
+        about: "Segments between interpolation points, each with its motion law, solved for the points' velocity, acceleration and jerk.",
+        fields: SEGMENTS,
     },
 ];
 
@@ -609,6 +676,7 @@ mod tests {
             "s-curve" => serde_json::to_value(s_curve::Params::default()),
             "rotary-cut" | "fly-saw" => serde_json::to_value(super::super::CutParams::default()),
             "keypoints" => serde_json::to_value(super::super::key_points::Params::default()),
+            "segments" => serde_json::to_value(super::super::segments::Params::default()),
             _ => serde_json::to_value(super::super::function::Params::default()),
         };
         let serde_json::Value::Object(map) = value.unwrap() else {
@@ -623,7 +691,8 @@ mod tests {
             let mut fields: alloc::vec::Vec<String> = g
                 .fields
                 .iter()
-                .filter(|f| f.kind != FieldKind::Switch)
+                // The flying saw's `cycle` is the front end's (it joins two tables).
+                .filter(|f| !(g.name == "fly-saw" && f.key == "cycle"))
                 .map(|f| String::from(f.key))
                 .collect();
             let mut keys = params_keys(g.name);

@@ -204,6 +204,7 @@ impl TableFile {
             sync: None,
             generator: None,
             kinematics: derivative_columns.map(|_| kinematics),
+            segments: None,
         })
     }
 
@@ -255,6 +256,7 @@ mod tests {
             sync: Some((10, 20)),
             generator: Some("test".into()),
             kinematics: None,
+            segments: None,
         }
     }
 

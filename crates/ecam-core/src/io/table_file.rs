@@ -30,6 +30,7 @@ use std::vec::Vec;
 use serde::{Deserialize, Serialize};
 
 use super::FormatError;
+use crate::segments::SegmentCam;
 use crate::table::derivatives;
 use crate::{CamCurve, CamPoint, CamTable, Kinematics, PointTable, SegmentProfile, UniformTable};
 
@@ -46,6 +47,10 @@ pub struct TableFile {
     /// exactly (from the generator's curve, or read from the file);
     /// otherwise they are estimated from the points.
     pub kinematics: Option<Vec<Kinematics>>,
+    /// The segment cam the table was sampled from (`ecam table gen
+    /// segments`), where known: JSON keeps it as `"segments": {"start",
+    /// "segments"}`, so its continuity and peaks can be reported exactly.
+    pub segments: Option<Box<SegmentCam>>,
 }
 
 impl TableFile {
@@ -66,6 +71,7 @@ impl TableFile {
             _kind: None,
             generator: self.generator.clone(),
             sync: self.sync.map(|(low, high)| JsonSync { low, high }),
+            segments: self.segments.clone(),
             points: self
                 .table
                 .points()
@@ -179,6 +185,7 @@ impl AnyTable {
             sync: json.sync.map(|s| (s.low, s.high)),
             generator: json.generator,
             kinematics,
+            segments: json.segments,
         }))
     }
 }
@@ -216,6 +223,8 @@ struct JsonTable {
     generator: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     sync: Option<JsonSync>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    segments: Option<Box<SegmentCam>>,
     points: Vec<JsonPoint>,
 }
 
@@ -236,6 +245,7 @@ fn other_kind(text: &str, ours: &serde_json::Error) -> Result<AnyTable, FormatEr
             sync: None,
             generator: None,
             kinematics: None,
+            segments: None,
         })),
         Ok(CamTable::Uniform(table)) => Ok(AnyTable::Uniform(table)),
         Ok(CamTable::Profile(table)) => Ok(AnyTable::Profile(table)),
@@ -302,6 +312,7 @@ mod tests {
             sync: Some((10, 20)),
             generator: Some("test".into()),
             kinematics: None,
+            segments: None,
         }
     }
 

@@ -80,4 +80,24 @@ impl MotionLaw {
             zero_end_acceleration,
         }
     }
+
+    /// Peaks of `|v|`, `|a|`, `|j|` *inside* the rise, `0 < u < 1`: the
+    /// law's own shape, without the impulses a jump at an end would make
+    /// against a dwell (in a segment cam those belong to the joint, whose
+    /// continuity is reported there). A jump inside the rise still counts:
+    /// constant acceleration steps from +4 to −4 at mid-rise, an impulse of
+    /// jerk (`INFINITY`).
+    pub const fn interior_peaks(self) -> (f64, f64, f64) {
+        const PI: f64 = core::f64::consts::PI;
+        match self {
+            Self::ConstantVelocity => (1.0, 0.0, 0.0),
+            Self::ConstantAcceleration => (2.0, 4.0, f64::INFINITY),
+            Self::SimpleHarmonic => (PI / 2.0, PI * PI / 2.0, PI * PI * PI / 2.0),
+            Self::Cubic => (1.5, 6.0, 12.0),
+            _ => {
+                let c = self.characteristics();
+                (c.cv, c.ca, c.cj)
+            }
+        }
+    }
 }

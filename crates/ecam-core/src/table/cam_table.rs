@@ -73,4 +73,7 @@ impl CamCurve for CamTable {
     fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
         delegate!(self, t => t.positions_into(masters, out))
     }
+    fn turns_back(&self) -> bool {
+        delegate!(self, t => t.turns_back())
+    }
 }

@@ -200,12 +200,13 @@ impl Lines {
     /// [`Lines::position`] for each master, one cursor throughout.
     ///
     /// Ascending masters are taken in runs that fall in one section, the
-    /// end of each found by a binary search among the masters; each run is
-    /// one loop with the section's figures fixed, which the compiler turns
-    /// into vector instructions, and which also checks that every master
-    /// of the run was in the section. Should one not be (the masters are
-    /// not in order), that run and the rest are placed one by one. The
-    /// arithmetic is the same either way, so is every result.
+    /// end of each found by a binary search among the masters (no search
+    /// per master); each run is one pass with the section's figures fixed,
+    /// which the compiler turns into vector instructions, and which also
+    /// checks that every master of the run was in the section. Should one
+    /// not be (the masters are not in order), that run and the rest are
+    /// placed one by one. The arithmetic is the same either way, so is
+    /// every result.
     pub(super) fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
         let count = masters.len().min(out.len());
         let (masters, out) = (&masters[..count], &mut out[..count]);
@@ -218,25 +219,34 @@ impl Lines {
                 .max(1);
             let end = start + run;
             let (queries, results) = (&masters[start..end], &mut out[start..end]);
-            // Checked in a pass of its own, which vectorises; so do the
-            // next. A NaN fails the check and goes the one-by-one way.
-            let inside = queries.iter().fold(true, |all, &m| all & section.holds(m));
+            // One pass computes the run and checks that every master was
+            // in the section (a NaN fails the check); it vectorises, as it
+            // neither branches nor stops early. Should one not be (the
+            // masters are not in order), the run is redone one by one.
+            let inside = if section.from >= self.first && section.until <= self.last {
+                // An inner section: every master of the run is inside the
+                // table already, so clamping would change nothing.
+                results
+                    .iter_mut()
+                    .zip(queries)
+                    .fold(true, |all, (slot, &m)| {
+                        *slot = section.position(m);
+                        all & section.holds(m)
+                    })
+            } else {
+                results
+                    .iter_mut()
+                    .zip(queries)
+                    .fold(true, |all, (slot, &m)| {
+                        *slot = section.position(self.clamp(m));
+                        all & section.holds(m)
+                    })
+            };
             if !inside {
                 for (slot, &m) in out[start..].iter_mut().zip(&masters[start..]) {
                     *slot = self.position(m, &mut cursor);
                 }
                 return;
-            }
-            if section.from >= self.first && section.until <= self.last {
-                // An inner section: every master of the run is inside the
-                // table already, so clamping would change nothing.
-                for (slot, &m) in results.iter_mut().zip(queries) {
-                    *slot = section.position(m);
-                }
-            } else {
-                for (slot, &m) in results.iter_mut().zip(queries) {
-                    *slot = section.position(self.clamp(m));
-                }
             }
             start = end;
         }

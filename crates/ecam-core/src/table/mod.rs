@@ -31,7 +31,25 @@ mod uniform;
 pub use cam_table::CamTable;
 pub use function::sample_function;
 pub use point::{CamPoint, PointTable};
+pub(crate) use resolution::distribute;
 pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
 pub use segment::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION, Segment, SegmentProfile};
+pub(crate) use segment::{sample_spans, sample_uniform};
 pub use summary::{Continuity, Summary};
 pub use uniform::{MAX_CAM_COUNTS, UniformTable};
+
+/// Whether slave values taken in master order move both up and down
+/// (see [`crate::CamCurve::turns_back`]); straight lines between them add
+/// no turn of their own.
+pub(crate) fn turns_back(slaves: impl Iterator<Item = i64>) -> bool {
+    let (mut up, mut down) = (false, false);
+    let mut last: Option<i64> = None;
+    for s in slaves {
+        if let Some(l) = last {
+            up |= s > l;
+            down |= s < l;
+        }
+        last = Some(s);
+    }
+    up && down
+}

@@ -40,6 +40,9 @@ pub struct PointTable {
     /// Derived from `points`; not part of the table's identity or files.
     #[serde(skip)]
     lines: Lines,
+    /// Derived from `points` ([`CamCurve::turns_back`]).
+    #[serde(skip)]
+    turns_back: bool,
 }
 
 impl PartialEq for PointTable {
@@ -84,7 +87,12 @@ impl PointTable {
             return Err(TableError::MasterNotIncreasing { section: bad + 1 });
         }
         let lines = Lines::new(&points);
-        Ok(Self { points, lines })
+        let turns_back = super::turns_back(points.iter().map(|p| p.slave));
+        Ok(Self {
+            points,
+            lines,
+            turns_back,
+        })
     }
 
     /// Builds a table from `(master, slave)` pairs.
@@ -136,6 +144,10 @@ impl CamCurve for PointTable {
     fn positions_into(&self, masters: &[f64], out: &mut [f64]) {
         self.lines.positions_into(masters, out);
     }
+
+    fn turns_back(&self) -> bool {
+        self.turns_back
+    }
 }
 
 #[cfg(test)]
@@ -155,6 +167,18 @@ mod tests {
         assert_eq!(t.position(15000.0, &mut c), 1250.0);
         assert_eq!(t.position(30000.0, &mut c), 2000.0);
         assert_eq!(t.eval(25000.0, &mut c).v, 0.1);
+    }
+
+    #[test]
+    fn knows_whether_the_slave_turns_back() {
+        assert!(doc001().turns_back(), "1500 then 1000: down after up");
+        let knife = PointTable::from_pairs(&[(0, 0), (10, 0), (20, 700), (30, 1000)]).unwrap();
+        assert!(!knife.turns_back(), "dwells and rises: never back");
+        let falling = PointTable::from_pairs(&[(0, 0), (10, -5), (20, -5)]).unwrap();
+        assert!(!falling.turns_back());
+        let copy: PointTable =
+            serde_json::from_str(&serde_json::to_string(&doc001()).unwrap()).unwrap();
+        assert!(copy.turns_back(), "worked out again when read from JSON");
     }
 
     #[test]

@@ -197,35 +197,12 @@ impl SegmentProfile {
     /// [`TableError::SectionCount`] (6783) for a total above 512.
     pub fn sample(&self, total_resolution: u16) -> Result<PointTable, TableError> {
         let per_segment = self.resolutions(total_resolution)?;
-        let capacity = per_segment.iter().map(|&r| usize::from(r)).sum::<usize>() + 1;
-        let mut points = Vec::with_capacity(capacity);
-        points.push(self.start);
-        for (i, (seg, &count)) in self.segments.iter().zip(&per_segment).enumerate() {
+        let ends: Vec<CamPoint> = self.key_points().skip(1).collect();
+        sample_spans(self.start, &ends, &per_segment, |i, u| {
             let from = self.segment_start(i);
-            // Positions are within ±2^52, so spans and products fit i128 easily.
-            let span = i128::from(seg.master_end) - i128::from(from.master);
-            let count_wide = i128::from(count);
-            if span < count_wide {
-                return Err(TableError::Parameter {
-                    name: "segment resolution",
-                    reason: "is larger than the segment's length in master counts",
-                });
-            }
-            let rise = (seg.slave_end - from.slave) as f64;
-            for k in 1..=count_wide {
-                if k == count_wide {
-                    points.push(CamPoint::new(seg.master_end, seg.slave_end));
-                    continue;
-                }
-                let offset = span * k / count_wide;
-                // offset < span ≤ 2^53: exact in f64 and i64.
-                let master = from.master + offset as i64;
-                let u = offset as f64 / span as f64;
-                let slave = from.slave as f64 + rise * seg.law.eval(u).s;
-                points.push(CamPoint::new(master, libm::round(slave) as i64));
-            }
-        }
-        PointTable::new(points)
+            let seg = self.segments[i];
+            from.slave as f64 + (seg.slave_end - from.slave) as f64 * seg.law.eval(u).s
+        })
     }
 
     /// The evenly spaced table of document 002's motion processor: `values`
@@ -238,32 +215,7 @@ impl SegmentProfile {
     /// As [`UniformTable::new`]: fewer than two values, a span outside
     /// 2..=2²⁹, or a slave value beyond 32 bits.
     pub fn sample_uniform(&self, values: usize) -> Result<UniformTable, TableError> {
-        if values < 2 {
-            return Err(TableError::SectionCount {
-                count: values,
-                min: 2,
-                max: usize::MAX,
-            });
-        }
-        let span = self.master_span();
-        if !(2..=MAX_CAM_COUNTS).contains(&span) {
-            return Err(TableError::Parameter {
-                name: "CamCounts (the profile's master span)",
-                reason: "must be between 2 and 2^29 (536870912)",
-            });
-        }
-        let first = self.master_first() as f64;
-        let pieces = (values - 1) as f64;
-        let masters: Vec<f64> = (0..values)
-            .map(|k| first + span as f64 * k as f64 / pieces)
-            .collect();
-        let mut positions = alloc::vec![0.0; values];
-        self.positions_into(&masters, &mut positions);
-        if let Some(end) = positions.last_mut() {
-            *end = self.slave_last() as f64;
-        }
-        let slaves = positions.iter().map(|&s| libm::round(s) as i64).collect();
-        UniformTable::new(slaves, span)
+        sample_uniform(self, values)
     }
 
     /// Points to draw the profile with: `per_segment + 1` evenly spaced
@@ -328,6 +280,89 @@ impl SegmentProfile {
         cursor.segment = found;
         found
     }
+}
+
+/// The point table of a cam made of segments between key points: `start`,
+/// then `per_segment[i]` points evenly spaced in whole counts over segment
+/// `i` (which ends at `ends[i]`), the last exactly on its key point, the
+/// others at `slave_at(i, u)` (the exact slave at the normalised master `u`
+/// of segment `i`) rounded to whole pulses. The sampling rules of
+/// [`SegmentProfile::sample`], shared by every segment cam.
+///
+/// # Errors
+/// A segment shorter (in master counts) than its number of points (6781);
+/// a table [`PointTable::new`] refuses.
+pub(crate) fn sample_spans(
+    start: CamPoint,
+    ends: &[CamPoint],
+    per_segment: &[u16],
+    slave_at: impl Fn(usize, f64) -> f64,
+) -> Result<PointTable, TableError> {
+    let capacity = per_segment.iter().map(|&r| usize::from(r)).sum::<usize>() + 1;
+    let mut points = Vec::with_capacity(capacity);
+    points.push(start);
+    let mut from = start;
+    for (i, (end, &count)) in ends.iter().zip(per_segment).enumerate() {
+        // Positions are within ±2^52, so spans and products fit i128 easily.
+        let span = i128::from(end.master) - i128::from(from.master);
+        let count_wide = i128::from(count);
+        if span < count_wide {
+            return Err(TableError::Parameter {
+                name: "segment resolution",
+                reason: "is larger than the segment's length in master counts",
+            });
+        }
+        for k in 1..=count_wide {
+            if k == count_wide {
+                points.push(*end);
+                continue;
+            }
+            let offset = span * k / count_wide;
+            // offset < span ≤ 2^53: exact in f64 and i64.
+            let master = from.master + offset as i64;
+            let slave = slave_at(i, offset as f64 / span as f64);
+            points.push(CamPoint::new(master, libm::round(slave) as i64));
+        }
+        from = *end;
+    }
+    PointTable::new(points)
+}
+
+/// The evenly spaced table of document 002 sampled from `curve` (see
+/// [`SegmentProfile::sample_uniform`]).
+///
+/// # Errors
+/// As [`SegmentProfile::sample_uniform`].
+pub(crate) fn sample_uniform(
+    curve: &impl CamCurve,
+    values: usize,
+) -> Result<UniformTable, TableError> {
+    if values < 2 {
+        return Err(TableError::SectionCount {
+            count: values,
+            min: 2,
+            max: usize::MAX,
+        });
+    }
+    let span = curve.master_span();
+    if !(2..=MAX_CAM_COUNTS).contains(&span) {
+        return Err(TableError::Parameter {
+            name: "CamCounts (the profile's master span)",
+            reason: "must be between 2 and 2^29 (536870912)",
+        });
+    }
+    let first = curve.master_first() as f64;
+    let pieces = (values - 1) as f64;
+    let masters: Vec<f64> = (0..values)
+        .map(|k| first + span as f64 * k as f64 / pieces)
+        .collect();
+    let mut positions = alloc::vec![0.0; values];
+    curve.positions_into(&masters, &mut positions);
+    if let Some(end) = positions.last_mut() {
+        *end = curve.slave_last() as f64;
+    }
+    let slaves = positions.iter().map(|&s| libm::round(s) as i64).collect();
+    UniformTable::new(slaves, span)
 }
 
 impl CamCurve for SegmentProfile {

@@ -18,6 +18,9 @@ pub enum Continuity {
     C1,
     /// Acceleration continuous at every joint.
     C2,
+    /// Jerk continuous too. [`Summary`] stops at `C2`; a segment cam's joint
+    /// report ([`crate::segments::ContinuityReport`]) tells `C2` from `C3`.
+    C3,
 }
 
 impl core::fmt::Display for Continuity {
@@ -27,6 +30,7 @@ impl core::fmt::Display for Continuity {
             Self::C0 => "C0",
             Self::C1 => "C1",
             Self::C2 => "C2",
+            Self::C3 => "C3",
         })
     }
 }

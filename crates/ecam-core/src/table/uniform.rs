@@ -31,6 +31,9 @@ pub const MAX_CAM_COUNTS: i64 = 1 << 29;
 pub struct UniformTable {
     values: Vec<i64>,
     cam_counts: i64,
+    /// Derived from `values` ([`CamCurve::turns_back`]).
+    #[serde(skip)]
+    turns_back: bool,
 }
 
 #[derive(serde::Deserialize)]
@@ -72,7 +75,12 @@ impl UniformTable {
         if let Some(bad) = values.iter().position(|&v| i32::try_from(v).is_err()) {
             return Err(TableError::ValueOutOfRange { section: bad });
         }
-        Ok(Self { values, cam_counts })
+        let turns_back = super::turns_back(values.iter().copied());
+        Ok(Self {
+            values,
+            cam_counts,
+            turns_back,
+        })
     }
 
     /// The slave values, first at master 0, last at `cam_counts`.
@@ -110,6 +118,10 @@ impl CamCurve for UniformTable {
         self.values.len() - 1
     }
 
+    fn turns_back(&self) -> bool {
+        self.turns_back
+    }
+
     /// O(1) for any master: the piece is found by division, so the cursor
     /// only records it.
     fn eval(&self, master: f64, cursor: &mut Cursor) -> Kinematics {
@@ -142,6 +154,20 @@ impl CamCurve for UniformTable {
 mod tests {
     use super::*;
     use alloc::vec;
+
+    #[test]
+    fn knows_whether_the_slave_turns_back() {
+        assert!(
+            !UniformTable::new(vec![0, 100, 200], 100)
+                .unwrap()
+                .turns_back()
+        );
+        assert!(
+            UniformTable::new(vec![0, 100, 50], 100)
+                .unwrap()
+                .turns_back()
+        );
+    }
 
     #[test]
     fn document_002_example_is_a_straight_line() {

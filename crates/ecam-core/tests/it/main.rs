@@ -11,6 +11,7 @@ mod generators_rotary_cut;
 mod generators_s_curve;
 mod key_points;
 mod properties;
+mod segments;
 mod summary_points;
 mod tables;
 

@@ -5,7 +5,7 @@ use core::num::NonZeroU64;
 
 use ecam_core::CamCurve;
 
-use crate::coupling::{Engagement, Geometry, Place};
+use crate::coupling::{Engagement, Place};
 use crate::ramp::Ramp;
 use crate::ramp_in::{RampDirection, RampInLimits};
 use crate::{EngineError, RampIn};
@@ -45,20 +45,6 @@ impl<C: CamCurve> CamAxis<C> {
             steady: None,
         });
         Ok(())
-    }
-
-    /// The place of `master` under `geometry` (a one-shot held in its span).
-    pub(super) fn resolve_on(
-        &self,
-        geometry: &Geometry,
-        engagement: &Engagement,
-        master: i64,
-    ) -> Place {
-        let mut t = engagement.table_input(geometry, master);
-        if let Some((begin, end)) = engagement.span {
-            t = t.clamp(begin, end);
-        }
-        geometry.locate(t)
     }
 
     /// The ramp-in that keeps to `limits` for the engagement at `place`,

@@ -1,7 +1,8 @@
-//! The steady tick against the general one: the same axis driven twice,
-//! once as `tick` runs it and once with the steady path switched off,
-//! must give identical outputs every tick, through engages, seams, jumps,
-//! master fractions, online offset changes and stops.
+//! The steady tick and the fast lane against the general tick: the same
+//! axis driven twice, once as `tick` runs it and once with the steady path
+//! and the lane switched off, must give identical outputs every tick,
+//! through engages, ramp-ins, seams, jumps, master fractions, online offset
+//! and scaling changes, switches with blends and stops.
 
 use core::num::NonZeroU64;
 
@@ -10,7 +11,8 @@ use proptest::prelude::*;
 use std::vec::Vec;
 
 use crate::{
-    AxisConfig, CamAxis, Coupling, OffsetChange, SlaveAlign, StopKind, SyncWindow, TickInput, Zoom,
+    AxisConfig, CamAxis, Coupling, OffsetChange, RampIn, SlaveAlign, StopKind, SwitchAt,
+    SyncWindow, TickInput, Zoom,
 };
 
 fn table(slaves: &[i64], step: i64) -> PointTable {
@@ -54,6 +56,8 @@ enum Move {
     SlaveScaling(i32),
     /// MC_CamOut as the standard: continue at the current velocity.
     CamOut,
+    /// A table switched in at once with a blend (slaves scaled by this factor).
+    Switch(i64),
 }
 
 fn moves() -> impl Strategy<Value = Vec<Move>> {
@@ -68,6 +72,7 @@ fn moves() -> impl Strategy<Value = Vec<Move>> {
             1 => (-3i64..4).prop_map(Move::Queue),
             1 => prop_oneof![(-12i32..-1), (1i32..12)].prop_map(Move::SlaveScaling),
             1 => Just(Move::CamOut),
+            1 => (-3i64..4).prop_map(Move::Switch),
         ],
         1..300,
     )
@@ -92,6 +97,7 @@ proptest! {
         mzoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
         szoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
         start in -100_000i64..100_000,
+        ramp_in in proptest::option::of(1u64..3000),
         moves in moves(),
     ) {
         let config = AxisConfig {
@@ -105,6 +111,7 @@ proptest! {
                 SyncWindow::OFF,
                 SyncWindow::new(-5, 5),
             ],
+            ramp_in: ramp_in.and_then(NonZeroU64::new).map(|distance| RampIn { distance }),
             ..AxisConfig::default()
         };
         // Signed scalings are refused where they make no sense (a one-shot
@@ -155,6 +162,14 @@ proptest! {
                 }
                 Move::CamOut => {
                     prop_assert_eq!(fast.cam_out_at_velocity(), general.cam_out_at_velocity());
+                }
+                Move::Switch(factor) => {
+                    let scaled: Vec<i64> = slaves.iter().map(|s| s * factor).collect();
+                    let at = SwitchAt::Now { blend: NonZeroU64::new(800) };
+                    prop_assert_eq!(
+                        fast.switch_curve(table(&scaled, step), at),
+                        general.switch_curve(table(&scaled, step), at)
+                    );
                 }
             }
             let input = TickInput {

@@ -12,7 +12,7 @@ use crate::switch::Takeover;
 use crate::{AxisConfig, EngineError, SlaveAlign};
 
 use super::phase::Engaged;
-use super::{AfterPass, CamAxis};
+use super::{AfterPass, CamAxis, Coupled};
 
 impl<C: CamCurve> CamAxis<C> {
     /// Ends a run: a table still queued is the one to restart with.
@@ -50,6 +50,22 @@ impl<C: CamCurve> CamAxis<C> {
             self.retired = Some(core::mem::replace(&mut self.curve, curve));
         }
     }
+}
+
+impl<C: CamCurve> Coupled<'_, C> {
+    /// The place of `master` under `geometry` (a one-shot held in its span).
+    pub(super) fn resolve_on(
+        &self,
+        geometry: &Geometry,
+        engagement: &Engagement,
+        master: i64,
+    ) -> Place {
+        let mut t = engagement.table_input(geometry, master);
+        if let Some((begin, end)) = engagement.span {
+            t = t.clamp(begin, end);
+        }
+        geometry.locate(t)
+    }
 
     /// Carries out a waiting position or at-once switch at master `at`:
     /// the new cam is aligned to the master as at engage and anchored on
@@ -64,42 +80,41 @@ impl<C: CamCurve> CamAxis<C> {
             return Ok(());
         };
         let place = self.resolve(&engaged.engagement, None, at).place;
-        let old =
-            engaged
-                .engagement
-                .sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let old = engaged
+            .engagement
+            .sample(self.geometry, &*self.curve, self.cursor, place)?;
         match pending.takeover {
             Takeover::Table(curve) => {
-                let geometry = Geometry::new(&curve, &self.config)?;
+                let geometry = Geometry::new(&curve, self.config)?;
                 let mut cursor = Cursor::new();
                 let config = AxisConfig {
                     slave_align: SlaveAlign::Relative,
-                    ..self.config
+                    ..*self.config
                 };
                 let engagement =
                     Engagement::new(&geometry, &config, &curve, &mut cursor, at, old.slave)?;
                 engaged.engagement = engagement;
-                self.geometry = geometry;
-                self.cursor = cursor;
-                self.retired = Some(core::mem::replace(&mut self.curve, curve));
+                *self.geometry = geometry;
+                *self.cursor = cursor;
+                *self.retired = Some(core::mem::replace(self.curve, curve));
             }
             Takeover::MasterScaling(zoom) => {
                 let config = AxisConfig {
                     master_zoom: zoom,
-                    ..self.config
+                    ..*self.config
                 };
-                let geometry = Geometry::new(&self.curve, &config)?;
+                let geometry = Geometry::new(&*self.curve, &config)?;
                 let mut engagement =
                     engaged
                         .engagement
-                        .with_master_rescaled(&self.geometry, &geometry, at)?;
+                        .with_master_rescaled(self.geometry, &geometry, at)?;
                 let place = self.resolve_on(&geometry, &engagement, at);
-                let new = engagement.sample(&geometry, &self.curve, &mut self.cursor, place)?;
+                let new = engagement.sample(&geometry, &*self.curve, self.cursor, place)?;
                 // Anchored: the new table unit may round the phase.
                 engagement.shift_output(i128::from(old.slave) - i128::from(new.slave))?;
                 engaged.engagement = engagement;
-                self.geometry = geometry;
-                self.config = config;
+                *self.geometry = geometry;
+                *self.config = config;
             }
         }
         engaged.blend = match pending.blend {
@@ -138,10 +153,9 @@ impl<C: CamCurve> CamAxis<C> {
         } else {
             Geometry::cycle_start(from.k)
         };
-        let old =
-            engaged
-                .engagement
-                .sample(&self.geometry, &self.curve, &mut self.cursor, at_seam)?;
+        let old = engaged
+            .engagement
+            .sample(self.geometry, &*self.curve, self.cursor, at_seam)?;
         let Some((curve, then)) = engaged.queued.take() else {
             return Ok(false);
         };
@@ -151,16 +165,13 @@ impl<C: CamCurve> CamAxis<C> {
             Some(distance) => {
                 let at = engaged
                     .engagement
-                    .master_at_seam(&self.geometry, from.k, forward);
+                    .master_at_seam(self.geometry, from.k, forward);
                 let place = self.resolve(&engaged.engagement, None, at).place;
                 // Exactly on the seam: seen from the old cycle's side.
                 let there = if place.k == from.k {
-                    engaged.engagement.sample(
-                        &self.geometry,
-                        &self.curve,
-                        &mut self.cursor,
-                        place,
-                    )?
+                    engaged
+                        .engagement
+                        .sample(self.geometry, &*self.curve, self.cursor, place)?
                 } else {
                     old
                 };
@@ -168,10 +179,10 @@ impl<C: CamCurve> CamAxis<C> {
             }
             None => None,
         };
-        let geometry = Geometry::new(&curve, &self.config)?;
+        let geometry = Geometry::new(&curve, self.config)?;
         let mut cursor = Cursor::new();
         let mut next = engaged.engagement.across_seam(
-            &self.geometry,
+            self.geometry,
             &geometry,
             &curve,
             &mut cursor,
@@ -182,9 +193,9 @@ impl<C: CamCurve> CamAxis<C> {
         if then == AfterPass::Finish {
             next.finish_after_first_pass(&geometry, forward);
         }
-        self.geometry = geometry;
-        self.cursor = cursor;
-        self.retired = Some(core::mem::replace(&mut self.curve, curve));
+        *self.geometry = geometry;
+        *self.cursor = cursor;
+        *self.retired = Some(core::mem::replace(self.curve, curve));
         engaged.engagement = next;
         if let Some((at, distance, p0, v0)) = blend_from {
             engaged.blend = Some(self.blend_onto(&engaged.engagement, at, distance, p0, v0)?);
@@ -208,7 +219,7 @@ impl<C: CamCurve> CamAxis<C> {
         }; 2];
         for (end, master) in ends.iter_mut().zip(Blend::ends(at, distance.get())?) {
             let place = self.resolve(engagement, None, master).place;
-            let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            let cam = engagement.sample(self.geometry, &*self.curve, self.cursor, place)?;
             *end = BlendEnd {
                 slave: cam.slave,
                 velocity_ratio: cam.velocity_ratio,

@@ -50,6 +50,7 @@ fn ends_closer_than_one_user_unit_are_not_joined() {
         ..AxisConfig::default()
     };
     let mut a = axis(config);
+    assert_eq!(slave_at(&mut a, 0), 500);
     assert_eq!(slave_at(&mut a, 35000), 1000);
     // One user unit = 1500 pulses: exactly one unit apart, joined.
     let config = AxisConfig {
@@ -57,6 +58,7 @@ fn ends_closer_than_one_user_unit_are_not_joined() {
         ..AxisConfig::default()
     };
     let mut a = axis(config);
+    assert_eq!(slave_at(&mut a, 0), 500);
     assert_eq!(slave_at(&mut a, 35000), 2500);
 }
 

@@ -43,7 +43,9 @@ fn a_start_passed_backwards_waits_for_the_next_forward_pass() {
     let out = axis.tick(&TickInput::at(1200, TICK_US));
     assert!(out.events.engaged);
     assert!(!out.activation_missed);
-    assert_eq!(out.slave, 1200);
+    // The cycle the master starts in counts as the first (the start rule):
+    // 1000 is that cycle's origin, where the table gives 0.
+    assert_eq!(out.slave, 200);
 }
 
 #[test]
@@ -53,7 +55,10 @@ fn a_start_passed_backwards_starts_now_by_default() {
     assert!(out.events.activation_missed);
     assert!(out.events.engaged);
     assert_eq!(out.state, AxisState::Running);
-    assert_eq!(out.slave, 500, "engaged at 1000 and followed back to 500");
+    assert_eq!(
+        out.slave, -500,
+        "engaged at 1000 (0) and followed back to 500"
+    );
 }
 
 #[test]
@@ -138,8 +143,9 @@ mod single_turn {
         }
         let out = axis.tick(&TickInput::at(3510, TICK_US));
         assert!(out.events.engaged && !out.activation_missed);
-        // Unwrapped 7110 (one turn on): the repeat cam a stroke higher.
-        assert_eq!(out.slave, 7110);
+        // Unwrapped 7110, a turn on: the start rule counts the turn it
+        // engages in as the first, so the slave takes the table value.
+        assert_eq!(out.slave, 3510);
     }
 
     #[test]
@@ -162,7 +168,7 @@ mod single_turn {
         let out = axis.tick(&TickInput::at(20, TICK_US));
         assert!(out.events.engaged && !out.events.activation_missed);
         assert_eq!(
-            out.slave, 3620,
+            out.slave, 20,
             "engaged at 5 in the next turn, followed to 20"
         );
     }
@@ -186,10 +192,11 @@ mod single_turn {
         let mut axis = armed_in_the_turn(MissedActivation::StartNow, 100);
         let out = axis.tick(&TickInput::at(3400, TICK_US));
         assert!(out.events.activation_missed && out.events.engaged);
-        // Engaged at 3500 of the turn before (unwrapped −100), followed
-        // back to 3400 of it (−200): a repeat cam one stroke lower.
+        // Engaged at 3500 of the turn before (unwrapped −100): the start
+        // rule puts the slave on the table value ahead of it in the table's
+        // direction (3500, less than a turn), then it follows back to 3400.
         assert_eq!(out.state, AxisState::Running);
-        assert_eq!(out.slave, -200);
+        assert_eq!(out.slave, 3400);
     }
 
     #[test]

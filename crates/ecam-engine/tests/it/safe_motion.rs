@@ -12,7 +12,10 @@
 //! - at constant speed, pulses per tick follow the cam's velocity within
 //!   one pulse once the tracker has settled;
 //! - on any table (periodic seams that jump included) each tick's pulses
-//!   move the output towards the command and never past it.
+//!   move the output towards the command and never past it;
+//! - starts and restarts from anywhere, in every start mode and as every
+//!   face sets the engine up, never reverse and move the slave less than
+//!   one stroke (`starts`).
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 use core::num::{NonZeroU32, NonZeroU64};
@@ -22,6 +25,8 @@ use ecam_engine::{
     AxisConfig, CamAxis, Coupling, MasterFilter, SlaveAlign, TickInput, TickOutput, TimeBase, Zoom,
 };
 use proptest::prelude::*;
+
+mod starts;
 
 const TICK_US: u32 = 100;
 

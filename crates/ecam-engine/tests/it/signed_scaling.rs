@@ -171,7 +171,8 @@ proptest! {
         let mut axis = CamAxis::new(table.clone(), config).unwrap();
         axis.arm().unwrap();
         let mut master = 0i64;
-        let mut outs = Vec::new();
+        // Engaged at 0, as the fresh axis below: both count strokes from there.
+        let mut outs = vec![axis.tick(&TickInput::at(master, 1000))];
         let mut changed = false;
         let steps: Vec<i64> = motion
             .iter()

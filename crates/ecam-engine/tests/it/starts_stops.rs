@@ -77,9 +77,11 @@ fn ramp_in_engages_a_moving_master_without_a_velocity_jump() {
         let m = 5000 + 10 * i;
         let out = a.tick(&TickInput::at(m, 100));
         let step = out.slave - previous;
-        // Velocity changes gradually. The quintic's peak second derivative
-        // is 10/sqrt(3) / distance^2; over a gap of about 16000 pulses and 10
-        // counts per tick that is about 2.3 pulses/tick per tick, plus rounding.
+        // Velocity changes gradually: from rest onto the cam's 30 pulses
+        // per tick over 200 ticks, closing the start rule's 500-pulse gap
+        // on the way (the quintic's peak second derivative is
+        // 10/sqrt(3) / distance^2), a fraction of a pulse per tick per
+        // tick, plus rounding.
         assert!(
             (step - previous_step).abs() <= 4,
             "tick {i}: {previous_step} -> {step}"
@@ -95,7 +97,9 @@ fn ramp_in_engages_a_moving_master_without_a_velocity_jump() {
     }
     assert_eq!(in_sync_at, Some(200));
     assert_eq!(previous_step, 30);
-    assert_eq!(previous, 3 * (5000 + 10 * 399));
+    // The start rule: the cycle it engaged in (from 5000) is the first,
+    // and the slave at -500 takes the table value 0 ahead of it.
+    assert_eq!(previous, 3 * (10 * 399));
 }
 
 #[test]

@@ -250,14 +250,55 @@ fn table_outside_the_turn_is_refused() {
 }
 
 #[test]
-fn repeat_started_mid_way_counts_cycles_from_the_table_start() {
-    // Not single-turn: the master at 45000 is in the second cycle, so the
-    // slave starts at the table value (1250) plus one stroke (1500).
+fn repeat_started_mid_way_counts_cycles_from_the_cycle_it_starts_in() {
+    // Not single-turn: the master at 45000 is in the second cycle, but the
+    // start rule counts from there: the table value (1250) less one
+    // stroke (1500) is nearer the slave at 0 (the table turns back, so
+    // either way), where the old count from the table's start gave 2750.
     let mut mc = MotionController::new(2);
     mc.set_position(MASTER, 45000).unwrap();
     start(&mut mc, CamType::Repeat, doc_table());
-    assert_eq!(mc.position(SLAVE).unwrap(), 2750);
-    assert_eq!(mc.drive(MASTER, 60000, SLAVE).unwrap(), 3500);
+    assert_eq!(mc.position(SLAVE).unwrap(), -250);
+    assert_eq!(mc.drive(MASTER, 60000, SLAVE).unwrap(), 500);
+}
+
+#[test]
+fn a_rising_repeat_table_started_mid_way_moves_less_than_a_stroke_forwards() {
+    // A knife-like table (never turns back, stroke 3000) started at master
+    // 45000: the table value there is 1500, which counted from the table's
+    // start would be 4500. The slave lands on the first equivalent at or
+    // ahead of it: from 0 on 1500, from 1600 on 4500.
+    let rising = PointTable::from_pairs(&[(0, 0), (30000, 3000)]).unwrap();
+    for (master, slave, expected) in [(45000, 0, 1500), (45000, 1600, 4500), (0, 0, 0)] {
+        let mut mc = MotionController::new(2);
+        mc.set_position(MASTER, master).unwrap();
+        mc.set_position(SLAVE, slave).unwrap();
+        start(&mut mc, CamType::Repeat, rising.clone());
+        assert_eq!(mc.position(SLAVE).unwrap(), expected, "{master}, {slave}");
+    }
+    // The start rule's cases (docs/mc.md): a table in its third cycle, and
+    // one started before its origin, which used to move 100 backwards.
+    for (pairs, master, expected) in [
+        ([(0, 0), (1000, 100)], 2500, 50),
+        ([(1000, 0), (2000, 100)], 0, 0),
+    ] {
+        let mut mc = MotionController::new(2);
+        mc.set_position(MASTER, master).unwrap();
+        start(
+            &mut mc,
+            CamType::Repeat,
+            PointTable::from_pairs(&pairs).unwrap(),
+        );
+        assert_eq!(
+            mc.position(SLAVE).unwrap(),
+            expected,
+            "{pairs:?} at {master}"
+        );
+        assert_eq!(
+            mc.drive(MASTER, master + 500, SLAVE).unwrap(),
+            expected + 50
+        );
+    }
 }
 
 #[test]

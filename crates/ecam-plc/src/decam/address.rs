@@ -4,8 +4,7 @@
 
 use core::fmt;
 
-use ecam_core::register_image;
-
+use super::offsets::block_words;
 use crate::devices::{D_COUNT, Device, DeviceError};
 
 /// Why a block cannot start there.
@@ -61,8 +60,9 @@ impl fmt::Display for BlockAddressError {
 impl std::error::Error for BlockAddressError {}
 
 /// Registers a block needs at least: offsets 0–39 and one point's words
-/// ([`register_image::block_len`]).
-const LEAST_WORDS: usize = register_image::block_len(1);
+/// ([`block_words`], the one home of the block's size; the live view
+/// asks the same).
+const LEAST_WORDS: u32 = block_words(1);
 /// The last register a block may start at.
 pub const LAST_START: u16 = D_COUNT - LEAST_WORDS as u16;
 

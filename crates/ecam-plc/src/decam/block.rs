@@ -144,17 +144,27 @@ impl<'a> Block<'a> {
             repeats: self.word(offsets::REPEAT),
             max_frequency_hz: clamp_frequency(self.dword(offsets::MAX_FREQUENCY)),
             table: self.table()?,
-            single_pass: match self.word(offsets::TABLE_END) {
-                offsets::TABLE_END_REPEAT => false,
-                offsets::TABLE_END_STOP => true,
-                _ => {
-                    return Err(BlockError::Parameter {
-                        offset: offsets::TABLE_END,
-                        reason: "table end action must be 0 (repeat) or 1 (stop at the table end, midCAMend)",
-                    });
-                }
-            },
+            single_pass: self.single_pass()?,
         })
+    }
+
+    /// Offset 31: whether the table runs one pass (midCAMend).
+    fn single_pass(&self) -> Result<bool, BlockError> {
+        match self.word(offsets::TABLE_END) {
+            offsets::TABLE_END_REPEAT => Ok(false),
+            offsets::TABLE_END_STOP => Ok(true),
+            _ => Err(BlockError::Parameter {
+                offset: offsets::TABLE_END,
+                reason: "table end action must be 0 (repeat) or 1 (stop at the table end, midCAMend)",
+            }),
+        }
+    }
+
+    /// The table words (offsets 31, 38 on) checked as a start or a seam
+    /// takes them, the rest of the block left aside.
+    pub(crate) fn table_check(&self) -> Result<(), BlockError> {
+        self.table()?;
+        self.single_pass().map(|_| ())
     }
 
     fn zoom(&self, num_offset: u16, den_offset: u16) -> Result<ZoomRatio, BlockError> {
@@ -199,15 +209,14 @@ impl<'a> Block<'a> {
     /// The point table at offsets 38, 40….
     pub(crate) fn table(&self) -> Result<PointTable, BlockError> {
         let count = self.word(offsets::SECTIONS) as i16;
-        let fits = u32::from(self.base)
-            + u32::from(offsets::TABLE)
-            + u32::from(offsets::WORDS_PER_SECTION) * u32::from(count.max(0) as u16)
-            <= u32::from(D_COUNT);
+        let fits =
+            u32::from(self.base) + offsets::block_words(count.max(0) as u16) <= u32::from(D_COUNT);
         if !(2..=offsets::MAX_SECTIONS as i16).contains(&count) || !fits {
             return Err(BlockError::SectionCount { count });
         }
-        let words: Vec<i16> = (0..offsets::WORDS_PER_SECTION * count as u16)
-            .map(|i| self.word(offsets::TABLE + i) as i16)
+        // Offsets 40 up to the block's end: below D8512, checked above.
+        let words: Vec<i16> = (offsets::block_words(0)..offsets::block_words(count as u16))
+            .map(|offset| self.word(offset as u16) as i16)
             .collect();
         register_image::table_from_sections(&words).map_err(|e| match e {
             TableError::MasterNotIncreasing { section }
@@ -237,7 +246,7 @@ mod tests {
         let mut dev = Devices::new();
         dev.set_word(38, points.len() as i16).unwrap();
         for (i, &(m, s)) in points.iter().enumerate() {
-            let at = 40 + 4 * i as u16;
+            let at = offsets::block_words(i as u16) as u16;
             dev.set_dword(at, m).unwrap();
             dev.set_dword(at + 2, s).unwrap();
         }

@@ -5,7 +5,7 @@ use core::fmt;
 
 use ecam_core::{CODE_PARAMETER, CODE_SECTION_COUNT, CODE_TABLE};
 
-use super::flags;
+use super::{flags, offsets};
 use crate::operation_error::OperationError;
 
 /// A register block the cam refuses to start from (the running cam, if any,
@@ -85,13 +85,13 @@ impl fmt::Display for Located<'_> {
             BlockError::Table { section } => write!(
                 f,
                 "table point {section} (D{}) has a master position not greater than point {}",
-                block + 40 + 4 * u32::from(*section),
+                block + offsets::block_words(*section),
                 section.saturating_sub(1)
             ),
             BlockError::SectionCount { count } => write!(
                 f,
                 "D{} holds {count} table points; allowed 2-512, and the table must fit below D8512",
-                block + 38
+                block + u32::from(offsets::SECTIONS)
             ),
         }
     }

@@ -87,9 +87,6 @@ pub const NONCYCLIC_REARM_US: u64 = 5_000;
 /// [`OutputOwner`].
 static NEXT_INSTANCE: AtomicU64 = AtomicU64::new(0);
 
-/// First word of each output's pulse counter D8140, D8142, D8150, D8152.
-const PULSE_COUNTERS: [u16; 4] = [8140, 8142, 8150, 8152];
-
 /// Where the instruction is between starts; each phase holds what only it
 /// has.
 #[derive(Clone, Debug)]
@@ -197,6 +194,26 @@ impl Decam {
     /// last pulses it owes).
     pub fn is_running(&self) -> bool {
         self.run().is_some()
+    }
+
+    /// The master span (last point's master − first's, in table counts)
+    /// of the table the running cam follows: its cycle length after the
+    /// master zoom. A table written into the block meanwhile waits for the
+    /// next seam, so this is not read from the block's words. `None` while
+    /// no cam runs.
+    pub fn running_table_span(&self) -> Option<i64> {
+        self.run().map(Run::table_span)
+    }
+
+    /// Checks the table words of the block (offset 31 and the table from
+    /// offset 38) as `devices` hold them, the way a start or a seam takes
+    /// them; the rest of the block is left aside.
+    ///
+    /// # Errors
+    /// The [`BlockError`] the block would show (6781 for offset 31, 6782,
+    /// 6783).
+    pub fn check_table(&self, devices: &Devices) -> Result<(), BlockError> {
+        Block::new(devices, self.operands.block).table_check()
     }
 
     /// The instruction at its place in the scan; `enabled` is its power flow.
@@ -363,7 +380,7 @@ impl Decam {
         let origin = Origin {
             master_raw: i64::from(block.dword(offsets::MASTER_RAW)),
             slave_zoomed: i64::from(block.dword(offsets::SLAVE_ZOOMED)),
-            output_counter: PULSE_COUNTERS
+            output_counter: crate::special::D_PULSE_COUNT
                 .get(usize::from(self.operands.pulse_output))
                 .and_then(|&d| devices.dword(d).ok())
                 .map_or(0, i64::from),

@@ -80,3 +80,17 @@ pub const TABLE: u16 = register_image::TABLE_OFFSET as u16;
 pub const MAX_SECTIONS: u16 = register_image::MAX_SECTIONS as u16;
 /// Words per table point.
 pub const WORDS_PER_SECTION: u16 = register_image::WORDS_PER_SECTION as u16;
+
+/// The size of a block whose table holds the most points (40 + 4 × 512
+/// words): how far a block's registers can reach.
+pub const MAX_BLOCK_WORDS: u32 = block_words(MAX_SECTIONS);
+
+/// The size in words of a block whose table holds `points` points
+/// (offsets 0 to 40 + 4·points − 1), from `register_image::block_len`;
+/// so also the offset of point number `points` (point `i` of a table is
+/// at `S2 + block_words(i)`). The one home of the block's size; `u32`, so
+/// that a block that would run past D8511 (or past any count) shows it.
+pub const fn block_words(points: u16) -> u32 {
+    // At most 40 + 4 × 65535: exact in u32.
+    register_image::block_len(points as usize) as u32
+}

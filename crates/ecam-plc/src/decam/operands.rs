@@ -68,10 +68,7 @@ impl DecamOperands {
             }
             _ => {}
         }
-        if block
-            .checked_add(offsets::TABLE)
-            .is_none_or(|end| end > D_COUNT)
-        {
+        if u32::from(block) + offsets::block_words(0) > u32::from(D_COUNT) {
             return Err(parameter(format!(
                 "DECAM block D{block} does not fit: it needs D{block}..D{block}+39 and the table after it"
             )));

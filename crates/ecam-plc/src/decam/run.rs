@@ -149,6 +149,12 @@ impl Run {
         self.axis.status()
     }
 
+    /// The master span of the table the cam follows now (the one taken at
+    /// the last seam, not one still waiting).
+    pub(super) fn table_span(&self) -> i64 {
+        self.axis.curve().master_span()
+    }
+
     /// A table written while the cam runs takes over at the next seam
     /// (`docs/plc.md`, "Changing the table while the cam runs"): the engine
     /// continues the slave from where it stands at the seam, so the output

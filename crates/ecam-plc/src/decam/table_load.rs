@@ -41,9 +41,8 @@ pub fn load_table(
             format!("{points} table points; a DECAM table holds 2-512"),
         ));
     }
-    let end = u32::from(block)
-        + u32::from(offsets::TABLE)
-        + u32::from(offsets::WORDS_PER_SECTION) * points as u32;
+    // 2..=512 points: the count fits u16.
+    let end = u32::from(block) + offsets::block_words(points as u16);
     if end > u32::from(D_COUNT) {
         return Err(OperationError::new(
             CODE_SECTION_COUNT,

@@ -11,6 +11,7 @@ mod counters;
 mod decam_errors;
 mod decam_hostile;
 mod decam_registers;
+mod decam_starts;
 mod ecamtbx_generators;
 mod fuzz;
 mod il_parser;

@@ -70,8 +70,11 @@ fn two_cams_on_y0_only_the_first_moves_it_until_it_lets_go() {
     assert_eq!(dword(&p, 2019), 50, "cam 1 holds where it stopped");
     assert!(cyclic_active(&p, 3000));
     let slave = dword(&p, 3019);
-    // Its time base read 0 when it took Y0: 50 ms later, 500 counts.
-    assert_eq!(slave, 250, "cam 2 follows its own master (500 counts)");
+    // Its time base read 0 when it took Y0: 50 ms later, 500 counts. It
+    // started where cam 1 left Y0 (50): its table rises, so the start rule
+    // takes the table value ahead of 50, one stroke on (5000), rather than
+    // 50 reverse pulses back to 0.
+    assert_eq!(slave, 5250, "cam 2 follows its own master (500 counts)");
     assert_eq!(dword(&p, 8140), slave, "Y0 now carries cam 2 alone");
 
     // Cam 1 enabled again: Y0 is cam 2's, so cam 1 waits in turn.
@@ -93,11 +96,12 @@ fn a_cam_waits_for_a_running_dplsy_on_its_output() {
     assert!(!cyclic_active(&p, 2000), "the cam waits");
     run_ms(&mut p, 15);
     // The 100 pulses ended at 10 ms; the cam took Y0 then (its time base
-    // reading 0 from that instant) and, absolute, brought it to its table
-    // value.
+    // reading 0 from that instant) with the output at 100: its table rises,
+    // so the start rule puts it on the table value ahead of 100 (one
+    // stroke, 1000, on), never reverse pulses back to 0.
     assert!(cyclic_active(&p, 2000));
-    assert_eq!(dword(&p, 2019), 10, "master 100 counts");
-    assert_eq!(dword(&p, 8140), 10, "D8140 is the cam's slave");
+    assert_eq!(dword(&p, 2019), 1010, "master 100 counts");
+    assert_eq!(dword(&p, 8140), 1010, "D8140 is the cam's slave");
     assert_eq!(p.devices().m(8029), Ok(true), "the DPLSY finished");
 }
 
