@@ -293,7 +293,7 @@ pub fn run(command: &GenCommand) -> anyhow::Result<Generated> {
         }
     };
     values.extend(command.flags.clone());
-    ecam_design::generate(command.generator, values)
+    Ok(ecam_design::generate(command.generator, values)?)
 }
 
 /// clap value parser for numeric flags that accept arithmetic.

@@ -63,8 +63,8 @@ pub fn define(text: &str) -> Result<(String, i64), String> {
     let (name, value) = text
         .split_once('=')
         .ok_or("expected NAME=VALUE, e.g. cam_table_0=120")?;
-    let number = ecam_pmd::script::parse_number(value.trim())
-        .ok_or_else(|| format!("`{}` is not a number", value.trim()))?;
+    let number = ecam_core::script_line::parse_number(value.trim())
+        .map_err(|e| format!("`{}`: {e}", value.trim()))?;
     Ok((name.trim().to_string(), number))
 }
 

@@ -57,6 +57,7 @@ mod kinematics;
 pub mod law;
 pub mod limits;
 pub mod register_image;
+pub mod script_line;
 pub mod segments;
 pub mod table;
 

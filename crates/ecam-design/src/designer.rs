@@ -169,7 +169,7 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
         "the body needs \"generator\", e.g. {\"generator\": \"rotary-cut\", \"params\": {}}",
     )?;
     let params = body.get("params").cloned().unwrap_or_else(|| json!({}));
-    let g = generate::from_json(name, params).map_err(|e| format!("{e:#}"))?;
+    let g = generate::from_json(name, params).map_err(|e| e.to_string())?;
     let points = g.table.points();
     let exact = g.kinematics.is_some();
     let kinematics = g

@@ -2,11 +2,12 @@
 //! front ends: a drive file's TOML, a table file of any kind, the
 //! designer's JSON.
 
-use anyhow::{Context, bail};
 use ecam_core::drive_check::{self, Drive, DriveReport, Motion};
 use ecam_core::io::AnyTable;
 use ecam_core::segments::SegmentCam;
 use serde_json::{Value, json};
+
+use crate::error::DriveFileError;
 
 /// Samples per segment of an exact cam for the drive check: the RMS
 /// integral by trapezoids is then within about 10⁻⁶ of the exact one.
@@ -16,9 +17,9 @@ const SAMPLES_PER_SEGMENT: usize = 2000;
 ///
 /// # Errors
 /// TOML syntax, unknown or missing keys, values out of range.
-pub fn read_drive(text: &str) -> anyhow::Result<Drive> {
+pub fn read_drive(text: &str) -> Result<Drive, DriveFileError> {
     let drive: Drive = toml::from_str(text)
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))?;
+        .map_err(|e| DriveFileError::Keys(ecam_core::io::plain_serde_message(&e.to_string())))?;
     drive.validate()?;
     Ok(drive)
 }
@@ -36,7 +37,7 @@ pub fn motion_of_cam(cam: &SegmentCam) -> Motion {
 /// # Errors
 /// An evenly spaced table (the check takes tables with known points or
 /// laws); a profile that is not a valid segment cam.
-pub fn motion_of(table: &AnyTable) -> anyhow::Result<Motion> {
+pub fn motion_of(table: &AnyTable) -> Result<Motion, DriveFileError> {
     Ok(match table {
         AnyTable::Points(file) => match &file.segments {
             Some(cam) => motion_of_cam(cam),
@@ -49,10 +50,10 @@ pub fn motion_of(table: &AnyTable) -> anyhow::Result<Motion> {
                     .collect(),
             ),
         },
-        AnyTable::Profile(profile) => motion_of_cam(&SegmentCam::try_from(profile)?),
-        AnyTable::Uniform(_) => bail!(
-            "the drive check takes point tables, profiles and segment cams; write the evenly spaced table as points first"
-        ),
+        AnyTable::Profile(profile) => {
+            motion_of_cam(&SegmentCam::try_from(profile).map_err(DriveFileError::Profile)?)
+        }
+        AnyTable::Uniform(_) => return Err(DriveFileError::Uniform),
     })
 }
 
@@ -65,7 +66,7 @@ pub fn check_table(
     table: &AnyTable,
     drive_text: &str,
     master_hz: Option<f64>,
-) -> anyhow::Result<DriveReport> {
+) -> Result<DriveReport, DriveFileError> {
     let drive = read_drive(drive_text)?;
     let motion = motion_of(table)?;
     Ok(drive_check::check(&motion, &drive, master_hz)?)
@@ -78,19 +79,19 @@ pub fn check_table(
 /// # Errors
 /// A body of the wrong shape, a design the generator refuses, a bad drive.
 pub fn drive_check_json(body: &Value) -> Result<Value, String> {
-    let run = || -> anyhow::Result<Value> {
+    let run = || -> Result<Value, String> {
         let name = body
             .get("generator")
             .and_then(Value::as_str)
-            .context("the body needs \"generator\" and \"params\", as POST /api/table/gen")?;
+            .ok_or("the body needs \"generator\" and \"params\", as POST /api/table/gen")?;
         let params = body.get("params").cloned().unwrap_or_else(|| json!({}));
         let drive: Drive = serde_json::from_value(
             body.get("drive")
                 .cloned()
-                .context("the body needs \"drive\": {\"mechanics\": {...}, \"limits\": {...}}")?,
+                .ok_or("the body needs \"drive\": {\"mechanics\": {...}, \"limits\": {...}}")?,
         )
         .map_err(|e| {
-            anyhow::anyhow!(
+            format!(
                 "drive: {}",
                 ecam_core::io::plain_serde_message(&e.to_string())
             )
@@ -99,10 +100,10 @@ pub fn drive_check_json(body: &Value) -> Result<Value, String> {
             None | Some(Value::Null) => None,
             Some(v) => Some(
                 v.as_f64()
-                    .context("master_speed must be a number (counts/s)")?,
+                    .ok_or("master_speed must be a number (counts/s)")?,
             ),
         };
-        let g = crate::generate::from_json(name, params)?;
+        let g = crate::generate::from_json(name, params).map_err(|e| e.to_string())?;
         let motion = match &g.segments {
             Some(cam) => motion_of_cam(cam),
             None => match &g.exact {
@@ -115,11 +116,12 @@ pub fn drive_check_json(body: &Value) -> Result<Value, String> {
                     generator: None,
                     kinematics: g.kinematics.clone(),
                     segments: None,
-                }))?,
+                }))
+                .map_err(|e| e.to_string())?,
             },
         };
-        let report = drive_check::check(&motion, &drive, master_hz)?;
-        Ok(serde_json::to_value(report)?)
+        let report = drive_check::check(&motion, &drive, master_hz).map_err(|e| e.to_string())?;
+        serde_json::to_value(report).map_err(|e| e.to_string())
     };
-    run().map_err(|e| format!("{e:#}"))
+    run()
 }

@@ -6,9 +6,10 @@
 //! `pi`, `tau` and `e` are accepted in lower case besides exmex's own `PI`,
 //! `TAU`, `E`, so the PLC editor's `1000*sin(2*pi*x/36000)` reads as written.
 
-use anyhow::{Context, anyhow, bail};
 use ecam_core::Kinematics;
 use exmex::prelude::*;
+
+use crate::error::ExprError;
 
 /// A parsed function of the master position `x`.
 pub struct MasterFunction {
@@ -29,31 +30,30 @@ impl MasterFunction {
     ///
     /// # Errors
     /// Syntax errors and unknown names.
-    pub fn parse(text: &str) -> anyhow::Result<Self> {
+    pub fn parse(text: &str) -> Result<Self, ExprError> {
         Self::with_variables(text, true)
     }
 
-    fn with_variables(text: &str, master_allowed: bool) -> anyhow::Result<Self> {
+    fn with_variables(text: &str, master_allowed: bool) -> Result<Self, ExprError> {
         // Parsing time grows faster than the length: bound it.
         let limit = ecam_core::limits::MAX_EXPRESSION_LEN;
         if text.len() > limit {
-            return Err(anyhow!(
-                "the expression is {} bytes long; the limit is {limit}",
-                text.len()
-            ));
+            return Err(ExprError::TooLong {
+                len: text.len(),
+                limit,
+            });
         }
         if let Some(name) = unknown_function(text) {
-            bail!(
-                "unknown function `{name}` in {text:?}; the functions are {}",
-                FUNCTIONS.join(", ")
-            );
+            return Err(ExprError::UnknownFunction {
+                name: name.to_string(),
+                text: text.to_string(),
+                functions: &FUNCTIONS,
+            });
         }
         let plain = expand_exponents(text)?;
-        let expr = exmex::parse::<f64>(&plain).map_err(|e| {
-            anyhow!(
-                "cannot parse expression {text:?}: {}",
-                plain_error(&e.to_string())
-            )
+        let expr = exmex::parse::<f64>(&plain).map_err(|e| ExprError::Syntax {
+            text: text.to_string(),
+            message: plain_error(&e.to_string()),
         })?;
         let slots = expr
             .var_names()
@@ -63,12 +63,13 @@ impl MasterFunction {
                 "pi" => Ok(Slot::Constant(std::f64::consts::PI)),
                 "tau" => Ok(Slot::Constant(std::f64::consts::TAU)),
                 "e" => Ok(Slot::Constant(std::f64::consts::E)),
-                other if master_allowed => bail!(
-                    "unknown name {other:?} in {text:?}: the master position is `x`; constants are pi, tau, e"
-                ),
-                other => bail!("unknown name {other:?} in {text:?}: constants are pi, tau, e"),
+                other => Err(ExprError::UnknownName {
+                    name: other.to_string(),
+                    text: text.to_string(),
+                    master_allowed,
+                }),
             })
-            .collect::<anyhow::Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Self {
             expr,
             slots,
@@ -84,7 +85,7 @@ impl MasterFunction {
     ///
     /// # Errors
     /// As [`MasterFunction::at`].
-    pub fn kinematics(&self, x: f64, h: f64) -> anyhow::Result<Kinematics> {
+    pub fn kinematics(&self, x: f64, h: f64) -> Result<Kinematics, ExprError> {
         let s = self.at(x)?;
         if !self.slots.iter().any(|s| matches!(s, Slot::Master)) {
             return Ok(Kinematics::at_rest(s));
@@ -114,14 +115,18 @@ impl MasterFunction {
     ///
     /// # Errors
     /// Evaluation errors of exmex, or a result that is not finite.
-    pub fn at(&self, x: f64) -> anyhow::Result<f64> {
+    pub fn at(&self, x: f64) -> Result<f64, ExprError> {
         let values = self.values(x);
-        let y = self
-            .expr
-            .eval(&values)
-            .map_err(|e| anyhow!("cannot evaluate {:?} at x = {x}: {e}", self.text))?;
+        let y = self.expr.eval(&values).map_err(|e| ExprError::Eval {
+            text: self.text.clone(),
+            x,
+            message: e.to_string(),
+        })?;
         if !y.is_finite() {
-            bail!("{:?} is not finite at x = {x}", self.text);
+            return Err(ExprError::NotFinite {
+                text: self.text.clone(),
+                x,
+            });
         }
         Ok(y)
     }
@@ -132,7 +137,7 @@ impl MasterFunction {
 /// `e3` and reports a cryptic syntax error, yet engineers type exponents
 /// (and spreadsheets paste them). Rust's `Display` for `f64` never uses an
 /// exponent and round-trips exactly, so the value is unchanged.
-fn expand_exponents(text: &str) -> anyhow::Result<String> {
+fn expand_exponents(text: &str) -> Result<String, ExprError> {
     let chars: Vec<char> = text.chars().collect();
     let mut out = String::with_capacity(text.len());
     let mut i = 0;
@@ -172,7 +177,10 @@ fn expand_exponents(text: &str) -> anyhow::Result<String> {
                 let literal: String = chars.get(start..j).unwrap_or_default().iter().collect();
                 if let Ok(v) = literal.parse::<f64>() {
                     if !v.is_finite() {
-                        bail!("the number {literal} in {text:?} is too large for a 64-bit float");
+                        return Err(ExprError::TooLarge {
+                            literal,
+                            text: text.to_string(),
+                        });
                     }
                     out.push_str(&format!("{v}"));
                     i = j;
@@ -189,14 +197,14 @@ fn expand_exponents(text: &str) -> anyhow::Result<String> {
 ///
 /// # Errors
 /// Syntax errors, unknown names, or a non-finite value.
-pub fn number(text: &str) -> anyhow::Result<f64> {
+pub fn number(text: &str) -> Result<f64, ExprError> {
     let f = MasterFunction::with_variables(text, false)?;
-    f.at(0.0).with_context(|| format!("in {text:?}"))
+    f.at(0.0).map_err(|error| ExprError::InConstant {
+        text: text.to_string(),
+        error: Box::new(error),
+    })
 }
 
-/// The parser's message without its internal dumps: some name the Rust
-/// operator structs, function addresses included, which say nothing to
-/// the author of the expression.
 /// The functions an expression may call (`exmex`'s, as docs/cli.md lists
 /// them).
 const FUNCTIONS: [&str; 19] = [
@@ -227,6 +235,9 @@ fn unknown_function(text: &str) -> Option<&str> {
     None
 }
 
+/// The parser's message without its internal dumps: some name the Rust
+/// operator structs, function addresses included, which say nothing to
+/// the author of the expression.
 fn plain_error(message: &str) -> String {
     match message
         .find(" Operator {")

@@ -6,7 +6,6 @@
 //! generator's `Params` in `ecam_core::generator`); the values given
 //! override what they set. Numeric ratios accept arithmetic (`5/3`, `3*pi`).
 
-use anyhow::{Context, bail};
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
@@ -18,6 +17,7 @@ use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
 use serde::de::DeserializeSeed;
 use serde_json::Value;
 
+use crate::error::GenerateError;
 use crate::expr::MasterFunction;
 use crate::params::{Param, Values, ValuesSeed, typed};
 
@@ -75,12 +75,14 @@ fn kinematics_along(table: &PointTable, curve: &impl CamCurve) -> Vec<Kinematics
 ///
 /// # Errors
 /// Unknown generator names or parameters, or bad values.
-pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
+pub fn from_toml(name: &str, params: toml::Table) -> Result<Generated, GenerateError> {
     let generator = find(name)?;
     let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Value::Table(params))
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
-        .with_context(|| format!("parameters of generator {name:?}"))?;
+        .map_err(|e| GenerateError::Params {
+            generator: name.to_string(),
+            message: ecam_core::io::plain_serde_message(&e.to_string()),
+        })?;
     generate(generator, values)
 }
 
@@ -88,19 +90,21 @@ pub fn from_toml(name: &str, params: toml::Table) -> anyhow::Result<Generated> {
 ///
 /// # Errors
 /// As [`from_toml`]; a value that is not an object.
-pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Generated> {
+pub fn from_json(name: &str, params: serde_json::Value) -> Result<Generated, GenerateError> {
     let generator = find(name)?;
     if !params.is_object() {
         let error = ValuesSeed::new(generator, true)
             .deserialize(params)
             .err()
             .map_or_else(String::new, |e| e.to_string());
-        bail!("\"params\" must be an object of numbers, strings and booleans: {error}");
+        return Err(GenerateError::NotAnObject { message: error });
     }
     let values = ValuesSeed::new(generator, true)
         .deserialize(params)
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
-        .with_context(|| format!("parameters of generator {name:?}"))?;
+        .map_err(|e| GenerateError::Params {
+            generator: name.to_string(),
+            message: ecam_core::io::plain_serde_message(&e.to_string()),
+        })?;
     generate(generator, values)
 }
 
@@ -108,10 +112,9 @@ pub fn from_json(name: &str, params: serde_json::Value) -> anyhow::Result<Genera
 ///
 /// # Errors
 /// An unknown name; the message lists the known ones.
-pub fn find(name: &str) -> anyhow::Result<&'static Schema> {
-    schema::find(name).with_context(|| {
-        let known: Vec<&str> = schema::GENERATORS.iter().map(|g| g.name).collect();
-        format!("unknown generator {name:?}; known: {}", known.join(", "))
+pub fn find(name: &str) -> Result<&'static Schema, GenerateError> {
+    schema::find(name).ok_or_else(|| GenerateError::UnknownGenerator {
+        name: name.to_string(),
     })
 }
 
@@ -121,7 +124,7 @@ pub fn find(name: &str) -> anyhow::Result<&'static Schema> {
 /// # Errors
 /// Values of the wrong kind or name, or parameters the generator refuses
 /// (with the PLC's error code).
-pub fn generate(generator: &Schema, mut values: Values) -> anyhow::Result<Generated> {
+pub fn generate(generator: &Schema, mut values: Values) -> Result<Generated, GenerateError> {
     match generator.name {
         "s-curve" => s_curve_table(&typed(values)?),
         "rotary-cut" => rotary_cut_table(&typed(values)?),
@@ -153,7 +156,7 @@ pub fn default_values(g: &Schema) -> serde_json::Map<String, Value> {
 
 // ---------------------------------------------------------------- s-curve
 
-fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
+fn s_curve_table(params: &s_curve::Params) -> Result<Generated, GenerateError> {
     let g = s_curve::generate(params)?;
     Ok(Generated {
         outputs: vec![
@@ -177,7 +180,7 @@ fn s_curve_table(params: &s_curve::Params) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- rotary cut, flying saw
 
-fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
+fn rotary_cut_table(params: &CutParams) -> Result<Generated, GenerateError> {
     let g = rotary_cut::generate(params)?;
     Ok(Generated {
         outputs: vec![
@@ -205,7 +208,7 @@ fn rotary_cut_table(params: &CutParams) -> anyhow::Result<Generated> {
     })
 }
 
-fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
+fn fly_saw_table(params: &CutParams, cycle: bool) -> Result<Generated, GenerateError> {
     if !cycle {
         let g = flying_saw::generate(params)?;
         return Ok(Generated {
@@ -229,8 +232,14 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> anyhow::Result<Generated> {
     let (m_end, s_end) = (forward.table.master_last(), forward.table.slave_last());
     let mut points = forward.table.points().to_vec();
     for q in back.table.points().iter().skip(1) {
-        let master = q.master.checked_add(m_end).context("master overflow")?;
-        let slave = q.slave.checked_add(s_end).context("slave overflow")?;
+        let master = q
+            .master
+            .checked_add(m_end)
+            .ok_or(GenerateError::Overflow { what: "master" })?;
+        let slave = q
+            .slave
+            .checked_add(s_end)
+            .ok_or(GenerateError::Overflow { what: "slave" })?;
         points.push(CamPoint::new(master, slave));
     }
     let table = PointTable::new(points)?;
@@ -288,7 +297,7 @@ pub fn parse_key_lines(text: &str) -> Result<Vec<KeyPoint>, String> {
     })
 }
 
-fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
+fn key_points_table(params: &key_points::Params) -> Result<Generated, GenerateError> {
     let generated = key_points::generate(params)?;
     Ok(Generated {
         kinematics: Some(kinematics_along(&generated.table, &generated.profile)),
@@ -311,11 +320,8 @@ fn key_points_table(params: &key_points::Params) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- function
 
-fn function(params: &function::Params) -> anyhow::Result<Generated> {
-    let expr = params
-        .expr
-        .as_deref()
-        .context("give the function with --expr, e.g. --expr \"1000*sin(2*pi*x/36000)\"")?;
+fn function(params: &function::Params) -> Result<Generated, GenerateError> {
+    let expr = params.expr.as_deref().ok_or(GenerateError::MissingExpr)?;
     let (from, to, points) = (params.from, params.to, params.points);
     let table = function_table(expr, from, to, points)?;
     let f = MasterFunction::parse(expr)?;
@@ -332,7 +338,7 @@ fn function(params: &function::Params) -> anyhow::Result<Generated> {
                 ..k
             })
         })
-        .collect::<anyhow::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, GenerateError>>()?;
     Ok(Generated {
         table,
         sync: None,
@@ -346,7 +352,7 @@ fn function(params: &function::Params) -> anyhow::Result<Generated> {
 
 // ---------------------------------------------------------------- segments
 
-fn segments_table(params: &segments::Params) -> anyhow::Result<Generated> {
+fn segments_table(params: &segments::Params) -> Result<Generated, GenerateError> {
     let g = segments::generate(params)?;
     let report = g.cam.continuity();
     let joints: Vec<String> = report
@@ -466,25 +472,31 @@ pub fn parse_segment_flag(text: &str) -> Result<ecam_core::segments::SegmentSpec
 /// # Errors
 /// Parse or evaluation errors (naming the master where it failed), or a
 /// table the core refuses.
-pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::Result<PointTable> {
+pub fn function_table(
+    expr: &str,
+    from: i64,
+    to: i64,
+    points: usize,
+) -> Result<PointTable, GenerateError> {
     use ecam_core::limits::{MAX_EXPRESSION_LEN, MAX_TABLE_POINTS};
     if points > MAX_TABLE_POINTS {
-        bail!("points {points} is above the limit of {MAX_TABLE_POINTS} points per table");
+        return Err(GenerateError::TooManyPoints {
+            points,
+            limit: MAX_TABLE_POINTS,
+        });
     }
     if expr.len() > MAX_EXPRESSION_LEN {
-        bail!(
-            "the expression is {} bytes long; the limit is {MAX_EXPRESSION_LEN}",
-            expr.len()
-        );
+        return Err(crate::error::ExprError::TooLong {
+            len: expr.len(),
+            limit: MAX_EXPRESSION_LEN,
+        }
+        .into());
     }
     let f = MasterFunction::parse(expr)?;
     // The core reports this as a non-increasing last point (6782), which
     // names a section the user never wrote; say which settings clash.
     if to <= from {
-        bail!(
-            "table error ({}): the last master position ({to}) must be greater than the first ({from})",
-            ecam_core::CODE_TABLE
-        );
+        return Err(GenerateError::EmptyRange { from, to });
     }
     let first_error = std::cell::RefCell::new(None);
     let sampled = ecam_core::table::sample_function(
@@ -500,7 +512,7 @@ pub fn function_table(expr: &str, from: i64, to: i64, points: usize) -> anyhow::
         points,
     );
     if let Some(e) = first_error.into_inner() {
-        return Err(e);
+        return Err(e.into());
     }
     Ok(sampled?)
 }

@@ -43,11 +43,12 @@
 //! // The PLC editor's sine cam, sampled at 361 masters.
 //! let sine = ecam_design::function_table("1000*sin(2*pi*x/36000)", 0, 36000, 361)?;
 //! assert_eq!(sine.points()[90].slave, 1000);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod designer;
 mod drive;
+mod error;
 mod expr;
 #[doc(hidden)]
 pub mod fuzz;
@@ -63,6 +64,7 @@ pub use designer::{
     law_curves_json, laws_json, segments_continuous_json, segments_json, segments_text,
 };
 pub use drive::{check_table, drive_check_json, motion_of, motion_of_cam, read_drive};
+pub use error::{DriveFileError, ExprError, GenerateError, TableSourceError};
 pub use expr::{MasterFunction, number};
 pub use generate::{
     Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,

@@ -14,6 +14,7 @@ use serde::de::{
     DeserializeOwned, DeserializeSeed, Error as _, IntoDeserializer, MapAccess, Visitor,
 };
 
+use crate::error::GenerateError;
 use crate::expr;
 
 /// Parameter values by key, each checked against its field's kind.
@@ -152,10 +153,10 @@ fn unknown_field(key: &str, generator: &Schema) -> String {
 }
 
 /// The generator's `Params` from checked values; the rest keep their defaults.
-pub(crate) fn typed<P: DeserializeOwned>(values: Values) -> anyhow::Result<P> {
+pub(crate) fn typed<P: DeserializeOwned>(values: Values) -> Result<P, GenerateError> {
     let map = MapDeserializer::<_, serde_json::Error>::new(values.into_iter());
     P::deserialize(map)
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))
+        .map_err(|e| GenerateError::Values(ecam_core::io::plain_serde_message(&e.to_string())))
 }
 
 impl<'de> IntoDeserializer<'de, serde_json::Error> for Param {
@@ -238,9 +239,7 @@ impl<'de> Deserialize<'de> for Number {
         match Raw::deserialize(d)? {
             Raw::Int(i) => Ok(Self(i as f64)),
             Raw::Float(f) => Ok(Self(f)),
-            Raw::Text(t) => expr::number(&t)
-                .map(Self)
-                .map_err(|e| serde::de::Error::custom(format!("{e:#}"))),
+            Raw::Text(t) => expr::number(&t).map(Self).map_err(serde::de::Error::custom),
         }
     }
 }
@@ -287,10 +286,10 @@ fn out_of_bounds(field: &Field, value: &Param) -> Option<String> {
 ///
 /// # Errors
 /// TOML syntax, keys the generator does not have, values of the wrong kind.
-pub fn read_toml(generator: &'static Schema, text: &str) -> anyhow::Result<Values> {
+pub fn read_toml(generator: &'static Schema, text: &str) -> Result<Values, GenerateError> {
     let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Deserializer::new(text))
-        .map_err(|e| anyhow::anyhow!(ecam_core::io::plain_serde_message(&e.to_string())))?;
+        .map_err(|e| GenerateError::Values(ecam_core::io::plain_serde_message(&e.to_string())))?;
     // A choice or a whole number is checked against the schema here, so
     // the message names the line it was written on (the generator would
     // refuse it too, without knowing where it came from).
@@ -304,10 +303,10 @@ pub fn read_toml(generator: &'static Schema, text: &str) -> anyhow::Result<Value
             let at = spans.get(*key).map_or(0, |v| v.span().start);
             let line = text.get(..at).map_or(0, |t| t.lines().count().max(1));
             let written = text.lines().nth(line.saturating_sub(1)).unwrap_or_default();
-            anyhow::bail!(
+            return Err(GenerateError::Values(format!(
                 "line {line}: `{}`: {problem}",
                 ecam_core::io::excerpt(written.trim())
-            );
+            )));
         }
     }
     Ok(values)

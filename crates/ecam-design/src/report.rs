@@ -437,6 +437,7 @@ mod tests {
             sync: g.sync,
             generator: Some("rotary-cut".into()),
             kinematics: g.kinematics,
+            segments: None,
         };
         let t = text(&TableReport::of("r.csv", &AnyTable::Points(file)));
         assert!(t.contains("pulses/count² (design"), "{t}");
@@ -461,6 +462,7 @@ mod tests {
             sync: None,
             generator: None,
             kinematics: None,
+            segments: None,
         });
         let machine = Machine {
             master_speed: Some(1000.0),
@@ -482,6 +484,7 @@ mod tests {
             sync: None,
             generator: None,
             kinematics: None,
+            segments: None,
         });
         let t = text(&TableReport::of("t.csv", &file));
         let line = t

@@ -6,11 +6,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, bail};
 use ecam_core::table::UniformTable;
 use ecam_core::{CamCurve, PointTable};
 use serde::Deserialize;
 
+use crate::error::TableSourceError;
 use crate::generate;
 
 const SOURCES: [&str; 5] = ["points", "uniform", "file", "expr", "generator"];
@@ -40,7 +40,7 @@ struct File {
 /// # Errors
 /// No or several source keys, keys that do not belong to the source, or a
 /// table the core refuses.
-pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve>> {
+pub fn load(table: &toml::Table, base: &Path) -> Result<Box<dyn CamCurve>, TableSourceError> {
     let given: Vec<&str> = SOURCES
         .iter()
         .copied()
@@ -50,35 +50,49 @@ pub fn load(table: &toml::Table, base: &Path) -> anyhow::Result<Box<dyn CamCurve
     let source = match given.as_slice() {
         [one] => *one,
         ["points", "expr"] => "expr",
-        [] => bail!("give one of {}", SOURCES.join(", ")),
-        many => bail!("give only one table source, found {}", many.join(" and ")),
+        [] => return Err(TableSourceError::NoSource { sources: &SOURCES }),
+        many => {
+            return Err(TableSourceError::ManySources {
+                found: many.to_vec(),
+            });
+        }
     };
     let value = toml::Value::Table(table.clone());
     Ok(match source {
         "points" => {
-            let p: Points = value.try_into()?;
+            let p: Points = value.try_into().map_err(TableSourceError::Keys)?;
             let pairs: Vec<(i64, i64)> = p.points.iter().map(|&[m, s]| (m, s)).collect();
-            Box::new(PointTable::from_pairs(&pairs)?)
+            Box::new(PointTable::from_pairs(&pairs).map_err(TableSourceError::Table)?)
         }
         "uniform" => {
-            let u: Uniform = value.try_into()?;
-            Box::new(UniformTable::new(u.uniform, u.counts)?)
+            let u: Uniform = value.try_into().map_err(TableSourceError::Keys)?;
+            Box::new(UniformTable::new(u.uniform, u.counts).map_err(TableSourceError::Table)?)
         }
         "file" => {
-            let f: File = value.try_into()?;
+            let f: File = value.try_into().map_err(TableSourceError::Keys)?;
             let path = resolve(base, &f.file);
-            ecam_core::io::read(&path)?.into_curve()
+            ecam_core::io::read(&path)
+                .map_err(TableSourceError::File)?
+                .into_curve()
         }
         // Exactly `ecam table gen function`'s keys and defaults (from 0,
         // to 36000, 361 points), as docs/simulate.md promises.
-        "expr" => Box::new(generate::from_toml("function", table.clone())?.table),
+        "expr" => Box::new(
+            generate::from_toml("function", table.clone())
+                .map_err(TableSourceError::Generate)?
+                .table,
+        ),
         _ => {
             let mut params = table.clone();
             let name = params
                 .remove("generator")
                 .and_then(|v| v.as_str().map(str::to_string))
-                .context("generator must be a name, e.g. \"rotary-cut\"")?;
-            Box::new(generate::from_toml(&name, params)?.table)
+                .ok_or(TableSourceError::GeneratorName)?;
+            Box::new(
+                generate::from_toml(&name, params)
+                    .map_err(TableSourceError::Generate)?
+                    .table,
+            )
         }
     })
 }

@@ -5,14 +5,14 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use ecam_plc::Plc;
+use ecam_plc::Program;
 use ecam_plc::Wire;
-use ecam_plc::il::parse;
 use ecam_plc::sim::{RunLength, Timing, run};
 
 const LOOPBACK: &str = "LD M8000\nOUT C231 K2147483647\nDPLSY K100000 K0 Y1\nLD C231\nOUT Y7\n";
 
 fn one_simulated_second(c: &mut Criterion) {
-    let program = parse(LOOPBACK, "bench.il").unwrap();
+    let program = Program::parse(LOOPBACK, "bench.il").unwrap();
     c.bench_function("plc loopback, 1 s simulated", |b| {
         b.iter(|| {
             let mut plc = Plc::new(program.clone()).unwrap();
@@ -28,7 +28,7 @@ fn one_long_scan(c: &mut Criterion) {
     for i in 0..1000 {
         source.push_str(&format!("ADD D{i} K1 D{i}\nCMP D{i} K100 M{}\n", i * 3));
     }
-    let mut plc = Plc::new(parse(&source, "bench.il").unwrap()).unwrap();
+    let mut plc = Plc::new(Program::parse(&source, "bench.il").unwrap()).unwrap();
     c.bench_function("plc scan, 2000 applied instructions", |b| {
         b.iter(|| plc.scan().len())
     });

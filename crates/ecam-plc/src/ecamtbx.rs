@@ -57,17 +57,18 @@ use ecam_core::{
 };
 
 use crate::decam::offsets::{TABLE_END, TABLE_END_REPEAT, TABLE_END_STOP};
-use crate::devices::{D_COUNT, Devices};
+use crate::device::D_COUNT;
+use crate::devices::Devices;
 use crate::operation_error::OperationError;
 
 /// Offset of the point count in the target block (`D1 + 38`).
-pub const TABLE_SECTIONS: u16 = crate::decam::offsets::SECTIONS;
+pub(crate) const TABLE_SECTIONS: u16 = crate::decam::offsets::SECTIONS;
 /// Most points a DECAM table holds.
-pub const MAX_POINTS: usize = register_image::MAX_SECTIONS;
+pub(crate) const MAX_POINTS: usize = register_image::MAX_SECTIONS;
 
 /// The table kinds S1 selects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TableKind {
+pub(crate) enum TableKind {
     /// K0 / K1: S-type acceleration and deceleration.
     SCurve,
     /// K2: key points.
@@ -80,7 +81,7 @@ pub enum TableKind {
 
 impl TableKind {
     /// Decodes S1.
-    pub fn from_code(kind: i32) -> Option<Self> {
+    pub(crate) fn from_code(kind: i32) -> Option<Self> {
         match kind {
             0 | 1 => Some(Self::SCurve),
             2 => Some(Self::KeyPoints),

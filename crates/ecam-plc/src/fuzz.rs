@@ -11,13 +11,13 @@ use crate::Plc;
 /// and a hardware tick, while keeping each input quick.
 const SCANS: usize = 3;
 
-/// Feeds `data` to the instruction-list parser ([`crate::il::parse`]); a
+/// Feeds `data` to the instruction-list parser ([`crate::Program::parse`]); a
 /// program it accepts is loaded and scanned a few times.
 pub fn il_program(data: &[u8]) {
     let Ok(text) = core::str::from_utf8(data) else {
         return;
     };
-    let Ok(program) = crate::il::parse(text, "fuzz.il") else {
+    let Ok(program) = crate::Program::parse(text, "fuzz.il") else {
         return;
     };
     let Ok(mut plc) = Plc::new(program) else {

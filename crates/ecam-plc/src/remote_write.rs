@@ -17,7 +17,8 @@ use core::fmt;
 use core::ops::Range;
 
 use crate::decam::{BlockError, Decam, offsets};
-use crate::devices::{Devices, SPECIAL_FIRST};
+use crate::device::SPECIAL_FIRST;
+use crate::devices::Devices;
 use crate::scan::Plc;
 
 /// Why a write from outside was refused; nothing was written.
@@ -188,7 +189,7 @@ mod tests {
     /// A cyclic cam at D2000 on a K1 time base, started, and a second
     /// block at D3000 that the program names but never starts.
     fn running() -> Plc {
-        let program = crate::il::parse(
+        let program = crate::Program::parse(
             "LD M8000\nDECAM K1 D2000 X0 Y0 Y4\nLD M1\nDECAM K1 D3000 X1 Y1 Y5\n",
             "t.il",
         )

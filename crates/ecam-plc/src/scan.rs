@@ -9,7 +9,8 @@
 //! program resets them, so a program can test M8067 at any later scan.
 
 use crate::decam::{Decam, DecamOperands, MasterOperand};
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::hardware::Hardware;
 use crate::il::{Instruction, MasterSpec, ParseError, Program};
 use crate::interpreter::{Interpreter, LineError, Machine};
@@ -34,7 +35,7 @@ impl Plc {
     /// A DECAM whose operands the E-cam face refuses, with its line.
     ///
     /// ```
-    /// let program = ecam_plc::il::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
+    /// let program = ecam_plc::Program::parse("LD M8000\nMOV K7 D0\n", "demo.il").unwrap();
     /// let mut plc = ecam_plc::Plc::new(program).unwrap();
     /// plc.scan();
     /// assert_eq!(plc.devices().word(0), Ok(7));
@@ -59,7 +60,7 @@ impl Plc {
                     .map_err(|err| ParseError {
                         file: program.file.clone(),
                         line: statement.line,
-                        message: err.to_string(),
+                        problem: crate::il::ParseProblem::Decam(err),
                     })?;
                 decams.push(Decam::new(operands));
             }

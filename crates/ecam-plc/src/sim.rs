@@ -70,7 +70,7 @@ impl std::error::Error for TimingError {}
 ///
 /// ```
 /// use ecam_plc::sim::{run, RunLength, Timing};
-/// let program = ecam_plc::il::parse("LD M8000\nDPLSY K1000 K0 Y1\n", "demo.il").unwrap();
+/// let program = ecam_plc::Program::parse("LD M8000\nDPLSY K1000 K0 Y1\n", "demo.il").unwrap();
 /// let mut plc = ecam_plc::Plc::new(program).unwrap();
 /// run(&mut plc, Timing::default(), RunLength::Millis(10), |_| {}).unwrap();
 /// assert_eq!(plc.devices().dword(8142), Ok(10)); // 1 kHz for 10 ms

@@ -10,7 +10,7 @@
 //! that `OUT` once the value has reached it. Contacts earlier in the program
 //! see the change in the next scan, as on the PLC.
 
-use crate::devices::DeviceError;
+use crate::device::DeviceError;
 
 /// Number of timers T0…T255.
 pub const T_COUNT: u16 = 256;
@@ -43,7 +43,7 @@ impl Default for Timers {
 }
 
 /// Clock unit of timer `n` in µs, and whether it is retentive.
-pub const fn timer_clock(n: u16) -> (u64, bool) {
+pub(crate) const fn timer_clock(n: u16) -> (u64, bool) {
     match n {
         0..=199 => (100_000, false),
         200..=245 => (10_000, false),
@@ -54,7 +54,7 @@ pub const fn timer_clock(n: u16) -> (u64, bool) {
 
 impl Timers {
     /// Every timer at 0, contacts off.
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self {
             timers: vec![Timer::default(); usize::from(T_COUNT)],
         }
@@ -81,7 +81,7 @@ impl Timers {
     ///
     /// # Errors
     /// [`DeviceError::OutOfRange`] past T255.
-    pub fn set_value(&mut self, n: u16, value: i16) -> Result<(), DeviceError> {
+    pub(crate) fn set_value(&mut self, n: u16, value: i16) -> Result<(), DeviceError> {
         let timer = self.get_mut(n)?;
         timer.value = value;
         Ok(())
@@ -91,7 +91,7 @@ impl Timers {
     ///
     /// # Errors
     /// [`DeviceError::OutOfRange`] past T255.
-    pub fn reset(&mut self, n: u16) -> Result<(), DeviceError> {
+    pub(crate) fn reset(&mut self, n: u16) -> Result<(), DeviceError> {
         *self.get_mut(n)? = Timer::default();
         Ok(())
     }
@@ -101,7 +101,7 @@ impl Timers {
     ///
     /// # Errors
     /// [`DeviceError::OutOfRange`] past T255.
-    pub fn drive(
+    pub(crate) fn drive(
         &mut self,
         n: u16,
         power: bool,

@@ -7,7 +7,8 @@
 
 use core::fmt;
 
-use crate::devices::{C_32BIT_FIRST, D_COUNT, Device, DeviceError, Devices};
+use crate::device::{C_32BIT_FIRST, D_COUNT, Device, DeviceError};
+use crate::devices::Devices;
 
 /// A named value in device memory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -27,7 +28,7 @@ pub enum View {
     /// `Tn`: the timer's current value.
     Timer(u16),
     /// `Vn`/`Zn`: an index register, signed 16-bit.
-    Index(crate::il::IndexReg),
+    Index(crate::index_register::IndexReg),
 }
 
 /// A value read through a [`View`].
@@ -103,8 +104,11 @@ impl View {
             return Ok(Self::WordBit(n, bit));
         }
         for (prefix, make) in [
-            ('V', crate::il::IndexReg::V as fn(u8) -> crate::il::IndexReg),
-            ('Z', crate::il::IndexReg::Z),
+            (
+                'V',
+                crate::index_register::IndexReg::V as fn(u8) -> crate::index_register::IndexReg,
+            ),
+            ('Z', crate::index_register::IndexReg::Z),
         ] {
             if let Some(number) = upper.strip_prefix(prefix)
                 && !number.is_empty()
@@ -113,7 +117,7 @@ impl View {
                 let n = number
                     .parse::<u8>()
                     .ok()
-                    .filter(|n| *n < crate::il::INDEX_COUNT)
+                    .filter(|n| *n < crate::index_register::INDEX_COUNT)
                     .ok_or_else(|| {
                         ViewError(format!(
                             "index register `{text}` is out of range (V0-V7, Z0-Z7)"
@@ -178,9 +182,9 @@ impl View {
                 .filter(|n| *n < crate::timers::T_COUNT)
                 .map(Self::Timer),
             Self::Index(r) => {
-                use crate::il::IndexReg;
+                use crate::index_register::IndexReg;
                 step(u16::from(r.number()), 1)
-                    .filter(|n| *n < u16::from(crate::il::INDEX_COUNT))
+                    .filter(|n| *n < u16::from(crate::index_register::INDEX_COUNT))
                     .map(|n| match r {
                         IndexReg::V(_) => Self::Index(IndexReg::V(n as u8)),
                         IndexReg::Z(_) => Self::Index(IndexReg::Z(n as u8)),

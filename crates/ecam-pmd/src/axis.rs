@@ -133,6 +133,27 @@ impl LinearMove {
     }
 }
 
+/// What drives an axis' position: nothing, a simulated move, or a cam;
+/// never a move and a cam at once (a cam start ends a move, a move is
+/// refused while a cam runs).
+#[derive(Debug, Default)]
+pub enum Motion {
+    /// The axis stands.
+    #[default]
+    Still,
+    /// A simulated linear move (`MoveTo`) in progress.
+    Moving(LinearMove),
+    /// The started cam, while active.
+    Camming(Box<RunningCam>),
+}
+
+impl Motion {
+    /// Whether a cam drives the axis.
+    pub fn is_camming(&self) -> bool {
+        matches!(self, Self::Camming(_))
+    }
+}
+
 /// One axis.
 #[derive(Debug, Default)]
 pub struct Axis {
@@ -148,10 +169,8 @@ pub struct Axis {
     pub commanded: i64,
     /// `SetCam` parameters and the last offsets.
     pub cam: CamSettings,
-    /// The started cam, while active.
-    pub running: Option<RunningCam>,
-    /// A simulated move in progress.
-    pub moving: Option<LinearMove>,
+    /// What drives the position.
+    pub motion: Motion,
     /// Breakpoints 0 and 1.
     pub breakpoints: [Breakpoint; 2],
     /// Event status word.
@@ -161,7 +180,7 @@ pub struct Axis {
 impl Axis {
     /// Whether the axis moves (a cam active or a simulated move under way).
     pub fn in_motion(&self) -> bool {
-        self.running.is_some() || self.moving.is_some()
+        !matches!(self.motion, Motion::Still)
     }
 
     /// The activity status word.
@@ -170,7 +189,7 @@ impl Axis {
         if self.in_motion() {
             word |= activity_bit::IN_MOTION;
         }
-        if self.running.is_some() {
+        if self.motion.is_camming() {
             word |= activity_bit::CAM_ACTIVE;
         }
         word

@@ -9,7 +9,7 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use crate::axis::{Axis, LinearMove, ProfileMode, StopMode, event_bit};
+use crate::axis::{Axis, LinearMove, Motion, ProfileMode, StopMode, event_bit};
 use crate::breakpoint::{Action, Breakpoint, BreakpointWord, Event, Trigger};
 use crate::{
     BufferCam, BufferId, BufferMemory, CamParam, CamSettings, PmdError, RunningCam, SharedMemory,
@@ -112,7 +112,7 @@ impl MotionProcessor {
     fn buffer_user(&self, buffer: BufferId) -> Option<u8> {
         self.axes
             .iter()
-            .position(|a| a.running.is_some() && a.cam.buffer == buffer)
+            .position(|a| a.motion.is_camming() && a.cam.buffer == buffer)
             .and_then(|i| u8::try_from(i).ok())
     }
 
@@ -264,8 +264,7 @@ impl MotionProcessor {
     /// commanded position [stays] at whatever value it has when the stop is
     /// processed").
     fn stop_abrupt(a: &mut Axis) {
-        a.moving = None;
-        if a.running.take().is_some() {
+        if core::mem::take(&mut a.motion).is_camming() {
             a.event_status |= event_bit::MOTION_COMPLETE;
         }
     }
@@ -281,12 +280,15 @@ impl MotionProcessor {
     /// and the stop is where it is now. Letting it run on to its target
     /// instead would ignore the stop.
     fn stop_smooth(a: &mut Axis) {
-        a.moving = None;
-        if let Some(cam) = a.running.as_mut() {
-            cam.stop_smooth();
-            if !cam.active() {
-                a.running = None;
-                a.event_status |= event_bit::MOTION_COMPLETE;
+        match &mut a.motion {
+            Motion::Still => {}
+            Motion::Moving(_) => a.motion = Motion::Still,
+            Motion::Camming(cam) => {
+                cam.stop_smooth();
+                if !cam.active() {
+                    a.motion = Motion::Still;
+                    a.event_status |= event_bit::MOTION_COMPLETE;
+                }
             }
         }
     }
@@ -303,7 +305,7 @@ impl MotionProcessor {
         if a.mode != ProfileMode::ElectronicCam {
             return Err(PmdError::NotInCamMode { axis });
         }
-        if a.running.is_some() {
+        if a.motion.is_camming() {
             return Err(PmdError::CamActive { axis });
         }
         a.cam.set(param, value, count)
@@ -435,7 +437,7 @@ impl MotionProcessor {
         let Ok(a) = self.axis_mut(axis) else {
             return;
         };
-        if a.mode != ProfileMode::ElectronicCam || a.running.is_some() {
+        if a.mode != ProfileMode::ElectronicCam || a.motion.is_camming() {
             return;
         }
         let cam = a.cam;
@@ -448,10 +450,8 @@ impl MotionProcessor {
         }
         let table = BufferCam::new(memory, cam.buffer, cam.counts, values);
         match RunningCam::start(table, cam.start_count, a.commanded) {
-            Ok(running) => {
-                a.moving = None;
-                a.running = Some(running);
-            }
+            // The cam takes the axis over from a simulated move.
+            Ok(running) => a.motion = Motion::Camming(Box::new(running)),
             Err(_) => {
                 a.event_status |= event_bit::MOTION_ERROR;
                 return;
@@ -503,7 +503,7 @@ impl MotionProcessor {
     /// # Errors
     /// Unknown axis.
     pub fn cam_active(&self, axis: u8) -> Result<bool, PmdError> {
-        Ok(self.axis(axis)?.running.is_some())
+        Ok(self.axis(axis)?.motion.is_camming())
     }
 
     // ----- simulation -----
@@ -517,13 +517,13 @@ impl MotionProcessor {
     pub fn set_actual_position(&mut self, axis: u8, position: i64) -> Result<(), PmdError> {
         let position = check_i32("position", position)?;
         let a = self.axis_mut(axis)?;
-        if a.running.is_some() {
+        if a.motion.is_camming() {
             return Err(PmdError::AxisCamming { axis });
         }
         let delta = position.saturating_sub(a.actual);
         a.actual = position;
         a.commanded = a.commanded.saturating_add(delta);
-        a.moving = None;
+        a.motion = Motion::Still;
         Ok(())
     }
 
@@ -541,15 +541,15 @@ impl MotionProcessor {
             allowed: "0 to 4294967295 cycles",
         })?;
         let a = self.axis_mut(axis)?;
-        if a.running.is_some() {
+        if a.motion.is_camming() {
             return Err(PmdError::AxisCamming { axis });
         }
         if ticks == 0 {
             a.actual = position;
             a.commanded = position;
-            a.moving = None;
+            a.motion = Motion::Still;
         } else {
-            a.moving = Some(LinearMove {
+            a.motion = Motion::Moving(LinearMove {
                 from: a.actual,
                 to: position,
                 ticks,
@@ -563,13 +563,13 @@ impl MotionProcessor {
     pub fn tick(&mut self) {
         self.time = self.time.saturating_add(1);
         for a in &mut self.axes {
-            if let Some(m) = a.moving.as_mut() {
+            if let Motion::Moving(m) = &mut a.motion {
                 let pos = m.step();
                 let done = m.finished();
                 a.actual = pos;
                 a.commanded = pos;
                 if done {
-                    a.moving = None;
+                    a.motion = Motion::Still;
                 }
             }
         }
@@ -634,7 +634,7 @@ impl MotionProcessor {
         let Some(a) = self.axes.get_mut(i) else {
             return;
         };
-        let Some(cam) = a.running.as_mut() else {
+        let Motion::Camming(cam) = &mut a.motion else {
             return;
         };
         let out = cam.tick(input);
@@ -650,7 +650,7 @@ impl MotionProcessor {
             } else {
                 event_bit::MOTION_COMPLETE
             };
-            a.running = None;
+            a.motion = Motion::Still;
         }
     }
 }

@@ -120,9 +120,9 @@ impl ScriptRunner {
             Err(e) => {
                 return Some(Report::Error {
                     line,
-                    cmd: e.cmd,
+                    cmd: e.cmd().to_owned(),
                     axis: self.axis,
-                    message: e.message,
+                    message: e.to_string(),
                 });
             }
         };

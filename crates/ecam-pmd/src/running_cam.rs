@@ -57,8 +57,12 @@ impl RunningCam {
     /// commanded position `commanded`; it engages on the next [`RunningCam::tick`].
     ///
     /// # Errors
-    /// The engine's refusal, as text (e.g. an empty cycle).
-    pub fn start(table: BufferCam, start_count: i64, commanded: i64) -> Result<Self, String> {
+    /// The engine's refusal (e.g. an empty cycle).
+    pub fn start(
+        table: BufferCam,
+        start_count: i64,
+        commanded: i64,
+    ) -> Result<Self, ecam_engine::EngineError> {
         let config = AxisConfig {
             coupling: Coupling::Repeat { min_stroke: 1 },
             start: StartMode::Immediate,
@@ -67,10 +71,9 @@ impl RunningCam {
             ..AxisConfig::default()
         };
         let newest = table.clone();
-        let mut axis = CamAxis::new(table, config).map_err(|e| e.to_string())?;
-        axis.set_slave_position(commanded)
-            .map_err(|e| e.to_string())?;
-        axis.arm().map_err(|e| e.to_string())?;
+        let mut axis = CamAxis::new(table, config)?;
+        axis.set_slave_position(commanded)?;
+        axis.arm()?;
         Ok(Self {
             axis,
             newest,

@@ -1,14 +1,17 @@
 //! The script language of `ecam pmd run`: one document-002 command per line.
 //!
-//! A line holds a command name and its arguments separated by blanks (or
-//! commas). `'` starts a comment, and so do the typographic quotes `‘ ’`
-//! that document 002's listing uses. A line holding only `…` or `...` is the
-//! document's elision and is skipped. Numbers are decimal or `0x` hex, with
-//! an optional sign; a name defined by `Define NAME VALUE` may stand for a
-//! number (document 002 writes `WriteBuffer 2 cam_table_0`). Command and
-//! parameter names ignore letter case.
+//! A line is read by the reader both script faces share
+//! ([`ecam_core::script_line`]): a command name and its arguments separated
+//! by blanks (or commas); `'` starts a comment, and so do the typographic
+//! quotes `‘ ’` that document 002's listing uses; a line holding only `…`
+//! or `...` is the document's elision and is skipped. Numbers are decimal
+//! or `0x` hex, with an optional sign; a name defined by `Define NAME VALUE`
+//! may stand for a number (document 002 writes `WriteBuffer 2
+//! cam_table_0`). Command and parameter names ignore letter case.
 
 use std::collections::HashMap;
+
+use ecam_core::script_line::{NumberError, ScriptLine, parse_number};
 
 use crate::CamParam;
 
@@ -67,23 +70,132 @@ pub enum Command {
 
 /// A line that is not a command.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseError {
-    /// The command name as written (empty if the line had none).
-    pub cmd: String,
-    /// What is wrong, in words.
-    pub message: String,
+pub enum ParseError {
+    /// No command of this name.
+    UnknownCommand {
+        /// The command name as written.
+        cmd: String,
+    },
+    /// Too many or too few arguments.
+    ArgumentCount {
+        /// The command name as written.
+        cmd: String,
+        /// The arguments it takes, by name.
+        usage: &'static [&'static str],
+        /// How many were given.
+        got: usize,
+    },
+    /// A number past the signed 64-bit range.
+    NumberOutOfRange {
+        /// The command name as written.
+        cmd: String,
+        /// The argument as written.
+        word: String,
+    },
+    /// An argument that is neither a number nor a known name.
+    NotANumber {
+        /// The command name as written.
+        cmd: String,
+        /// The argument as written.
+        word: String,
+        /// The names the argument may take besides numbers.
+        names: Names,
+    },
+    /// `Define` with a name that is not one.
+    BadName {
+        /// The command name as written.
+        cmd: String,
+        /// The name as written.
+        name: String,
+    },
+    /// `Tick` with a cycle count outside 0 to the simulation limit.
+    TickCount {
+        /// The command name as written.
+        cmd: String,
+        /// The count given.
+        count: i64,
+    },
+    /// `SetCam`/`GetCam` with a parameter document 002 does not have.
+    UnknownCamParam {
+        /// The command name as written.
+        cmd: String,
+        /// The parameter as written.
+        word: String,
+    },
+}
+
+impl ParseError {
+    /// The command name as written.
+    pub fn cmd(&self) -> &str {
+        match self {
+            Self::UnknownCommand { cmd }
+            | Self::ArgumentCount { cmd, .. }
+            | Self::NumberOutOfRange { cmd, .. }
+            | Self::NotANumber { cmd, .. }
+            | Self::BadName { cmd, .. }
+            | Self::TickCount { cmd, .. }
+            | Self::UnknownCamParam { cmd, .. } => cmd,
+        }
+    }
 }
 
 impl core::fmt::Display for ParseError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(&self.message)
+        match self {
+            Self::UnknownCommand { cmd } => write!(f, "unknown command '{cmd}'"),
+            Self::ArgumentCount { cmd, usage, got } => {
+                let shape = if usage.is_empty() {
+                    String::from("no arguments")
+                } else {
+                    usage.join(" ")
+                };
+                write!(
+                    f,
+                    "{cmd} takes {} argument{} ({shape}), got {got}",
+                    usage.len(),
+                    if usage.len() == 1 { "" } else { "s" },
+                )
+            }
+            Self::NumberOutOfRange { cmd, word } => write!(
+                f,
+                "{cmd}: {word} is out of range: numbers must fit a signed 64-bit value (and the command's own range)"
+            ),
+            Self::NotANumber { cmd, word, names } => {
+                write!(f, "{cmd}: '{word}' is not a number or a known name: ")?;
+                if names.is_empty() {
+                    f.write_str(
+                        "give a number (decimal or 0x hex) or a name set by `Define NAME VALUE`",
+                    )
+                } else {
+                    let known: Vec<&str> = names.iter().map(|(n, _)| *n).collect();
+                    write!(
+                        f,
+                        "give a number, one of {}, or a name set by `Define NAME VALUE`",
+                        known.join(", ")
+                    )
+                }
+            }
+            Self::BadName { name, .. } => write!(
+                f,
+                "Define: '{name}' is not a name (letters, digits and _, not starting with a digit)"
+            ),
+            Self::TickCount { count, .. } => write!(
+                f,
+                "Tick: {count} is out of range: the cycle count must be 0 to {}",
+                ecam_core::limits::MAX_SIMULATED_TICKS
+            ),
+            Self::UnknownCamParam { cmd, word } => write!(
+                f,
+                "{cmd}: unknown cam parameter '{word}': use 0 CamBufferID, 1 CamCounts, 2 CamStartCount, 3 CamSource, 4 CamOutputOffset or 5 CamInputOffset"
+            ),
+        }
     }
 }
 
 impl std::error::Error for ParseError {}
 
 /// Named values a command accepts besides numbers.
-type Names = &'static [(&'static str, i64)];
+pub type Names = &'static [(&'static str, i64)];
 
 const PROFILE_MODES: Names = &[("Trapezoidal", 0), ("ElectronicCam", 8)];
 const STOP_MODES: Names = &[
@@ -102,29 +214,6 @@ const ACTIONS: Names = &[
     ("StartCam", 9),
 ];
 
-/// Removes the comment from a line: `'`, `‘` or `’` to the end.
-pub fn strip_comment(line: &str) -> &str {
-    line.find(['\'', '‘', '’'])
-        .map_or(line, |i| line.get(..i).unwrap_or(line))
-}
-
-/// Parses a number: decimal or `0x` hex, optional sign.
-pub fn parse_number(text: &str) -> Option<i64> {
-    let (negative, digits) = match text.strip_prefix('-') {
-        Some(rest) => (true, rest),
-        None => (false, text.strip_prefix('+').unwrap_or(text)),
-    };
-    let magnitude = match digits
-        .strip_prefix("0x")
-        .or_else(|| digits.strip_prefix("0X"))
-    {
-        Some(hex) => i128::from_str_radix(hex, 16).ok()?,
-        None if digits.bytes().all(|b| b.is_ascii_digit()) => digits.parse::<i128>().ok()?,
-        None => return None,
-    };
-    i64::try_from(if negative { -magnitude } else { magnitude }).ok()
-}
-
 /// Parses lines into commands, remembering `Define`d names.
 #[derive(Clone, Debug, Default)]
 pub struct Parser {
@@ -138,71 +227,36 @@ struct Args<'a> {
 }
 
 impl Args<'_> {
-    fn error(&self, message: String) -> ParseError {
-        ParseError {
-            cmd: self.cmd.to_owned(),
-            message,
-        }
-    }
-
-    fn expect(&self, usage: &[&str]) -> Result<(), ParseError> {
+    fn expect(&self, usage: &'static [&'static str]) -> Result<(), ParseError> {
         if self.words.len() == usage.len() {
             return Ok(());
         }
-        let shape = if usage.is_empty() {
-            String::from("no arguments")
-        } else {
-            usage.join(" ")
-        };
-        Err(self.error(format!(
-            "{} takes {} argument{} ({shape}), got {}",
-            self.cmd,
-            usage.len(),
-            if usage.len() == 1 { "" } else { "s" },
-            self.words.len()
-        )))
+        Err(ParseError::ArgumentCount {
+            cmd: self.cmd.to_owned(),
+            usage,
+            got: self.words.len(),
+        })
     }
 
     fn value(&self, i: usize, names: Names) -> Result<i64, ParseError> {
         let word = self.words.get(i).copied().unwrap_or_default();
-        if let Some(n) = parse_number(word) {
-            return Ok(n);
-        }
+        let error = match parse_number(word) {
+            Ok(n) => return Ok(n),
+            Err(error) => error,
+        };
         if let Some(&(_, v)) = names.iter().find(|(n, _)| n.eq_ignore_ascii_case(word)) {
             return Ok(v);
         }
         if let Some(&v) = self.symbols.get(word) {
             return Ok(v);
         }
+        let (cmd, word) = (self.cmd.to_owned(), word.to_owned());
         // A number too big for any register ("Tick 18446744073709551615") is
         // still a number: say it is out of range, not that it is unknown.
-        let digits = word.trim_start_matches(['-', '+']);
-        let hex = digits
-            .strip_prefix("0x")
-            .or_else(|| digits.strip_prefix("0X"));
-        let numeric = match hex {
-            Some(h) => !h.is_empty() && h.bytes().all(|b| b.is_ascii_hexdigit()),
-            None => !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()),
-        };
-        if numeric {
-            return Err(self.error(format!(
-                "{}: {word} is out of range: numbers must fit a signed 64-bit value (and the command's own range)",
-                self.cmd
-            )));
-        }
-        let known: Vec<&str> = names.iter().map(|(n, _)| *n).collect();
-        let hint = if known.is_empty() {
-            String::from("give a number (decimal or 0x hex) or a name set by `Define NAME VALUE`")
-        } else {
-            format!(
-                "give a number, one of {}, or a name set by `Define NAME VALUE`",
-                known.join(", ")
-            )
-        };
-        Err(self.error(format!(
-            "{}: '{word}' is not a number or a known name: {hint}",
-            self.cmd
-        )))
+        Err(match error {
+            NumberError::OutOfRange => ParseError::NumberOutOfRange { cmd, word },
+            NumberError::NotANumber => ParseError::NotANumber { cmd, word, names },
+        })
     }
 
     fn number(&self, i: usize) -> Result<i64, ParseError> {
@@ -227,18 +281,13 @@ impl Parser {
     /// Unknown command, wrong argument count, or an argument that is not a
     /// number or known name.
     pub fn parse_line(&mut self, line: &str) -> Result<Option<Command>, ParseError> {
-        // A byte-order mark may open a script saved by a Windows editor.
-        let code = strip_comment(line.trim_start_matches('\u{feff}')).trim();
-        if code.is_empty() || code == "…" || code == "..." {
+        let Some(line) = ScriptLine::read(line) else {
             return Ok(None);
-        }
-        let mut words = code
-            .split(|c: char| c.is_whitespace() || c == ',')
-            .filter(|w| !w.is_empty());
-        let cmd = words.next().unwrap_or_default();
+        };
+        let cmd = line.command();
         let a = Args {
             cmd,
-            words: words.collect(),
+            words: line.args().to_vec(),
             symbols: &self.symbols,
         };
         let name = cmd.to_ascii_lowercase();
@@ -258,9 +307,10 @@ impl Parser {
                         .chars()
                         .all(|c| c.is_ascii_alphanumeric() || c == '_');
                 if !valid {
-                    return Err(a.error(format!(
-                        "Define: '{symbol}' is not a name (letters, digits and _, not starting with a digit)"
-                    )));
+                    return Err(ParseError::BadName {
+                        cmd: cmd.to_owned(),
+                        name: symbol.to_owned(),
+                    });
                 }
                 Command::Define(symbol.to_owned(), a.number(1)?)
             }
@@ -355,14 +405,17 @@ impl Parser {
                 let n = u64::try_from(n)
                     .ok()
                     .filter(|&n| n <= limit)
-                    .ok_or_else(|| {
-                        a.error(format!(
-                            "Tick: {n} is out of range: the cycle count must be 0 to {limit}"
-                        ))
+                    .ok_or_else(|| ParseError::TickCount {
+                        cmd: cmd.to_owned(),
+                        count: n,
                     })?;
                 Command::Tick(n)
             }
-            _ => return Err(a.error(format!("unknown command '{cmd}'"))),
+            _ => {
+                return Err(ParseError::UnknownCommand {
+                    cmd: cmd.to_owned(),
+                });
+            }
         };
         if let Command::Define(symbol, value) = &command {
             self.symbols.insert(symbol.clone(), *value);
@@ -372,11 +425,9 @@ impl Parser {
 
     fn cam_param(a: &Args<'_>) -> Result<CamParam, ParseError> {
         let word = a.words.first().copied().unwrap_or_default();
-        CamParam::parse(word).ok_or_else(|| {
-            a.error(format!(
-                "{}: unknown cam parameter '{word}': use 0 CamBufferID, 1 CamCounts, 2 CamStartCount, 3 CamSource, 4 CamOutputOffset or 5 CamInputOffset",
-                a.cmd
-            ))
+        CamParam::parse(word).ok_or_else(|| ParseError::UnknownCamParam {
+            cmd: a.cmd.to_owned(),
+            word: word.to_owned(),
         })
     }
 }
@@ -413,7 +464,7 @@ mod tests {
     fn symbols_need_a_definition() {
         let mut p = Parser::new();
         let err = p.parse_line("WriteBuffer 2 cam_table_0").unwrap_err();
-        assert!(err.message.contains("Define"), "{err}");
+        assert!(err.to_string().contains("Define"), "{err}");
         p.parse_line("Define cam_table_0 -40").unwrap();
         assert_eq!(
             p.parse_line("WriteBuffer 2 cam_table_0").unwrap(),
@@ -425,30 +476,41 @@ mod tests {
     fn bad_lines_say_why() {
         let mut p = Parser::new();
         let e = p.parse_line("SetCame CamCounts 3").unwrap_err();
-        assert_eq!(e.message, "unknown command 'SetCame'");
+        assert_eq!(e.to_string(), "unknown command 'SetCame'");
         let e = p.parse_line("SetCam CamCounts").unwrap_err();
-        assert_eq!(e.message, "SetCam takes 2 arguments (PARAM VALUE), got 1");
+        assert_eq!(
+            e.to_string(),
+            "SetCam takes 2 arguments (PARAM VALUE), got 1"
+        );
         let e = p.parse_line("GetCam CamSpeed").unwrap_err();
-        assert!(e.message.contains("unknown cam parameter"));
+        assert!(e.to_string().contains("unknown cam parameter"));
         assert!(p.parse_line("Tick -1").is_err());
         assert!(p.parse_line("Update now").is_err());
         assert!(p.parse_line("Define 9x 1").is_err());
         // Too big for 64 bits: a number out of range, not an unknown name.
         let e = p.parse_line("Tick 18446744073709551615").unwrap_err();
-        assert!(e.message.contains("out of range"), "{e}");
-        assert!(!e.message.contains("not a number"), "{e}");
+        assert!(e.to_string().contains("out of range"), "{e}");
+        assert!(!e.to_string().contains("not a number"), "{e}");
         let e = p
             .parse_line("WriteBuffer 0 0x1FFFFFFFFFFFFFFFF")
             .unwrap_err();
-        assert!(e.message.contains("out of range"), "{e}");
+        assert!(e.to_string().contains("out of range"), "{e}");
     }
 
     #[test]
-    fn numbers() {
-        assert_eq!(parse_number("-0x10"), Some(-16));
-        assert_eq!(parse_number("+7"), Some(7));
-        assert_eq!(parse_number("1e3"), None);
-        assert_eq!(parse_number("99999999999999999999"), None);
-        assert_eq!(parse_number("-9223372036854775808"), Some(i64::MIN));
+    fn numbers_and_names() {
+        let mut p = Parser::new();
+        assert_eq!(
+            p.parse_line("WriteBuffer 0 -0x10").unwrap(),
+            Some(Command::WriteBuffer(0, -16))
+        );
+        let e = p.parse_line("WriteBuffer 0 1e3").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "WriteBuffer: '1e3' is not a number or a known name: give a number (decimal or 0x hex) or a name set by `Define NAME VALUE`"
+        );
+        let e = p.parse_line("SetStopMode Fast").unwrap_err();
+        assert!(e.to_string().contains("one of NoStop, Abrupt"), "{e}");
+        assert_eq!(e.cmd(), "SetStopMode");
     }
 }

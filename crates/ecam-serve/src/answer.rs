@@ -141,7 +141,7 @@ mod tests {
     use ecam_plc::Plc;
 
     fn shared() -> Shared {
-        let program = ecam_plc::il::parse("", "empty.il").unwrap();
+        let program = ecam_plc::Program::parse("", "empty.il").unwrap();
         let addr = "127.0.0.1:0".parse().unwrap();
         Shared::new(
             Plc::new(program).unwrap(),

@@ -187,7 +187,7 @@ mod tests {
 
         // PLSY with a negative frequency: operation error 6705 every scan.
         let source = "LD M8000\nPLSY K-5 K10 Y0\n";
-        let plc = ecam_plc::Plc::new(ecam_plc::il::parse(source, "op.il").unwrap()).unwrap();
+        let plc = ecam_plc::Plc::new(ecam_plc::Program::parse(source, "op.il").unwrap()).unwrap();
         let addr = "127.0.0.1:0".parse().unwrap();
         let info = ServeInfo {
             program: Some("op.il".into()),

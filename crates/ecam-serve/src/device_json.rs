@@ -196,7 +196,7 @@ mod tests {
     fn index_registers_read_like_words() {
         let mut devices = Devices::new();
         devices
-            .set_index_register(ecam_plc::il::IndexReg::Z(1), -4)
+            .set_index_register(ecam_plc::IndexReg::Z(1), -4)
             .unwrap();
         devices.set_index_pair(2, 70000).unwrap();
         let views = parse_device_names("Z1,V2,Z2,V7:1").unwrap();

@@ -24,7 +24,7 @@ const MAX_RESPONSE_PDU: usize = 253;
 /// A server with an empty program and no journal, as `ecam serve` without
 /// a state directory runs.
 fn server() -> Option<Shared> {
-    let program = ecam_plc::il::parse("END", "fuzz.il").ok()?;
+    let program = ecam_plc::Program::parse("END", "fuzz.il").ok()?;
     let plc = Plc::new(program).ok()?;
     let addr = SocketAddr::from((Ipv4Addr::LOCALHOST, 0));
     let info = ServeInfo {

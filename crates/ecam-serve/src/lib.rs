@@ -23,11 +23,11 @@
 //! the server as a user sees it.
 //!
 //! ```
-//! use ecam_plc::{Plc, il, sim::Timing};
+//! use ecam_plc::{Plc, Program, sim::Timing};
 //! use ecam_serve::{Response, ServeInfo, Shared, answer_request, encode_response, parse_request};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! let plc = Plc::new(il::parse("", "empty.il")?)?;
+//! let plc = Plc::new(Program::parse("", "empty.il")?)?;
 //! let addr = "127.0.0.1:0".parse()?;
 //! let info = ServeInfo {
 //!     program: None,

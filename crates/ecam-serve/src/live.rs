@@ -277,7 +277,7 @@ mod tests {
 
     #[test]
     fn a_block_of_an_idle_plc_reads_stopped() {
-        let plc = Plc::new(ecam_plc::il::parse("", "empty.il").unwrap()).unwrap();
+        let plc = Plc::new(ecam_plc::Program::parse("", "empty.il").unwrap()).unwrap();
         let s = LiveSample::read(&plc, 2000);
         assert!(!s.running);
         assert_eq!(s.to_json(2000, None)["mode"], "stopped");

@@ -223,7 +223,7 @@ mod tests {
     /// (a 2-point table, D2000..D2047) on a K1 time base.
     fn running_cam() -> Shared {
         let program =
-            ecam_plc::il::parse("LD M8000\nMOV K1 D2005\nDECAM K1 D2000 X0 Y0 Y4\n", "t.il")
+            ecam_plc::Program::parse("LD M8000\nMOV K1 D2005\nDECAM K1 D2000 X0 Y0 Y4\n", "t.il")
                 .unwrap();
         let mut plc = ecam_plc::Plc::new(program).unwrap();
         let table = PointTable::from_pairs(&[(0, 0), (1000, 100)]).unwrap();

@@ -32,6 +32,6 @@ pub fn scenario(data: &[u8]) {
         let _ = (scenario.master_input(master), scenario.start_input_at(t_us));
     }
     if ticks <= MAX_TICKS {
-        let _ = simulate(&scenario, |_, _, _| Ok(()));
+        let _ = simulate(&scenario, |_, _, _| Ok::<(), core::convert::Infallible>(()));
     }
 }

@@ -39,14 +39,15 @@
 //! let mut rows = 0;
 //! let summary = simulate(&scenario, |_row, _out, _traced| {
 //!     rows += 1;
-//!     Ok(())
+//!     Ok::<(), std::io::Error>(())
 //! })?;
 //! assert_eq!((summary.final_master, summary.final_slave), (101, 202));
 //! assert_eq!(summary.state, "running");
 //! assert_eq!(rows, summary.ticks);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod error;
 #[doc(hidden)]
 pub mod fuzz;
 mod plot;
@@ -54,7 +55,8 @@ mod scenario;
 mod simulate;
 mod trace;
 
+pub use error::{ScenarioError, SimulateError};
 pub use plot::{PLOT_POINTS, TracePlot};
 pub use scenario::{MasterMove, Scenario, StopAt, StopTrigger};
 pub use simulate::{Summary, simulate};
-pub use trace::{HEADER, Row, TraceWriter, state_name};
+pub use trace::{HEADER, Row, TraceError, TraceWriter, state_name};

@@ -8,13 +8,14 @@
 use std::num::{NonZeroU32, NonZeroU64};
 use std::path::Path;
 
-use anyhow::{Context, bail};
 use ecam_core::CamCurve;
 use ecam_engine::{
     AxisConfig, Compare, Coupling, MasterAlign, MasterFilter, SlaveAlign, StartMode, StopKind,
     SwitchAt, SyncWindow, Zoom,
 };
 use serde::Deserialize;
+
+use crate::error::ScenarioError;
 
 /// The TOML file as written.
 #[derive(Deserialize, Debug)]
@@ -292,10 +293,13 @@ pub struct Scenario {
 }
 
 /// Seconds → microseconds, refusing negatives, NaN and absurd lengths.
-fn micros(seconds: f64, what: &str) -> anyhow::Result<u64> {
+fn micros(seconds: f64, what: &str) -> Result<u64, ScenarioError> {
     // A year of simulated time is far beyond any useful scenario.
     if !(0.0..=3.2e7).contains(&seconds) {
-        bail!("{what} = {seconds:?} s: must be between 0 and 3.2e7 seconds");
+        return Err(ScenarioError::Seconds {
+            what: what.to_string(),
+            seconds,
+        });
     }
     Ok((seconds * 1e6).round() as u64)
 }
@@ -307,27 +311,40 @@ impl Scenario {
     /// # Errors
     /// Unreadable file, TOML errors, unknown keys, inconsistent settings, or
     /// a table or configuration the core or engine refuses.
-    pub fn load(path: &Path) -> anyhow::Result<Self> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read scenario {}", path.display()))?;
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        Self::parse(&text, &base).with_context(|| format!("in scenario {}", path.display()))
+        Self::parse(&text, &base).map_err(|error| ScenarioError::In {
+            path: path.to_path_buf(),
+            error: Box::new(error),
+        })
     }
 
     /// Parses scenario text; `base` is the folder relative table files are in.
     ///
     /// # Errors
     /// As [`Scenario::load`].
-    pub fn parse(text: &str, base: &Path) -> anyhow::Result<Self> {
-        let raw: RawScenario = toml::from_str(text)?;
+    pub fn parse(text: &str, base: &Path) -> Result<Self, ScenarioError> {
+        let at_least_one = |key: &str, unit| ScenarioError::AtLeastOne {
+            key: key.to_string(),
+            unit,
+        };
+        let raw: RawScenario = toml::from_str(text).map_err(ScenarioError::Toml)?;
         if raw.tick_us == 0 {
-            bail!("tick_us must be at least 1");
+            return Err(at_least_one("tick_us", ""));
         }
         if raw.trace_every == Some(0) {
-            bail!("trace_every must be at least 1 (1 writes every tick)");
+            return Err(at_least_one("trace_every", " (1 writes every tick)"));
         }
         unused_keys(&raw.cam, &raw.start)?;
-        let curve = ecam_design::load_table(&raw.table, base).context("in [table]")?;
+        let curve =
+            ecam_design::load_table(&raw.table, base).map_err(|error| ScenarioError::Table {
+                place: "[table]".to_string(),
+                error: Box::new(error),
+            })?;
         let moves = raw
             .master
             .moves
@@ -336,37 +353,35 @@ impl Scenario {
             .map(|(i, &[duration, target])| {
                 let duration_us = micros(duration, &format!("[master] moves[{i}] duration"))?;
                 if !target.is_finite() || target.abs() > 4.5e15 {
-                    bail!(
-                        "[master] moves[{i}] target {target:?} is out of range: at most ±4.5e15 counts"
-                    );
+                    return Err(ScenarioError::TargetRange { index: i, target });
                 }
                 if target.fract() != 0.0 {
-                    bail!("[master] moves[{i}] target {target} must be a whole number of counts");
+                    return Err(ScenarioError::TargetFraction { index: i, target });
                 }
                 Ok(MasterMove {
                     duration_us,
                     target: target as i64,
                 })
             })
-            .collect::<anyhow::Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         let moves_us = moves
             .iter()
             .try_fold(0u64, |acc, m| acc.checked_add(m.duration_us))
-            .context("[master] moves last too long")?;
+            .ok_or(ScenarioError::MovesTooLong)?;
         let duration_us = match raw.duration_s {
             Some(d) => micros(d, "duration_s")?,
             None => moves_us,
         };
         if duration_us == 0 {
-            bail!("nothing to simulate: give [master] moves or duration_s");
+            return Err(ScenarioError::NothingToSimulate);
         }
         let ticks = duration_us.div_ceil(u64::from(raw.tick_us.max(1)));
         let limit = ecam_core::limits::MAX_SIMULATED_TICKS;
         if ticks > limit {
-            bail!(
-                "the scenario runs {ticks} ticks of {} us; the limit is {limit}: shorten duration_s or the moves, or lengthen tick_us",
-                raw.tick_us
-            );
+            return Err(ScenarioError::TooManyTicks {
+                ticks,
+                tick_us: raw.tick_us,
+            });
         }
         let start_input = raw
             .start
@@ -377,19 +392,23 @@ impl Scenario {
                 let what = format!("[start] input[{i}]");
                 let (on, off) = (micros(on, &what)?, micros(off, &what)?);
                 if off <= on {
-                    bail!("{what}: the input must go off after it goes on");
+                    return Err(ScenarioError::InputOrder { index: i });
                 }
                 Ok((on, off))
             })
-            .collect::<anyhow::Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         let stop = raw
             .stop
-            .map(|s| -> anyhow::Result<StopAt> {
+            .map(|s| -> Result<StopAt, ScenarioError> {
                 let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
                     (Some(t), None, None) => StopTrigger::Time(micros(t, "[stop] at_s")?),
                     (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
                     (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-                    _ => bail!("[stop] needs exactly one of at_s, master_at_least, master_at_most"),
+                    _ => {
+                        return Err(ScenarioError::Trigger {
+                            what: "[stop]".to_string(),
+                        });
+                    }
                 };
                 Ok(StopAt {
                     trigger,
@@ -404,20 +423,24 @@ impl Scenario {
             .switch
             .iter()
             .enumerate()
-            .map(|(i, s)| -> anyhow::Result<TableSwitch> {
+            .map(|(i, s)| -> Result<TableSwitch, ScenarioError> {
                 let what = format!("[[switch]] {}", i + 1);
                 let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
                     (Some(t), None, None) => StopTrigger::Time(micros(t, &format!("{what} at_s"))?),
                     (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
                     (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-                    _ => bail!("{what} needs exactly one of at_s, master_at_least, master_at_most"),
+                    _ => return Err(ScenarioError::Trigger { what }),
                 };
-                let curve = ecam_design::load_table(&s.table, base)
-                    .with_context(|| format!("in {what} table"))?;
+                let curve = ecam_design::load_table(&s.table, base).map_err(|error| {
+                    ScenarioError::Table {
+                        place: format!("{what} table"),
+                        error: Box::new(error),
+                    }
+                })?;
                 let blend = match s.blend {
                     Some(b) => Some(
                         NonZeroU64::new(b)
-                            .with_context(|| format!("{what} blend must be at least 1 count"))?,
+                            .ok_or_else(|| at_least_one(&format!("{what} blend"), " count"))?,
                     ),
                     None => None,
                 };
@@ -428,22 +451,25 @@ impl Scenario {
                         SwitchAt::MasterPosition { position, blend }
                     }
                     (RawSwitchMode::Position, None) => {
-                        bail!("{what}: mode = \"position\" needs position = MASTER")
+                        return Err(ScenarioError::SwitchPositionMissing { what });
                     }
-                    (_, Some(_)) => {
-                        bail!("{what}: position is read only with mode = \"position\"")
-                    }
+                    (_, Some(_)) => return Err(ScenarioError::SwitchPositionUnused { what }),
                 };
                 Ok(TableSwitch { trigger, at, curve })
             })
-            .collect::<anyhow::Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         if raw.sync.len() > 4 {
-            bail!("at most 4 [[sync]] windows, got {}", raw.sync.len());
+            return Err(ScenarioError::TooManySyncWindows {
+                got: raw.sync.len(),
+            });
         }
         let mut sync_windows = [SyncWindow::OFF; 4];
         for (slot, w) in sync_windows.iter_mut().zip(&raw.sync) {
             if w.high < w.low {
-                bail!("[[sync]] low {} is above high {}", w.low, w.high);
+                return Err(ScenarioError::SyncOrder {
+                    low: w.low,
+                    high: w.high,
+                });
             }
             *slot = SyncWindow::new(w.low, w.high);
         }
@@ -456,7 +482,7 @@ impl Scenario {
             slave_zoom: zoom(raw.cam.slave_zoom, "slave_zoom")?,
             single_turn: match raw.cam.single_turn {
                 Some(t) => {
-                    Some(NonZeroU64::new(t).context("[cam] single_turn must be at least 1")?)
+                    Some(NonZeroU64::new(t).ok_or_else(|| at_least_one("[cam] single_turn", ""))?)
                 }
                 None => None,
             },
@@ -465,30 +491,33 @@ impl Scenario {
             ramp_in: match raw.cam.ramp_in {
                 Some(d) => Some(ecam_engine::RampIn {
                     distance: NonZeroU64::new(d)
-                        .context("[cam] ramp_in must be at least 1 count")?,
+                        .ok_or_else(|| at_least_one("[cam] ramp_in", " count"))?,
                 }),
                 None => None,
             },
             master_filter: match (raw.cam.master_filter, raw.cam.max_interval_us) {
                 (RawMasterFilter::Direct, None) => MasterFilter::Direct,
                 (RawMasterFilter::Direct, Some(_)) => {
-                    bail!("[cam] max_interval_us needs master_filter = \"interpolate\"")
+                    return Err(ScenarioError::IntervalNeedsInterpolate);
                 }
                 (RawMasterFilter::Interpolate, None) => MasterFilter::INTERPOLATE,
                 (RawMasterFilter::Interpolate, Some(us)) => MasterFilter::Interpolate {
                     max_interval_us: NonZeroU32::new(us)
-                        .context("[cam] max_interval_us must be at least 1")?,
+                        .ok_or_else(|| at_least_one("[cam] max_interval_us", ""))?,
                 },
             },
             max_master_step: match raw.cam.max_master_step {
                 Some(step) => Some(
-                    NonZeroU64::new(step).context("[cam] max_master_step must be at least 1")?,
+                    NonZeroU64::new(step)
+                        .ok_or_else(|| at_least_one("[cam] max_master_step", ""))?,
                 ),
                 None => None,
             },
         };
         let master_update_us = match raw.master.update_us {
-            Some(us) => Some(NonZeroU64::new(us).context("[master] update_us must be at least 1")?),
+            Some(us) => {
+                Some(NonZeroU64::new(us).ok_or_else(|| at_least_one("[master] update_us", ""))?)
+            }
             None => None,
         };
         Ok(Self {
@@ -585,7 +614,7 @@ fn along(from: i64, to: i64, elapsed: u64, span: u64) -> i64 {
 /// typo, a `delay` under an immediate start or `repeats` on a periodic cam
 /// would otherwise be silently ignored, and the run would not be the one the
 /// user wrote.
-fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
+fn unused_keys(cam: &RawCam, start: &RawStart) -> Result<(), ScenarioError> {
     let cam_kind = match cam.kind {
         CamKind::Periodic => "periodic",
         CamKind::Repeat => "repeat",
@@ -593,10 +622,18 @@ fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
         CamKind::Normal => "normal",
     };
     if cam.kind != CamKind::OneShot && cam.repeats != 0 {
-        bail!("[cam] repeats only applies to kind = \"one-shot\" (this cam is \"{cam_kind}\")");
+        return Err(ScenarioError::UnusedCamKey {
+            key: "repeats",
+            applies_to: "one-shot",
+            kind: cam_kind,
+        });
     }
     if cam.kind != CamKind::Repeat && cam.min_stroke.is_some() {
-        bail!("[cam] min_stroke only applies to kind = \"repeat\" (this cam is \"{cam_kind}\")");
+        return Err(ScenarioError::UnusedCamKey {
+            key: "min_stroke",
+            applies_to: "repeat",
+            kind: cam_kind,
+        });
     }
     let mode = match start.mode {
         StartKind::Immediate => "immediate",
@@ -605,9 +642,9 @@ fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
         StartKind::AtPosition => "at-position",
         StartKind::Breakpoint => "breakpoint",
     };
-    let only = |given: bool, key: &str, modes: &str| -> anyhow::Result<()> {
+    let only = |given: bool, key: &'static str, modes: &'static str| {
         if given {
-            bail!("[start] {key} only applies to mode = {modes} (this start is mode = \"{mode}\")");
+            return Err(ScenarioError::UnusedStartKey { key, modes, mode });
         }
         Ok(())
     };
@@ -631,9 +668,7 @@ fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
     )?;
     let edge = matches!(start.mode, StartKind::RisingEdge) || start.after_edge;
     if !edge && !start.input.is_empty() {
-        bail!(
-            "[start] input is only read by mode = \"rising-edge\" or with after_edge = true (this start is mode = \"{mode}\")"
-        );
+        return Err(ScenarioError::UnusedInput { mode });
     }
     only(
         !breakpoint && start.compare.is_some(),
@@ -650,16 +685,20 @@ fn unused_keys(cam: &RawCam, start: &RawStart) -> anyhow::Result<()> {
         Some(RawMasterAlign::Offset | RawMasterAlign::StartAt | RawMasterAlign::StartAtUnzoomed)
     );
     if !master_value_used && start.master_value.is_some() {
-        bail!(
-            "[start] master_value only applies to master_align = \"offset\", \"start-at\" or \"start-at-unzoomed\""
-        );
+        return Err(ScenarioError::UnusedAlignValue {
+            key: "master_value",
+            aligns: "master_align = \"offset\", \"start-at\" or \"start-at-unzoomed\"",
+        });
     }
     let slave_value_used = matches!(
         start.slave_align,
         Some(RawSlaveAlign::Offset | RawSlaveAlign::At)
     );
     if !slave_value_used && start.slave_value.is_some() {
-        bail!("[start] slave_value only applies to slave_align = \"offset\" or \"at\"");
+        return Err(ScenarioError::UnusedAlignValue {
+            key: "slave_value",
+            aligns: "slave_align = \"offset\" or \"at\"",
+        });
     }
     Ok(())
 }
@@ -677,42 +716,47 @@ fn coupling(cam: &RawCam) -> Coupling {
     }
 }
 
-fn start_mode(start: &RawStart) -> anyhow::Result<StartMode> {
+/// `[start] SETTING needs NEEDS`.
+fn needs(setting: &'static str, needs: &'static str) -> ScenarioError {
+    ScenarioError::StartNeeds { setting, needs }
+}
+
+fn start_mode(start: &RawStart) -> Result<StartMode, ScenarioError> {
     Ok(match start.mode {
         StartKind::Immediate => StartMode::Immediate,
         StartKind::RisingEdge => StartMode::OnRisingEdge,
         StartKind::AfterDelay => StartMode::AfterDelay {
             counts: start
                 .delay
-                .context("[start] mode = \"after-delay\" needs delay = <master counts>")?,
+                .ok_or_else(|| needs("mode = \"after-delay\"", "delay = <master counts>"))?,
             after_edge: start.after_edge,
         },
         StartKind::AtPosition => StartMode::AtMasterPosition {
             position: start
                 .position
-                .context("[start] mode = \"at-position\" needs position = <master counts>")?,
+                .ok_or_else(|| needs("mode = \"at-position\"", "position = <master counts>"))?,
             after_edge: start.after_edge,
         },
         StartKind::Breakpoint => StartMode::Breakpoint {
             compare: match start
                 .compare
-                .context("[start] mode = \"breakpoint\" needs compare = \">=\" or \"<=\"")?
+                .ok_or_else(|| needs("mode = \"breakpoint\"", "compare = \">=\" or \"<=\""))?
             {
                 RawCompare::AtLeast => Compare::AtLeast,
                 RawCompare::AtMost => Compare::AtMost,
             },
             value: start
                 .value
-                .context("[start] mode = \"breakpoint\" needs value = <master counts>")?,
+                .ok_or_else(|| needs("mode = \"breakpoint\"", "value = <master counts>"))?,
         },
     })
 }
 
-fn master_align(start: &RawStart) -> anyhow::Result<MasterAlign> {
+fn master_align(start: &RawStart) -> Result<MasterAlign, ScenarioError> {
     let value = || {
         start
             .master_value
-            .context("[start] this master_align needs master_value = <counts>")
+            .ok_or_else(|| needs("this master_align", "master_value = <counts>"))
     };
     Ok(match start.master_align {
         None | Some(RawMasterAlign::Absolute) => MasterAlign::Absolute,
@@ -724,11 +768,11 @@ fn master_align(start: &RawStart) -> anyhow::Result<MasterAlign> {
 
 /// Document 001: a Repeat cam on a single-turn master starts at the curve
 /// position nearest the current slave, so that is the default there.
-fn slave_align(start: &RawStart, cam: &RawCam) -> anyhow::Result<SlaveAlign> {
+fn slave_align(start: &RawStart, cam: &RawCam) -> Result<SlaveAlign, ScenarioError> {
     let value = || {
         start
             .slave_value
-            .context("[start] this slave_align needs slave_value = <pulses>")
+            .ok_or_else(|| needs("this slave_align", "slave_value = <pulses>"))
     };
     Ok(match start.slave_align {
         None if cam.kind == CamKind::Repeat && cam.single_turn.is_some() => {
@@ -742,12 +786,15 @@ fn slave_align(start: &RawStart, cam: &RawCam) -> anyhow::Result<SlaveAlign> {
     })
 }
 
-fn zoom(ratio: Option<[u16; 2]>, what: &str) -> anyhow::Result<Zoom> {
+fn zoom(ratio: Option<[u16; 2]>, what: &'static str) -> Result<Zoom, ScenarioError> {
     match ratio {
         None => Ok(Zoom::ONE),
-        Some([num, den]) => {
-            Zoom::new(num, den).map_err(|e| anyhow::anyhow!("[cam] {what} = [{num}, {den}]: {e}"))
-        }
+        Some([num, den]) => Zoom::new(num, den).map_err(|error| ScenarioError::Zoom {
+            what,
+            num,
+            den,
+            error,
+        }),
     }
 }
 

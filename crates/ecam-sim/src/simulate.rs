@@ -4,6 +4,7 @@
 use ecam_engine::{CamAxis, TickInput, TickOutput};
 use serde::Serialize;
 
+use crate::error::SimulateError;
 use crate::scenario::Scenario;
 use crate::trace::{Row, state_name};
 
@@ -60,27 +61,20 @@ pub struct Summary {
 /// A cam or configuration the engine refuses (naming the table's master
 /// range), a start slave position or arming it refuses, or an error of
 /// `record`, which stops the run.
-pub fn simulate(
+pub fn simulate<E>(
     scenario: &Scenario,
-    mut record: impl FnMut(&Row, &TickOutput, bool) -> anyhow::Result<()>,
-) -> anyhow::Result<Summary> {
+    mut record: impl FnMut(&Row, &TickOutput, bool) -> Result<(), E>,
+) -> Result<Summary, SimulateError<E>> {
     let curve: &dyn ecam_core::CamCurve = scenario.curve.as_ref();
-    let mut axis = CamAxis::new(curve, scenario.config).map_err(|e| {
-        // Name the numbers the engine compared, so the user sees what to change.
-        let turn = match scenario.config.single_turn {
-            Some(t) => format!(", single_turn = {t}"),
-            None => String::new(),
-        };
-        anyhow::anyhow!(
-            "the engine refuses the scenario: {e} (table master {} .. {}{turn})",
-            curve.master_first(),
-            curve.master_last()
-        )
-    })?;
+    let mut axis =
+        CamAxis::new(curve, scenario.config).map_err(|error| SimulateError::Refused {
+            error,
+            master_range: (curve.master_first(), curve.master_last()),
+            single_turn: scenario.config.single_turn.map(|t| t.get()),
+        })?;
     axis.set_slave_position(scenario.slave_start)
-        .map_err(|e| anyhow::anyhow!("cannot set the start slave position: {e}"))?;
-    axis.arm()
-        .map_err(|e| anyhow::anyhow!("cannot arm the cam: {e}"))?;
+        .map_err(SimulateError::SlaveStart)?;
+    axis.arm().map_err(SimulateError::Arm)?;
 
     let tick_us = u64::from(scenario.tick_us);
     let ticks = scenario.ticks();
@@ -122,14 +116,12 @@ pub fn simulate(
         }
         while let Some((i, switch)) = switches.next_if(|(_, s)| s.trigger.fires(t_us, master)) {
             let curve: &dyn ecam_core::CamCurve = switch.curve.as_ref();
-            axis.switch_curve(curve, switch.at).map_err(|e| {
-                anyhow::anyhow!(
-                    "[[switch]] {}: the engine refuses the table: {e} (table master {} .. {})",
-                    i + 1,
-                    curve.master_first(),
-                    curve.master_last()
-                )
-            })?;
+            axis.switch_curve(curve, switch.at)
+                .map_err(|error| SimulateError::Switch {
+                    number: i + 1,
+                    error,
+                    master_range: (curve.master_first(), curve.master_last()),
+                })?;
         }
         let master_input = scenario.master_input(master);
         let input = TickInput {
@@ -194,7 +186,8 @@ pub fn simulate(
             backlog: out.backlog,
             in_sync: out.in_sync,
         };
-        record(&row, &out, k % scenario.trace_every == 0 || k == ticks)?;
+        record(&row, &out, k % scenario.trace_every == 0 || k == ticks)
+            .map_err(SimulateError::Record)?;
         summary.final_master = master;
         summary.final_slave = out.slave;
         summary.final_emitted = out.emitted;
@@ -231,7 +224,7 @@ mod tests {
             std::path::Path::new("."),
         )
         .unwrap();
-        let summary = simulate(&s, |_, _, _| Ok(())).unwrap();
+        let summary = simulate(&s, |_, _, _| Ok::<(), std::io::Error>(())).unwrap();
         assert_eq!(summary.final_master, 101);
         assert_eq!(summary.final_slave, 202);
         assert_eq!(summary.pulses, 202);

@@ -15,11 +15,11 @@
 //!   `finished`, `stopped`, `switched` (a queued table took over), `jump`
 //!   (a periodic seam jump) (this tick's events), `fault`.
 
+use core::fmt;
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use ecam_engine::{AxisState, TickOutput};
 
 /// One tick of a run: the trace CSV's first columns, and what a trace plot
@@ -64,9 +64,32 @@ pub fn state_name(state: AxisState) -> &'static str {
 pub const HEADER: &str =
     "t,master,slave,velocity,pulses,emitted,backlog,master_in_cycle,cycle,state,sync,flags";
 
+/// A trace file that cannot be created or written.
+#[derive(Debug)]
+pub struct TraceError {
+    /// The file.
+    pub path: PathBuf,
+    /// Why.
+    pub source: std::io::Error,
+}
+
+impl fmt::Display for TraceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "cannot write trace file {}: {}",
+            self.path.display(),
+            self.source
+        )
+    }
+}
+
+impl std::error::Error for TraceError {}
+
 /// Writes trace rows to a CSV file.
 pub struct TraceWriter {
     out: BufWriter<File>,
+    path: PathBuf,
 }
 
 impl TraceWriter {
@@ -74,20 +97,32 @@ impl TraceWriter {
     ///
     /// # Errors
     /// The file cannot be created or written.
-    pub fn create(path: &Path) -> anyhow::Result<Self> {
-        let file = File::create(path)
-            .with_context(|| format!("cannot create trace file {}", path.display()))?;
-        let mut out = BufWriter::new(file);
-        writeln!(out, "{HEADER}")?;
-        Ok(Self { out })
+    pub fn create(path: &Path) -> Result<Self, TraceError> {
+        let error = |source| TraceError {
+            path: path.to_path_buf(),
+            source,
+        };
+        let mut out = BufWriter::new(File::create(path).map_err(error)?);
+        writeln!(out, "{HEADER}").map_err(error)?;
+        Ok(Self {
+            out,
+            path: path.to_path_buf(),
+        })
+    }
+
+    fn error(&self, source: std::io::Error) -> TraceError {
+        TraceError {
+            path: self.path.clone(),
+            source,
+        }
     }
 
     /// Appends one row.
     ///
     /// # Errors
     /// A failed write.
-    pub fn write(&mut self, row: &Row, out: &TickOutput) -> anyhow::Result<()> {
-        writeln!(
+    pub fn write(&mut self, row: &Row, out: &TickOutput) -> Result<(), TraceError> {
+        let written = writeln!(
             self.out,
             "{},{},{},{},{},{},{},{},{},{},{},{}",
             row.t,
@@ -102,17 +137,17 @@ impl TraceWriter {
             state_name(out.state),
             out.sync,
             flags(out)
-        )?;
-        Ok(())
+        );
+        written.map_err(|e| self.error(e))
     }
 
     /// Flushes the file.
     ///
     /// # Errors
     /// A failed write.
-    pub fn finish(mut self) -> anyhow::Result<()> {
-        self.out.flush()?;
-        Ok(())
+    pub fn finish(mut self) -> Result<(), TraceError> {
+        let flushed = self.out.flush();
+        flushed.map_err(|e| self.error(e))
     }
 }
 

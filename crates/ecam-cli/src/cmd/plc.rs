@@ -84,7 +84,7 @@ fn run_program(args: &RunArgs) -> anyhow::Result<()> {
     let file = args.program.display().to_string();
     let source =
         std::fs::read_to_string(&args.program).with_context(|| format!("cannot read {file}"))?;
-    let program = ecam_plc::il::parse(&source, &file)?;
+    let program = ecam_plc::Program::parse(&source, &file)?;
     tracing::debug!("{file}: {} lines", source.lines().count());
     let mut plc = Plc::new(program)?;
     for &wire in &args.wires {

@@ -113,9 +113,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let file = path.display().to_string();
             let source =
                 std::fs::read_to_string(path).with_context(|| format!("cannot read {file}"))?;
-            (ecam_plc::il::parse(&source, &file)?, Some(file))
+            (ecam_plc::Program::parse(&source, &file)?, Some(file))
         }
-        None => (ecam_plc::il::parse("", "(no program)")?, None),
+        None => (ecam_plc::Program::parse("", "(no program)")?, None),
     };
     let mut plc = Plc::new(program)?;
     for wire in &args.wires {

@@ -62,7 +62,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         progress.at(done);
         done += 1;
-        Ok(())
+        Ok::<(), ecam_sim::TraceError>(())
     })?;
     progress.finish();
     if let Some(t) = trace {

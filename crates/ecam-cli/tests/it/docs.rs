@@ -1,4 +1,5 @@
-//! The user guide stays true: files it names exist, the README's PLC demo
+//! The user guide stays true: files it names exist (examples, and the
+//! source files that hold each fact and rule), the README's PLC demo
 //! prints what the README says, and the one resolution range (the core's)
 //! is the one the pages, the flags and the messages state.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -70,6 +71,84 @@ fn every_example_file_the_docs_name_exists() {
         }
     }
     assert!(named > 20, "only {named} example paths found");
+}
+
+/// The `code spans` of `text` that name a file or folder of the tree: a
+/// path under `crates/` (or a crate's own folder, `ecam-core/src/…`, as
+/// docs/architecture.md writes them), or under docs/, fuzz/, scripts/,
+/// packaging/ or .ci/. Placeholders (`corpus/NAME/`) are not paths.
+fn code_paths(text: &str) -> Vec<String> {
+    let roots = [
+        "crates/",
+        "docs/",
+        "fuzz/",
+        "scripts/",
+        "packaging/",
+        ".ci/",
+    ];
+    text.split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|span| !span.contains(char::is_whitespace) && span.contains('/'))
+        .filter(|span| {
+            !span.split('/').any(|part| {
+                part.len() > 1
+                    && part == part.to_uppercase()
+                    && part.chars().all(char::is_alphabetic)
+            })
+        })
+        .filter_map(|span| {
+            if span.starts_with("ecam-") {
+                Some(format!("crates/{span}"))
+            } else {
+                roots
+                    .iter()
+                    .any(|r| span.starts_with(r))
+                    .then(|| span.to_string())
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn every_code_path_the_docs_name_exists() {
+    let mut named = 0;
+    let mut missing = Vec::new();
+    for (page, text) in pages() {
+        for path in code_paths(&text) {
+            if !exists(&path) {
+                let page = page.file_name().unwrap_or_default().to_string_lossy();
+                missing.push(format!("{page}: {path}"));
+            }
+            named += 1;
+        }
+    }
+    assert!(missing.is_empty(), "named but missing: {missing:#?}");
+    assert!(named > 100, "only {named} code paths found");
+}
+
+#[test]
+fn the_architecture_page_names_every_file_with_its_path() {
+    // "One home per fact" is only useful if each home can be opened as
+    // written: a bare `write.rs` could be any crate's.
+    let text = std::fs::read_to_string(root().join("docs/architecture.md")).unwrap();
+    let bare: Vec<&str> = text
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|span| span.ends_with(".rs") && !span.contains('/'))
+        .collect();
+    assert!(
+        bare.is_empty(),
+        "docs/architecture.md names {bare:?} without a path"
+    );
+    let paths = code_paths(&text);
+    assert!(
+        paths
+            .iter()
+            .any(|p| p == "crates/ecam-core/src/script_line.rs"),
+        "{paths:?}"
+    );
 }
 
 #[test]

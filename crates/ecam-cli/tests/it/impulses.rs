@@ -113,6 +113,7 @@ fn exact_steps(exact: &ExactCurve, span: (f64, f64)) -> (Vec<Found>, Vec<Found>)
     let f: Box<dyn Fn(f64) -> Kinematics> = match exact {
         ExactCurve::Design(d) => Box::new(|m| d.eval(m)),
         ExactCurve::Profile(p) => Box::new(|m| p.eval(m, &mut Cursor::new())),
+        ExactCurve::Segments(s) => Box::new(|m| s.eval(m, &mut Cursor::new())),
     };
     (
         scan(&*f, span, |k| k.v, |k| k.a),
@@ -152,6 +153,7 @@ fn every_generated_plot_draws_the_steps_of_its_exact_curve() {
             sync: g.sync,
             generator: None,
             kinematics: g.kinematics.clone(),
+            segments: None,
         };
         let chart = cam_table::chart(&file, g.exact.as_ref(), generator);
         let span = (g.table.master_first() as f64, g.table.master_last() as f64);

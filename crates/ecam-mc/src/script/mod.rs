@@ -42,6 +42,7 @@
 
 mod command;
 mod error;
+mod line_error;
 mod linear_move;
 mod parse;
 mod report;
@@ -51,7 +52,8 @@ mod trace;
 use std::path::Path;
 
 pub use command::Command;
-pub use error::ScriptError;
+pub use error::{Problem, ScriptError};
+pub use line_error::LineError;
 pub use parse::{DEFAULT_AXES, Line, MAX_AXES, Script};
 pub use report::Report;
 pub use runner::ScriptRunner;

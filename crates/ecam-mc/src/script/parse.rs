@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 
 use ecam_core::PointTable;
 use ecam_core::io::AnyTable;
+use ecam_core::script_line::{NumberError, ScriptLine, parse_number};
 
-use super::{Command, ScriptError};
+use super::{Command, LineError, Problem, ScriptError};
 use crate::{CamType, SingleTurn, UserUnit};
 
 /// Axes of a script without an `Axes` line: document 001's master (0) and
@@ -47,7 +48,7 @@ impl Script {
         let text = std::fs::read_to_string(path).map_err(|e| ScriptError {
             path: path.to_path_buf(),
             line: None,
-            message: format!("cannot read the script: {e}"),
+            problem: Problem::Read(e.to_string()),
         })?;
         Self::parse(&text, path)
     }
@@ -70,7 +71,7 @@ impl Script {
             let first = lines.is_empty();
             let command = parser
                 .parse_line(text, first)
-                .map_err(|message| ScriptError::at(path, number, message))?;
+                .map_err(|error| ScriptError::at(path, number, Problem::Line(error)))?;
             if let Some(command) = command {
                 lines.push(Line { number, command });
             }
@@ -98,11 +99,6 @@ impl Script {
     }
 }
 
-/// Removes a `'` comment from a line.
-fn strip_comment(line: &str) -> &str {
-    line.split('\'').next().unwrap_or_default()
-}
-
 struct Parser<'a> {
     base_dir: &'a Path,
     axis_count: usize,
@@ -116,25 +112,19 @@ struct Args<'a> {
 }
 
 impl Args<'_> {
-    fn expect(&self, usage: &[&str]) -> Result<(), String> {
+    fn expect(&self, usage: &'static [&'static str]) -> Result<(), LineError> {
         if self.words.len() == usage.len() {
             return Ok(());
         }
-        Err(self.wrong_count(&usage.join(" ")))
+        Err(self.wrong_count(usage))
     }
 
-    fn wrong_count(&self, usage: &str) -> String {
-        let shape = if usage.is_empty() {
-            "no arguments".to_owned()
-        } else {
-            usage.to_owned()
-        };
-        format!(
-            "{} takes {shape}, got {} argument{}",
-            self.cmd,
-            self.words.len(),
-            if self.words.len() == 1 { "" } else { "s" }
-        )
+    fn wrong_count(&self, usage: &'static [&'static str]) -> LineError {
+        LineError::ArgumentCount {
+            cmd: self.cmd.to_owned(),
+            usage,
+            got: self.words.len(),
+        }
     }
 
     fn word(&self, i: usize) -> &str {
@@ -145,40 +135,42 @@ impl Args<'_> {
         self.word(i).eq_ignore_ascii_case("off")
     }
 
-    /// A whole number; `what` names it in messages.
-    fn integer(&self, i: usize, what: &str) -> Result<i64, String> {
+    /// A whole number (decimal or `0x` hex); `what` names it in messages.
+    fn integer(&self, i: usize, what: &'static str) -> Result<i64, LineError> {
         let word = self.word(i);
-        if let Ok(n) = word.parse::<i64>() {
-            return Ok(n);
-        }
-        let digits = word.strip_prefix(['-', '+']).unwrap_or(word);
-        if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
-            return Err(format!(
-                "{}: {what} {word} is out of range (a signed 64-bit number)",
-                self.cmd
-            ));
-        }
-        Err(format!(
-            "{}: {what} '{word}' is not a whole number",
-            self.cmd
-        ))
+        let (cmd, word_owned) = (self.cmd.to_owned(), word.to_owned());
+        parse_number(word).map_err(|e| match e {
+            NumberError::OutOfRange => LineError::NumberOutOfRange {
+                cmd,
+                what,
+                word: word_owned,
+            },
+            NumberError::NotANumber => LineError::NotWhole {
+                cmd,
+                what,
+                word: word_owned,
+            },
+        })
     }
 
     /// A number from `min` up to `max`, with the range in the message.
-    fn bounded(&self, i: usize, what: &str, min: i64, max: i64) -> Result<i64, String> {
+    fn bounded(&self, i: usize, what: &'static str, min: i64, max: i64) -> Result<i64, LineError> {
         let n = self.integer(i, what)?;
         if (min..=max).contains(&n) {
             Ok(n)
         } else {
-            Err(format!(
-                "{}: {what} {n} is out of range: {min} to {max}",
-                self.cmd
-            ))
+            Err(LineError::OutOfRange {
+                cmd: self.cmd.to_owned(),
+                what,
+                value: n,
+                min,
+                max,
+            })
         }
     }
 
     /// A count of at least 1, or `Off`.
-    fn count_or_off(&self, i: usize, what: &str) -> Result<Option<NonZeroU64>, String> {
+    fn count_or_off(&self, i: usize, what: &'static str) -> Result<Option<NonZeroU64>, LineError> {
         if self.is_off(i) {
             return Ok(None);
         }
@@ -187,24 +179,28 @@ impl Args<'_> {
             .ok()
             .and_then(NonZeroU64::new)
             .map(Some)
-            .ok_or_else(|| format!("{}: {what} must be at least 1 (or Off), got {n}", self.cmd))
+            .ok_or_else(|| LineError::CountOrOff {
+                cmd: self.cmd.to_owned(),
+                what,
+                value: n,
+            })
     }
 }
 
 impl Parser<'_> {
-    fn axis(&self, a: &Args<'_>, i: usize, what: &str) -> Result<usize, String> {
+    fn axis(&self, a: &Args<'_>, i: usize, what: &'static str) -> Result<usize, LineError> {
         let n = a.integer(i, what)?;
         match usize::try_from(n) {
             Ok(axis) if axis < self.axis_count => Ok(axis),
-            _ => Err(format!(
-                "{}: no axis {n}: axes are numbered 0 to {} (`Axes N` as the first command sets how many)",
-                a.cmd,
-                self.axis_count.saturating_sub(1)
-            )),
+            _ => Err(LineError::NoSuchAxis {
+                cmd: a.cmd.to_owned(),
+                axis: n,
+                count: self.axis_count,
+            }),
         }
     }
 
-    fn table_name(a: &Args<'_>) -> Result<String, String> {
+    fn table_name(a: &Args<'_>) -> Result<String, LineError> {
         let name = a.word(0);
         let valid = name
             .chars()
@@ -216,22 +212,20 @@ impl Parser<'_> {
         if valid {
             Ok(name.to_owned())
         } else {
-            Err(format!(
-                "{}: '{name}' is not a table name (letters, digits, _ and -, starting with a letter or _)",
-                a.cmd
-            ))
+            Err(LineError::TableName {
+                cmd: a.cmd.to_owned(),
+                name: name.to_owned(),
+            })
         }
     }
 
-    fn inline_table(a: &Args<'_>) -> Result<PointTable, String> {
+    fn inline_table(a: &Args<'_>) -> Result<PointTable, LineError> {
         let values = a.words.get(1..).unwrap_or_default();
         if values.is_empty() || values.len() % 2 != 0 {
-            return Err(format!(
-                "{}: give the points as MASTER SLAVE pairs after the name, got {} number{}",
-                a.cmd,
-                values.len(),
-                if values.len() == 1 { "" } else { "s" }
-            ));
+            return Err(LineError::Pairs {
+                cmd: a.cmd.to_owned(),
+                got: values.len(),
+            });
         }
         let mut pairs = Vec::with_capacity(values.len() / 2);
         for i in (1..a.words.len()).step_by(2) {
@@ -239,54 +233,52 @@ impl Parser<'_> {
             let slave = a.integer(i.saturating_add(1), "slave position")?;
             pairs.push((master, slave));
         }
-        PointTable::from_pairs(&pairs).map_err(|e| format!("{}: {e}", a.cmd))
+        PointTable::from_pairs(&pairs).map_err(|error| LineError::Table {
+            cmd: a.cmd.to_owned(),
+            error,
+        })
     }
 
-    fn file_table(&self, cmd: &str, file: &str) -> Result<PointTable, String> {
+    fn file_table(&self, cmd: &str, file: &str) -> Result<PointTable, LineError> {
         let path = self.base_dir.join(file);
         match ecam_core::io::read(&path) {
             Ok(AnyTable::Points(file)) => Ok(file.table),
-            Ok(other) => Err(format!(
-                "{cmd}: {} holds a {} table; an E-CAM table is (master, slave) points: CSV, or JSON of kind points",
-                path.display(),
-                other.kind()
-            )),
+            Ok(other) => Err(LineError::NotPoints {
+                cmd: cmd.to_owned(),
+                path,
+                kind: other.kind(),
+            }),
             Err(e) => {
-                let mut message = format!("{cmd}: {e}");
+                let mut reason = e.to_string();
                 let mut source = std::error::Error::source(&e);
                 while let Some(s) = source {
-                    message.push_str(&format!(": {s}"));
+                    reason.push_str(&format!(": {s}"));
                     source = s.source();
                 }
-                Err(message)
+                Err(LineError::TableFile {
+                    cmd: cmd.to_owned(),
+                    reason,
+                })
             }
         }
     }
 
     /// Parses one line; `Ok(None)` for a blank or comment-only line.
     /// `first` says no command came before.
-    fn parse_line(&mut self, line: &str, first: bool) -> Result<Option<Command>, String> {
-        // A byte-order mark may open a script saved by a Windows editor.
-        let code = strip_comment(line.trim_start_matches('\u{feff}')).trim();
-        if code.is_empty() {
+    fn parse_line(&mut self, line: &str, first: bool) -> Result<Option<Command>, LineError> {
+        let Some(line) = ScriptLine::read(line) else {
             return Ok(None);
-        }
-        let mut words = code
-            .split(|c: char| c.is_whitespace() || c == ',')
-            .filter(|w| !w.is_empty());
-        let cmd = words.next().unwrap_or_default();
+        };
+        let cmd = line.command();
         let a = Args {
             cmd,
-            words: words.collect(),
+            words: line.args().to_vec(),
         };
         let command = match cmd.to_ascii_lowercase().as_str() {
             "axes" => {
                 a.expect(&["N"])?;
                 if !first {
-                    return Err(
-                        "Axes must be the script's first command: it creates the axes the others use"
-                            .to_owned(),
-                    );
+                    return Err(LineError::AxesNotFirst);
                 }
                 let n = a.bounded(0, "the axis count", 1, MAX_AXES as i64)?;
                 let n = usize::try_from(n).unwrap_or(DEFAULT_AXES);
@@ -300,7 +292,10 @@ impl Parser<'_> {
                     .count_or_off(1, "the single-turn encoder range")?
                     .map(|counts| SingleTurn::new(counts.get()))
                     .transpose()
-                    .map_err(|e| format!("{cmd}: {e}"))?;
+                    .map_err(|error| LineError::Refused {
+                        cmd: cmd.to_owned(),
+                        error,
+                    })?;
                 Command::SetSingleTurn { axis, turn }
             }
             "setuserunit" => {
@@ -310,8 +305,9 @@ impl Parser<'_> {
                 let unit = u64::try_from(pulses)
                     .ok()
                     .and_then(|p| UserUnit::new(p).ok())
-                    .ok_or_else(|| {
-                        format!("{cmd}: a user unit must be at least 1 pulse, got {pulses}")
+                    .ok_or_else(|| LineError::UserUnit {
+                        cmd: cmd.to_owned(),
+                        pulses,
                     })?;
                 Command::SetUserUnit { axis, unit }
             }
@@ -341,7 +337,7 @@ impl Parser<'_> {
             }
             "ecamtable" => {
                 if a.words.is_empty() {
-                    return Err(a.wrong_count("NAME MASTER SLAVE MASTER SLAVE …"));
+                    return Err(a.wrong_count(&["NAME MASTER SLAVE MASTER SLAVE …"]));
                 }
                 let name = Self::table_name(&a)?;
                 let table = Self::inline_table(&a)?;
@@ -350,7 +346,7 @@ impl Parser<'_> {
             }
             "ecamtablefile" => {
                 // The path is the rest of the line: it may hold blanks and commas.
-                let rest = code.get(cmd.len()..).unwrap_or_default().trim_start();
+                let rest = line.rest();
                 let (name_word, file) = rest
                     .split_once(char::is_whitespace)
                     .map_or((rest, ""), |(n, f)| (n, f.trim()));
@@ -359,7 +355,9 @@ impl Parser<'_> {
                     words: vec![name_word],
                 };
                 if name_word.is_empty() || file.is_empty() {
-                    return Err(format!("{cmd} takes NAME PATH"));
+                    return Err(LineError::TableFileArgs {
+                        cmd: cmd.to_owned(),
+                    });
                 }
                 let name = Self::table_name(&named)?;
                 let table = self.file_table(cmd, file)?;
@@ -371,27 +369,29 @@ impl Parser<'_> {
                 let master = self.axis(&a, 0, "master axis")?;
                 let slave = self.axis(&a, 1, "slave axis")?;
                 if master == slave {
-                    return Err(format!("{cmd}: axis {master} cannot be its own master"));
+                    return Err(LineError::OwnMaster {
+                        cmd: cmd.to_owned(),
+                        axis: master,
+                    });
                 }
                 let cam_type = match a.word(2).to_ascii_lowercase().as_str() {
                     "normal" => CamType::Normal,
                     "periodic" => CamType::Periodic,
                     "repeat" => CamType::Repeat,
                     other => {
-                        return Err(format!(
-                            "{cmd}: unknown E-CAM type '{other}': use Normal, Periodic or Repeat"
-                        ));
+                        return Err(LineError::CamType {
+                            cmd: cmd.to_owned(),
+                            word: other.to_owned(),
+                        });
                     }
                 };
                 let table_name = a.word(3).to_owned();
                 let table = self.tables.get(&table_name).cloned().ok_or_else(|| {
-                    let known: Vec<&str> = self.tables.keys().map(String::as_str).collect();
-                    let hint = if known.is_empty() {
-                        "no table is defined yet: define one with ECAMTable or ECAMTableFile above this line".to_owned()
-                    } else {
-                        format!("defined so far: {}", known.join(", "))
-                    };
-                    format!("{cmd}: no E-CAM table named '{table_name}' ({hint})")
+                    LineError::NoSuchTable {
+                        cmd: cmd.to_owned(),
+                        name: table_name.clone(),
+                        known: self.tables.keys().cloned().collect(),
+                    }
                 })?;
                 Command::StartECam {
                     master,
@@ -433,7 +433,7 @@ impl Parser<'_> {
             }
             "trace" => {
                 if a.words.is_empty() {
-                    return Err(a.wrong_count("PATH [AXIS …] or Off"));
+                    return Err(a.wrong_count(&["PATH [AXIS …] or Off"]));
                 }
                 if a.words.len() == 1 && a.is_off(0) {
                     Command::TraceOff
@@ -447,7 +447,11 @@ impl Parser<'_> {
                     }
                 }
             }
-            _ => return Err(format!("unknown command '{cmd}'")),
+            _ => {
+                return Err(LineError::UnknownCommand {
+                    cmd: cmd.to_owned(),
+                });
+            }
         };
         Ok(Some(command))
     }
@@ -513,6 +517,22 @@ mod tests {
                 axes: vec![1]
             }
         );
+    }
+
+    #[test]
+    fn lines_read_as_in_motion_processor_scripts() {
+        // The shared reader: hex numbers, typographic-quote comments and the
+        // listings' elision, which this face did not take before.
+        assert_eq!(
+            only("…\nMoveTo 0, -0x10 0X2 ‘ a comment"),
+            Command::MoveTo {
+                axis: 0,
+                position: -16,
+                cycles: 2
+            }
+        );
+        assert!(error("MoveTo 0 0x 1").contains("position '0x' is not a whole number"));
+        assert!(error("MoveTo 0 0x8000000000000000 1").contains("out of range (a signed 64-bit"));
     }
 
     #[test]

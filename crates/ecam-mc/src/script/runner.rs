@@ -4,7 +4,7 @@ use core::fmt;
 
 use super::linear_move::LinearMove;
 use super::trace::{Trace, TraceError};
-use super::{Command, DEFAULT_AXES, Report, Script, ScriptError};
+use super::{Command, DEFAULT_AXES, Problem, Report, Script, ScriptError};
 use crate::{ECamData, McError, MotionController, SingleTurn};
 
 /// Why a command was refused; it changed nothing.
@@ -141,7 +141,10 @@ impl ScriptRunner {
                     result = Err(ScriptError::at(
                         script.path(),
                         line.number,
-                        format!("{}: {refusal}", line.command.name()),
+                        Problem::Refused {
+                            command: line.command.name(),
+                            reason: refusal.to_string(),
+                        },
                     ));
                     break;
                 }
@@ -150,7 +153,7 @@ impl ScriptRunner {
         let closed = self.close_trace().map_err(|e| ScriptError {
             path: script.path().to_path_buf(),
             line: None,
-            message: e.to_string(),
+            problem: Problem::Trace(e.to_string()),
         });
         result.and(closed)
     }

@@ -161,7 +161,13 @@ fn a_refused_command_ends_the_run_at_its_line_and_changes_nothing() {
     );
     let (_, result, runner) =
         run_text("ECAMTable t 0 0, 100 50\nMoveTo 1 500 10\nStartECAM 0 1 Normal t");
-    assert!(result.unwrap_err().message.contains("is moving (MoveTo)"));
+    assert!(
+        result
+            .unwrap_err()
+            .problem
+            .to_string()
+            .contains("is moving (MoveTo)")
+    );
     assert!(!runner.controller().ecam_running(1));
     // A single-turn table reaching outside the turn: the engine's refusal.
     let (_, result, runner) =
@@ -322,7 +328,7 @@ mod never_panics {
                         prop_assert!(e.line.is_some_and(|l| l >= 2), "{e}");
                     }
                 }
-                Err(e) => prop_assert!(!e.message.is_empty() && e.line.is_some(), "{e}"),
+                Err(e) => prop_assert!(!e.problem.to_string().is_empty() && e.line.is_some(), "{e}"),
             }
         }
     }

@@ -5,7 +5,7 @@
 use core::fmt;
 
 use super::offsets::block_words;
-use crate::devices::{D_COUNT, Device, DeviceError};
+use crate::device::{D_COUNT, Device, DeviceError};
 
 /// Why a block cannot start there.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -7,7 +7,8 @@ use ecam_core::{PointTable, TableError, register_image};
 
 use super::block_error::BlockError;
 use super::{flags, offsets};
-use crate::devices::{D_COUNT, Devices};
+use crate::device::D_COUNT;
+use crate::devices::Devices;
 
 /// Ceiling the manual puts on the output frequency (offsets 6/7).
 pub const MAX_FREQUENCY_HZ: u32 = 200_000;
@@ -28,7 +29,9 @@ impl ZoomRatio {
         den: NonZeroU16::MIN,
     };
 
-    /// `value × num / den`, rounded toward negative infinity.
+    /// `value × num / den`, rounded toward negative infinity (the engine's
+    /// `Zoom` does this at run time; this checks the register's meaning).
+    #[cfg(test)]
     pub fn apply(self, value: i64) -> i64 {
         let scaled = i128::from(value) * i128::from(self.num.get());
         let den = i128::from(self.den.get());

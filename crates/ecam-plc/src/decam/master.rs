@@ -16,7 +16,8 @@ use core::num::NonZeroU32;
 use ecam_engine::{MasterPosition, TimeBase};
 
 use super::operands::MasterOperand;
-use crate::devices::{C_32BIT_FIRST, Devices};
+use crate::device::C_32BIT_FIRST;
+use crate::devices::Devices;
 
 /// Unwrapped master position from S1.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -12,12 +12,12 @@
 //! - [`Decam::hardware_tick`] runs every hardware tick (100 µs by default):
 //!   it reads the master and the start register, starts and stops the cam,
 //!   ticks the engine, emits the pulses through
-//!   [`crate::hardware::record_pulses`] (so D8140… always equal the slave
+//!   `hardware::record_pulses` (so D8140… always equal the slave
 //!   position), drives the direction and sync outputs and updates the
 //!   status registers.
 //!
 //! While armed or following, the cam holds its pulse output
-//! ([`crate::hardware::Hardware::claim_output`]); a start while another
+//! (`Hardware::claim_output`); a start while another
 //! instruction holds the output waits until it is free.
 //!
 //! The register map, every ambiguity of the manual and the choice made are
@@ -61,13 +61,15 @@ mod sync_output;
 mod table_load;
 
 pub use address::{BlockAddressError, LAST_START, block_at};
-pub use block::{LiveSettings, MAX_FREQUENCY_HZ, StartSetup, ZoomRatio, clamp_frequency};
 pub use block_error::BlockError;
-pub use master::MasterReader;
 pub use operands::{DecamOperands, MasterOperand};
-pub use start_gate::{CamMode, GateAction, RESTART_OFF_US, StartGate};
-pub use sync_output::SyncOutput;
+pub use start_gate::CamMode;
 pub use table_load::load_table;
+
+pub(crate) use block::{LiveSettings, StartSetup};
+pub(crate) use master::MasterReader;
+pub(crate) use start_gate::{GateAction, StartGate};
+pub(crate) use sync_output::SyncOutput;
 
 use core::sync::atomic::{AtomicU64, Ordering};
 
@@ -81,7 +83,7 @@ use crate::operation_error::OperationError;
 
 /// Document 003 section 4.2.1: a noncyclic cam re-armed for the next start
 /// signal accepts it no sooner than 5 ms after the previous run ended.
-pub const NONCYCLIC_REARM_US: u64 = 5_000;
+pub(crate) const NONCYCLIC_REARM_US: u64 = 5_000;
 
 /// Numbers the DECAM instances of the process, so that each one has its own
 /// [`OutputOwner`].
@@ -544,8 +546,8 @@ impl Decam {
 fn live_settings(block: &Block<'_>, operands: &DecamOperands) -> Result<LiveSettings, BlockError> {
     let live = block.live()?;
     if live.sync_enabled {
-        let sync = crate::devices::Device::Y(live.sync_output);
-        if sync == crate::devices::Device::Y(u16::from(operands.pulse_output))
+        let sync = crate::device::Device::Y(live.sync_output);
+        if sync == crate::device::Device::Y(u16::from(operands.pulse_output))
             || sync == operands.direction
         {
             return Err(BlockError::Parameter {

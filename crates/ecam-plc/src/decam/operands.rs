@@ -3,7 +3,7 @@
 use ecam_core::CODE_PARAMETER;
 
 use super::offsets;
-use crate::devices::{C_COUNT, D_COUNT, Device};
+use crate::device::{C_COUNT, D_COUNT, Device};
 use crate::operation_error::OperationError;
 
 /// S1: where the master position comes from (document 003, "Master axis setting").

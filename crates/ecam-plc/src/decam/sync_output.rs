@@ -2,7 +2,8 @@
 //! runs and the master's place in the cycle (after zoom) lies inside the
 //! window, both thresholds included.
 
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 
 /// Drives the sync Y, remembering which one it drove so a changed offset 8
 /// (or a stop) turns the old one off.

@@ -6,7 +6,8 @@
 use ecam_core::{CODE_SECTION_COUNT, CODE_TABLE, PointTable, TableError, register_image};
 
 use super::offsets;
-use crate::devices::{D_COUNT, Devices};
+use crate::device::D_COUNT;
+use crate::devices::Devices;
 use crate::operation_error::OperationError;
 
 /// Writes `table` into the block at `D{block}`: `D{block+38}` the point

@@ -22,7 +22,8 @@
 //! retained counter restored by `ecam serve`), the contact reads as value ≥
 //! set value; off while the coil has never run.
 
-use crate::devices::{C_32BIT_FIRST, C_COUNT, Device, Devices};
+use crate::device::{C_32BIT_FIRST, C_COUNT, Device};
+use crate::devices::Devices;
 use crate::special::M_COUNTER_DIRECTION_BASE;
 
 /// The supported high-speed counters and their inputs: (counter, X index).

@@ -17,17 +17,18 @@ mod pulse_output;
 mod pulse_train;
 mod wire;
 
-pub use counter::{Counters, HIGH_SPEED_COUNTERS};
+pub(crate) use counter::Counters;
 pub use owner::OutputOwner;
-pub use pulse_output::record_pulses;
-pub use pulse_train::PulseTrain;
+pub(crate) use pulse_output::record_pulses;
+pub(crate) use pulse_train::PulseTrain;
 pub use wire::{Wire, WireError};
 
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::special::{M_BUSY, M_STOP};
 
 /// Number of pulse outputs (Y0..Y3).
-pub const PULSE_OUTPUTS: usize = 4;
+pub(crate) const PULSE_OUTPUTS: usize = 4;
 
 /// Pulse outputs, generators, counters and wires of one PLC.
 #[derive(Clone, Debug, Default)]
@@ -70,7 +71,7 @@ impl Hardware {
     /// (the FX rule: the later instruction does not run, it waits and tries
     /// again) and for `output` > 3. The owner keeps the busy flag
     /// (M8147..M8150) on, even in ticks without pulses, until it releases.
-    pub fn claim_output(&mut self, output: u8, owner: OutputOwner) -> bool {
+    pub(crate) fn claim_output(&mut self, output: u8, owner: OutputOwner) -> bool {
         match self.owners.get_mut(usize::from(output)) {
             Some(slot @ None) => {
                 *slot = Some(owner);
@@ -83,7 +84,7 @@ impl Hardware {
 
     /// `owner` lets go of `output`; nothing happens if another instruction
     /// holds it. A PLSY/DPLSY train of `owner` stops.
-    pub fn release_output(&mut self, output: u8, owner: OutputOwner) {
+    pub(crate) fn release_output(&mut self, output: u8, owner: OutputOwner) {
         let index = usize::from(output);
         if self.owner(output) == Some(owner) {
             self.owners[index] = None;
@@ -98,13 +99,13 @@ impl Hardware {
 
     /// True when `owner` may take `output` now (it is free or already held
     /// by `owner`); false for `output` > 3.
-    pub fn output_free_for(&self, output: u8, owner: OutputOwner) -> bool {
+    pub(crate) fn output_free_for(&self, output: u8, owner: OutputOwner) -> bool {
         usize::from(output) < PULSE_OUTPUTS && self.owner(output).is_none_or(|o| o == owner)
     }
 
     /// True while the immediate-stop flag of `output` (M8145, M8146, M8152,
     /// M8153 for Y0..Y3) is on; also true for `output` > 3, which has no pulses.
-    pub fn output_stopped(devices: &Devices, output: u8) -> bool {
+    pub(crate) fn output_stopped(devices: &Devices, output: u8) -> bool {
         M_STOP
             .get(usize::from(output))
             .is_none_or(|&m| devices.m(m).unwrap_or(true))
@@ -120,26 +121,24 @@ impl Hardware {
     }
 
     /// Counters (set values, coils, high-speed counter inputs).
-    pub fn counters(&self) -> &Counters {
+    pub(crate) fn counters(&self) -> &Counters {
         &self.counters
     }
 
     /// Mutable access to the counters.
-    pub fn counters_mut(&mut self) -> &mut Counters {
+    pub(crate) fn counters_mut(&mut self) -> &mut Counters {
         &mut self.counters
-    }
-
-    /// The PLSY/DPLSY pulse train running on `output`, if any.
-    pub fn pulse_train(&self, output: u8) -> Option<&PulseTrain> {
-        self.trains
-            .get(usize::from(output))
-            .and_then(Option::as_ref)
     }
 
     /// Starts (or replaces) the pulse train of PLSY/DPLSY `owner` on
     /// `output` (0..=3). Returns false, and starts nothing, while another
     /// instruction holds the output.
-    pub fn start_pulse_train(&mut self, output: u8, owner: OutputOwner, train: PulseTrain) -> bool {
+    pub(crate) fn start_pulse_train(
+        &mut self,
+        output: u8,
+        owner: OutputOwner,
+        train: PulseTrain,
+    ) -> bool {
         if !self.claim_output(output, owner) {
             return false;
         }
@@ -151,7 +150,12 @@ impl Hardware {
 
     /// Changes the frequency of `owner`'s running pulse train (PLSY reads S1
     /// every scan).
-    pub fn set_train_frequency(&mut self, output: u8, owner: OutputOwner, frequency_hz: u32) {
+    pub(crate) fn set_train_frequency(
+        &mut self,
+        output: u8,
+        owner: OutputOwner,
+        frequency_hz: u32,
+    ) {
         if self.owner(output) != Some(owner) {
             return;
         }
@@ -162,7 +166,7 @@ impl Hardware {
 
     /// Stops `owner`'s pulse train on `output` and releases the output; a
     /// train of another instruction keeps running.
-    pub fn stop_pulse_train(&mut self, output: u8, owner: OutputOwner) {
+    pub(crate) fn stop_pulse_train(&mut self, output: u8, owner: OutputOwner) {
         self.release_output(output, owner);
     }
 
@@ -170,7 +174,7 @@ impl Hardware {
     /// (exact: the fractional pulse is carried to the next tick). A train
     /// whose output is stopped (M8145...) ends at once. A train that ends
     /// releases its output.
-    pub fn tick_pulse_trains(&mut self, devices: &mut Devices, dt_us: u32) {
+    pub(crate) fn tick_pulse_trains(&mut self, devices: &mut Devices, dt_us: u32) {
         for output in 0..PULSE_OUTPUTS as u8 {
             let index = usize::from(output);
             let Some(owner) = self.owners[index] else {

@@ -1,7 +1,8 @@
 //! Pulse bookkeeping shared by PLSY/DPLSY and DECAM.
 
 use super::{Hardware, OutputOwner};
-use crate::devices::{Device, Devices};
+use crate::device::Device;
+use crate::devices::Devices;
 use crate::special::{D_PULSE_COUNT, M_BUSY};
 
 /// Pulses that `owner` emits on output Y0..=Y3 (`output` 0..=3) this tick,
@@ -15,24 +16,7 @@ use crate::special::{D_PULSE_COUNT, M_BUSY};
 /// count down in reverse (document 003, "Special address"), turns the busy
 /// flag M8147..M8150 on for this tick, and hands their number to every wire
 /// from this output: a one-phase counter input sees pulses, not direction.
-///
-/// ```
-/// use ecam_plc::Devices;
-/// use ecam_plc::{record_pulses, Hardware, OutputOwner};
-/// let mut devices = Devices::new();
-/// let mut hardware = Hardware::new();
-/// let (cam, plsy) = (OutputOwner::Cam(1), OutputOwner::PulseTrain(4));
-/// assert!(hardware.claim_output(1, cam));
-/// assert_eq!(record_pulses(&mut devices, &mut hardware, cam, 1, -3), -3);
-/// assert_eq!(devices.dword(8142), Ok(-3));
-/// assert_eq!(hardware.emitted(1), -3);
-/// assert_eq!(devices.m(8148), Ok(true));
-/// // Y1 is the cam's: another instruction can neither take it nor pulse it.
-/// assert!(!hardware.claim_output(1, plsy));
-/// assert_eq!(record_pulses(&mut devices, &mut hardware, plsy, 1, 5), 0);
-/// assert_eq!(devices.dword(8142), Ok(-3));
-/// ```
-pub fn record_pulses(
+pub(crate) fn record_pulses(
     devices: &mut Devices,
     hardware: &mut Hardware,
     owner: OutputOwner,
@@ -70,4 +54,25 @@ pub fn record_pulses(
         counters.feed(devices, wire.input(), magnitude);
     }
     pulses
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_owner_pulses_an_output() {
+        let mut devices = Devices::new();
+        let mut hardware = Hardware::new();
+        let (cam, plsy) = (OutputOwner::Cam(1), OutputOwner::PulseTrain(4));
+        assert!(hardware.claim_output(1, cam));
+        assert_eq!(record_pulses(&mut devices, &mut hardware, cam, 1, -3), -3);
+        assert_eq!(devices.dword(8142), Ok(-3));
+        assert_eq!(hardware.emitted(1), -3);
+        assert_eq!(devices.m(8148), Ok(true));
+        // Y1 is the cam's: another instruction can neither take it nor pulse it.
+        assert!(!hardware.claim_output(1, plsy));
+        assert_eq!(record_pulses(&mut devices, &mut hardware, plsy, 1, 5), 0);
+        assert_eq!(devices.dword(8142), Ok(-3));
+    }
 }

@@ -3,7 +3,7 @@
 use core::fmt;
 
 use super::counter::counters_on_input;
-use crate::devices::Device;
+use crate::device::Device;
 
 /// A wire from pulse output Yn (0..=3) to input Xm that feeds a high-speed counter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

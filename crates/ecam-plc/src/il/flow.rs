@@ -2,29 +2,26 @@
 //! so that a jump to nowhere or a subroutine that never returns is refused
 //! with its line instead of misbehaving at run time.
 
+use super::error::FlowError;
 use super::instruction::{Instruction, Statement};
-
-/// Pointers P0–P127 (the LX3V's range).
-pub(crate) const POINTER_COUNT: usize = 128;
-/// `CJ P63` jumps to the end of the main program; P63 labels no line.
-pub(crate) const END_POINTER: u8 = 63;
-/// CALL nesting of the FX3U: five levels (a CALL in the main program and
-/// four more inside subroutines).
-pub(crate) const CALL_DEPTH: usize = 5;
+use super::limits::{CALL_DEPTH, END_POINTER, POINTER_COUNT};
 
 /// Returns the line and message of the first flow error.
-pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
+pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, FlowError)> {
     let mut labels: [Option<usize>; POINTER_COUNT] = [None; POINTER_COUNT];
     for (index, statement) in statements.iter().enumerate() {
         if let Instruction::Label(n) = statement.instruction {
             let slot = labels
                 .get_mut(usize::from(n))
-                .ok_or((statement.line, format!("pointer P{n} out of range")))?;
+                .ok_or((statement.line, FlowError::PointerRange(n)))?;
             if let Some(first) = *slot {
                 let first_line = statements.get(first).map_or(0, |s| s.line);
                 return Err((
                     statement.line,
-                    format!("duplicate label P{n}: already at line {first_line}"),
+                    FlowError::DuplicateLabel {
+                        pointer: n,
+                        first_line,
+                    },
                 ));
             }
             *slot = Some(index);
@@ -34,10 +31,13 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
         .iter()
         .position(|s| matches!(s.instruction, Instruction::MainEnd));
     let in_main = |index: usize| fend.is_none_or(|f| index < f);
-    let target = |line: usize, mnemonic: &str, n: u8| -> Result<usize, (usize, String)> {
+    let target = |line: usize, mnemonic: &'static str, n: u8| {
         labels.get(usize::from(n)).copied().flatten().ok_or((
             line,
-            format!("{mnemonic} P{n}: no label P{n} in the program"),
+            FlowError::NoLabel {
+                mnemonic,
+                pointer: n,
+            },
         ))
     };
     for (index, statement) in statements.iter().enumerate() {
@@ -46,12 +46,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
             Instruction::Jump { pointer, .. } if pointer != END_POINTER => {
                 let to = target(line, "CJ", pointer)?;
                 if in_main(index) != in_main(to) {
-                    return Err((
-                        line,
-                        format!(
-                            "CJ P{pointer}: the label is on the other side of FEND (a jump stays in the main program or in the subroutines)"
-                        ),
-                    ));
+                    return Err((line, FlowError::JumpAcrossEnd(pointer)));
                 }
             }
             Instruction::Call { pointer, .. } => {
@@ -59,19 +54,16 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
                 if in_main(to) {
                     return Err((
                         line,
-                        format!(
-                            "CALL P{pointer}: the subroutine label must come after FEND (line {} is in the main program)",
-                            statements.get(to).map_or(0, |s| s.line)
-                        ),
+                        FlowError::CallIntoMain {
+                            pointer,
+                            label_line: statements.get(to).map_or(0, |s| s.line),
+                        },
                     ));
                 }
                 subroutine_end(statements, to)?;
             }
             Instruction::SubReturn if in_main(index) => {
-                return Err((
-                    line,
-                    "SRET in the main program: subroutines go after FEND".into(),
-                ));
+                return Err((line, FlowError::ReturnInMain));
             }
             _ => {}
         }
@@ -84,12 +76,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
             if let Instruction::Call { pointer, .. } = statement.instruction {
                 let levels = depth(statements, &labels, pointer, &mut depths, &mut running)?;
                 if levels > CALL_DEPTH {
-                    return Err((
-                        statement.line,
-                        format!(
-                            "CALL P{pointer}: subroutines nested deeper than {CALL_DEPTH} levels ({levels} levels from here)"
-                        ),
-                    ));
+                    return Err((statement.line, FlowError::TooDeep { pointer, levels }));
                 }
             }
         }
@@ -98,7 +85,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
 }
 
 /// The index of the SRET closing the subroutine that starts at `label`.
-fn subroutine_end(statements: &[Statement], label: usize) -> Result<usize, (usize, String)> {
+fn subroutine_end(statements: &[Statement], label: usize) -> Result<usize, (usize, FlowError)> {
     let label_line = statements.get(label).map_or(0, |s| s.line);
     for (offset, statement) in statements.iter().enumerate().skip(label) {
         match statement.instruction {
@@ -107,10 +94,7 @@ fn subroutine_end(statements: &[Statement], label: usize) -> Result<usize, (usiz
             _ => {}
         }
     }
-    Err((
-        label_line,
-        "subroutine never returns: expected SRET after its label".into(),
-    ))
+    Err((label_line, FlowError::NeverReturns))
 }
 
 /// How many CALL levels running subroutine `pointer` takes (1 when it
@@ -122,7 +106,7 @@ fn depth(
     pointer: u8,
     depths: &mut [Option<usize>; POINTER_COUNT],
     running: &mut [bool; POINTER_COUNT],
-) -> Result<usize, (usize, String)> {
+) -> Result<usize, (usize, FlowError)> {
     let slot = usize::from(pointer);
     if let Some(Some(known)) = depths.get(slot) {
         return Ok(*known);
@@ -138,12 +122,7 @@ fn depth(
     for statement in statements.get(start..end).unwrap_or(&[]) {
         if let Instruction::Call { pointer: inner, .. } = statement.instruction {
             if running.get(usize::from(inner)).copied().unwrap_or(false) {
-                return Err((
-                    statement.line,
-                    format!(
-                        "CALL P{inner}: recursive subroutine call (P{inner} is already running)"
-                    ),
-                ));
+                return Err((statement.line, FlowError::Recursive(inner)));
             }
             deepest = deepest.max(depth(statements, labels, inner, depths, running)?);
         }

@@ -1,6 +1,7 @@
 //! The checked instructions a [`super::Program`] is made of.
 
-use crate::devices::Device;
+use crate::device::Device;
+use crate::index_register::IndexReg;
 
 /// A statement: an instruction and the source line it came from.
 #[derive(Clone, Debug, PartialEq)]
@@ -107,36 +108,6 @@ pub enum Source {
     Indexed(Indexed),
 }
 
-/// An index register V0–V7 or Z0–Z7 (16 bits each; Vn:Zn pair as 32 bits).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum IndexReg {
-    /// Vn, n = 0–7.
-    V(u8),
-    /// Zn, n = 0–7.
-    Z(u8),
-}
-
-/// Number of V (and of Z) registers: V0–V7, Z0–Z7.
-pub const INDEX_COUNT: u8 = 8;
-
-impl IndexReg {
-    /// The register number n of Vn/Zn.
-    pub fn number(self) -> u8 {
-        match self {
-            Self::V(n) | Self::Z(n) => n,
-        }
-    }
-}
-
-impl core::fmt::Display for IndexReg {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::V(n) => write!(f, "V{n}"),
-            Self::Z(n) => write!(f, "Z{n}"),
-        }
-    }
-}
-
 /// What an index register modifies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IndexBase {
@@ -228,12 +199,12 @@ pub struct WordGroup {
 
 impl WordGroup {
     /// The device of the `i`-th bit of the group.
-    pub fn bit(&self, i: u16) -> Option<crate::devices::Device> {
+    pub fn bit(&self, i: u16) -> Option<crate::device::Device> {
         let n = self.first.checked_add(i)?;
         Some(match self.kind {
-            GroupKind::X => crate::devices::Device::X(n),
-            GroupKind::Y => crate::devices::Device::Y(n),
-            GroupKind::M => crate::devices::Device::M(n),
+            GroupKind::X => crate::device::Device::X(n),
+            GroupKind::Y => crate::device::Device::Y(n),
+            GroupKind::M => crate::device::Device::M(n),
         })
     }
 }

@@ -1,8 +1,10 @@
 //! Operand tokens: devices (`D100`, `X17`, `C231`), constants (`K-5`, `H1F`)
 //! and float constants (`E1.6667`).
 
-use super::instruction::{GroupKind, INDEX_COUNT, IndexReg, WordBit, WordGroup};
-use crate::devices::{Device, DeviceError};
+use super::instruction::{GroupKind, WordBit, WordGroup};
+use crate::device::{Device, DeviceError};
+use crate::il::error::TokenError;
+use crate::index_register::{INDEX_COUNT, IndexReg};
 
 /// A lexed operand before the instruction checks its kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -44,16 +46,14 @@ pub(crate) enum Modified {
 
 impl Operand {
     /// Parses one token; the message says what was expected.
-    pub(crate) fn parse(token: &str) -> Result<Self, String> {
+    pub(crate) fn parse(token: &str) -> Result<Self, TokenError> {
         let upper = token.to_ascii_uppercase();
         if let Some(register) = Self::index_register(token, &upper) {
             return register.map(Self::Index);
         }
         if let Some((word, bit)) = upper.split_once('.') {
             if index_suffix(word).is_some() {
-                return Err(format!(
-                    "`{token}`: a bit of an index-modified register is not allowed (the FX refuses Dn.b with V/Z); use D(n+offset).b or a word group"
-                ));
+                return Err(TokenError::BitOfIndexed(token.to_string()));
             }
             if word.starts_with(['D', 'M', 'X', 'Y', 'C']) {
                 return Self::word_bit(token, word, bit);
@@ -66,7 +66,7 @@ impl Operand {
     }
 
     /// `Vn`/`Zn` standing alone: `None` when the token is not shaped so.
-    fn index_register(token: &str, upper: &str) -> Option<Result<IndexReg, String>> {
+    fn index_register(token: &str, upper: &str) -> Option<Result<IndexReg, TokenError>> {
         let (kind, digits) = match upper.split_at_checked(1)? {
             ("V", d) => (IndexReg::V as fn(u8) -> IndexReg, d),
             ("Z", d) => (IndexReg::Z as fn(u8) -> IndexReg, d),
@@ -81,25 +81,27 @@ impl Operand {
                 .ok()
                 .filter(|n| *n < INDEX_COUNT)
                 .map(kind)
-                .ok_or_else(|| format!("index register `{token}` is out of range (V0-V7, Z0-Z7)")),
+                .ok_or_else(|| TokenError::IndexRegisterRange(token.to_string())),
         )
     }
 
     /// `D10V0`: checks what an index register may modify.
-    fn modified(token: &str, base: &str, by: &str) -> Result<Self, String> {
+    fn modified(token: &str, base: &str, by: &str) -> Result<Self, TokenError> {
         let by = match Self::index_register(by, by) {
             Some(Ok(reg)) => reg,
-            Some(Err(m)) => return Err(format!("`{token}`: {m}")),
-            None => {
-                return Err(format!(
-                    "`{token}`: the modifier must be an index register V0-V7 or Z0-Z7"
-                ));
+            Some(Err(_)) => {
+                return Err(TokenError::ModifierRange {
+                    token: token.to_string(),
+                    by: by.to_string(),
+                });
             }
+            None => return Err(TokenError::NotModifier(token.to_string())),
         };
         if index_suffix(base).is_some() {
-            return Err(format!(
-                "`{token}`: an operand takes one index modifier; an index register cannot modify {base}"
-            ));
+            return Err(TokenError::TwoModifiers {
+                token: token.to_string(),
+                base: base.to_string(),
+            });
         }
         let modified = match Self::plain(token, base)? {
             Self::Device(d) => Modified::Device(d),
@@ -107,26 +109,21 @@ impl Operand {
             Self::Decimal(v) => Modified::Decimal(v),
             Self::Hex(v) => Modified::Hex(v),
             Self::Group(g) => Modified::Group(g),
-            Self::Float(_) => {
-                return Err(format!(
-                    "`{token}`: an E constant cannot be index-modified (K and H constants can)"
-                ));
-            }
+            Self::Float(_) => return Err(TokenError::FloatModified(token.to_string())),
             Self::Index(_) | Self::Indexed(..) | Self::WordBit(_) => {
-                return Err(format!(
-                    "`{token}`: an index register cannot modify {base} (the FX modifies D, C, T, X, Y, M, word groups and K/H constants)"
-                ));
+                return Err(TokenError::CannotModify {
+                    token: token.to_string(),
+                    base: base.to_string(),
+                });
             }
         };
         Ok(Self::Indexed(modified, by))
     }
 
     /// An operand without index modifier.
-    fn plain(token: &str, upper: &str) -> Result<Self, String> {
+    fn plain(token: &str, upper: &str) -> Result<Self, TokenError> {
         if Self::index_register(upper, upper).is_some() {
-            return Err(format!(
-                "`{token}`: an index register cannot be index-modified"
-            ));
+            return Err(TokenError::IndexRegisterModified(token.to_string()));
         }
         if let Some(group) = Self::group(token, upper) {
             return group;
@@ -138,57 +135,49 @@ impl Operand {
             'K' => rest
                 .parse::<i64>()
                 .map(Self::Decimal)
-                .map_err(|_| format!("`{token}` is not a K constant (expected K and a decimal integer, e.g. K100)")),
+                .map_err(|_| TokenError::NotK(token.to_string())),
             'H' => u64::from_str_radix(rest, 16)
                 .ok()
                 .filter(|_| !rest.starts_with('+'))
                 .map(Self::Hex)
-                .ok_or_else(|| format!("`{token}` is not an H constant (expected H and hex digits, e.g. H1F)")),
+                .ok_or_else(|| TokenError::NotH(token.to_string())),
             'T' if !rest.is_empty() && rest.bytes().all(|b| b.is_ascii_digit()) => rest
                 .parse::<u16>()
                 .ok()
                 .filter(|n| *n < crate::timers::T_COUNT)
                 .map(Self::Timer)
-                .ok_or_else(|| format!("device `{token}` is out of range (timers T0-T255)")),
+                .ok_or_else(|| TokenError::TimerRange(token.to_string())),
             'E' => rest
                 .parse::<f32>()
                 .ok()
                 .filter(|v| v.is_finite())
                 .map(Self::Float)
-                .ok_or_else(|| format!("`{token}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)")),
-            _ => Device::parse(upper).map(Self::Device).map_err(|err| match err {
-                DeviceError::OutOfRange => format!("device `{token}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"),
-                _ => format!("unknown device `{token}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"),
-            }),
+                .ok_or_else(|| TokenError::NotE(token.to_string())),
+            _ => Device::parse(upper)
+                .map(Self::Device)
+                .map_err(|err| match err {
+                    DeviceError::OutOfRange => TokenError::DeviceRange(token.to_string()),
+                    _ => TokenError::UnknownDevice(token.to_string()),
+                }),
         }
     }
 
     /// `Dn.b`: only data registers have addressable bits here, and b is one
     /// hex digit 0–F as in the FX3 programming manual.
-    fn word_bit(token: &str, word: &str, bit: &str) -> Result<Self, String> {
+    fn word_bit(token: &str, word: &str, bit: &str) -> Result<Self, TokenError> {
         let register = match Device::parse(word) {
             Ok(Device::D(n)) => n,
-            Ok(_) => {
-                return Err(format!(
-                    "`{token}`: only data registers D have addressable bits (Dn.b, b = 0-F)"
-                ));
-            }
+            Ok(_) => return Err(TokenError::BitOfNonRegister(token.to_string())),
             Err(DeviceError::OutOfRange) => {
-                return Err(format!("device `{token}` is out of range (D0-D8511)"));
+                return Err(TokenError::WordBitRange(token.to_string()));
             }
-            Err(_) => {
-                return Err(format!(
-                    "`{token}` is not a bit of a word (expected Dn.b with b = 0-F, e.g. D2001.0)"
-                ));
-            }
+            Err(_) => return Err(TokenError::NotWordBit(token.to_string())),
         };
         let bit = match bit.as_bytes() {
             [digit] => char::from(*digit).to_digit(16),
             _ => None,
         }
-        .ok_or_else(|| {
-            format!("`{token}`: the bit number must be one hex digit 0-F (e.g. D2001.F)")
-        })?;
+        .ok_or_else(|| TokenError::BitNumber(token.to_string()))?;
         Ok(Self::WordBit(WordBit {
             register,
             bit: bit as u8,
@@ -197,7 +186,7 @@ impl Operand {
 
     /// `Kn` followed by an X, Y or M device: a word group (`None` when the
     /// token is not shaped so, e.g. a K constant).
-    fn group(token: &str, upper: &str) -> Option<Result<Self, String>> {
+    fn group(token: &str, upper: &str) -> Option<Result<Self, TokenError>> {
         let rest = upper.strip_prefix('K')?;
         let digit = rest.bytes().next().filter(u8::is_ascii_digit)?;
         let device = rest.get(1..)?;
@@ -206,25 +195,19 @@ impl Operand {
         }
         let digits = digit - b'0';
         if !(1..=8).contains(&digits) {
-            return Some(Err(format!(
-                "`{token}`: a word group has 1 to 8 digits (K1M0 to K8M0)"
-            )));
+            return Some(Err(TokenError::GroupDigits(token.to_string())));
         }
         let (kind, first, count) = match Device::parse(device) {
-            Ok(Device::X(n)) => (GroupKind::X, n, crate::devices::XY_COUNT),
-            Ok(Device::Y(n)) => (GroupKind::Y, n, crate::devices::XY_COUNT),
-            Ok(Device::M(n)) => (GroupKind::M, n, crate::devices::M_COUNT),
-            _ => {
-                return Some(Err(format!(
-                    "`{token}` is not a word group (expected Kn and an X, Y or M device, e.g. K4M0)"
-                )));
-            }
+            Ok(Device::X(n)) => (GroupKind::X, n, crate::device::XY_COUNT),
+            Ok(Device::Y(n)) => (GroupKind::Y, n, crate::device::XY_COUNT),
+            Ok(Device::M(n)) => (GroupKind::M, n, crate::device::M_COUNT),
+            _ => return Some(Err(TokenError::NotGroup(token.to_string()))),
         };
         if u32::from(first) + 4 * u32::from(digits) > u32::from(count) {
-            return Some(Err(format!(
-                "word group `{token}` runs past the last {} device",
-                device.get(..1).unwrap_or("")
-            )));
+            return Some(Err(TokenError::GroupPastEnd {
+                token: token.to_string(),
+                kind: device.get(..1).unwrap_or("").to_string(),
+            }));
         }
         Some(Ok(Self::Group(WordGroup {
             kind,
@@ -283,16 +266,27 @@ mod tests {
         assert_eq!(Operand::parse("hff"), Ok(Operand::Hex(255)));
         assert_eq!(Operand::parse("E1.6667"), Ok(Operand::Float(1.6667)));
         assert_eq!(Operand::parse("x17"), Ok(Operand::Device(Device::X(15))));
-        assert!(Operand::parse("Q1").unwrap_err().contains("unknown device"));
+        assert!(
+            Operand::parse("Q1")
+                .unwrap_err()
+                .to_string()
+                .contains("unknown device")
+        );
         assert!(
             Operand::parse("D9000")
                 .unwrap_err()
+                .to_string()
                 .contains("out of range")
         );
         assert!(Operand::parse("K1.5").is_err());
         assert!(Operand::parse("H+1").is_err());
         assert!(Operand::parse("Einf").is_err());
-        assert!(Operand::parse("X8").unwrap_err().contains("unknown device"));
+        assert!(
+            Operand::parse("X8")
+                .unwrap_err()
+                .to_string()
+                .contains("unknown device")
+        );
         assert_eq!(
             Operand::parse("d2001.f"),
             Ok(Operand::WordBit(WordBit {
@@ -303,27 +297,37 @@ mod tests {
         assert!(
             Operand::parse("D0.G")
                 .unwrap_err()
+                .to_string()
                 .contains("one hex digit")
         );
         assert!(
             Operand::parse("D0.10")
                 .unwrap_err()
+                .to_string()
                 .contains("one hex digit")
         );
-        assert!(Operand::parse("D0.").unwrap_err().contains("one hex digit"));
+        assert!(
+            Operand::parse("D0.")
+                .unwrap_err()
+                .to_string()
+                .contains("one hex digit")
+        );
         assert!(
             Operand::parse("M0.1")
                 .unwrap_err()
+                .to_string()
                 .contains("only data registers")
         );
         assert!(
             Operand::parse("D8512.0")
                 .unwrap_err()
+                .to_string()
                 .contains("out of range")
         );
         assert!(
             Operand::parse("D.1")
                 .unwrap_err()
+                .to_string()
                 .contains("not a bit of a word")
         );
     }

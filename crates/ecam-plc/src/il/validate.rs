@@ -2,10 +2,9 @@
 //! ANB/ORB/MRD/MPP has nothing to work on is refused at load time with its
 //! line, instead of misbehaving at run time.
 
+use super::error::StackError;
 use super::instruction::{Instruction, Join, Statement};
-
-/// MPS depth of the FX family.
-pub(crate) const MPS_DEPTH: usize = 11;
+use super::limits::MPS_DEPTH;
 
 /// True for instructions that consume the power flow (coils and applied
 /// instructions): the next LD after one starts a new rung.
@@ -26,7 +25,7 @@ pub(crate) fn is_output(instruction: &Instruction) -> bool {
 }
 
 /// Returns the line and message of the first misuse.
-pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
+pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, StackError)> {
     let mut blocks = 0usize;
     let mut pushed = 0usize;
     // Lines of the MPS still open, to name the one never closed.
@@ -35,12 +34,9 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
     for statement in statements {
         let line = statement.line;
         let instruction = &statement.instruction;
-        let need_flow = |blocks: usize, what: &str| {
+        let need_flow = |blocks: usize, what: &'static str| {
             if blocks == 0 {
-                Err((
-                    line,
-                    format!("{what} has no power flow: expected LD/LDI/LDP/LDF before it"),
-                ))
+                Err((line, StackError::NoPowerFlow { what }))
             } else {
                 Ok(())
             }
@@ -60,29 +56,26 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
             }
             Instruction::AndBlock | Instruction::OrBlock => {
                 if blocks < 2 {
-                    return Err((
-                        line,
-                        "ANB/ORB needs two logic blocks: expected a second LD before it".into(),
-                    ));
+                    return Err((line, StackError::TwoBlocks));
                 }
                 blocks -= 1;
             }
             Instruction::Push => {
                 need_flow(blocks, "MPS")?;
                 if pushed >= MPS_DEPTH {
-                    return Err((line, format!("MPS nested deeper than {MPS_DEPTH} levels")));
+                    return Err((line, StackError::MpsDepth));
                 }
                 pushed += 1;
                 open_mps.push(line);
             }
             Instruction::Read => {
                 if pushed == 0 {
-                    return Err((line, "MRD without a matching MPS before it".into()));
+                    return Err((line, StackError::ReadWithoutPush));
                 }
             }
             Instruction::Pop => {
                 if pushed == 0 {
-                    return Err((line, "MPP without a matching MPS before it".into()));
+                    return Err((line, StackError::PopWithoutPush));
                 }
                 pushed -= 1;
                 open_mps.pop();
@@ -95,12 +88,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
             _ => {
                 need_flow(blocks, "this instruction")?;
                 if blocks > 1 {
-                    return Err((
-                        line,
-                        format!(
-                            "{blocks} logic blocks are open: expected ANB or ORB to join them before this output"
-                        ),
-                    ));
+                    return Err((line, StackError::BlocksOpen(blocks)));
                 }
             }
         }
@@ -111,10 +99,7 @@ pub(crate) fn check(statements: &[Statement]) -> Result<(), (usize, String)> {
     // An MPS whose branch point is never popped leaves the rung unfinished:
     // the FX programming tools refuse such a circuit, so do we.
     if let Some(&line) = open_mps.last() {
-        return Err((
-            line,
-            "MPS is never closed: expected an MPP for its last branch".into(),
-        ));
+        return Err((line, StackError::PushNotClosed));
     }
     Ok(())
 }

@@ -2,37 +2,37 @@
 //! power flow on a stack of logic blocks (ANB/ORB), MPS/MRD/MPP keep branch
 //! points, coils follow the power flow, and applied instructions run while
 //! their power flow is on (the `P` forms only in the scan it turns on).
+//!
+//! This file holds the scan loop; program flow (CJ, CALL/SRET, FEND) is in
+//! `flow.rs`, and `dispatch.rs` sends every other instruction to its family:
+//! `contacts.rs` and `power_flow.rs` (LD/AND/OR, comparison contacts,
+//! ANB/ORB, MPS/MRD/MPP), `coils.rs` (OUT, SET/RST, PLS/PLF, timer and
+//! counter coils, ZRST), `moves.rs` (MOV, DEMOV, BMOV, FMOV),
+//! `arithmetic.rs` (ADD/SUB, MUL, DIV, WAND/WOR/WXOR, NEG, INC/DEC),
+//! `comparison.rs` (CMP, ZCP), `shift.rs` (SFTL/SFTR), `pulse_output.rs`
+//! (PLSY/DPLSY) and `cam.rs` (DECAM, ECAMTBX).
 
-mod applied;
+mod arithmetic;
+mod cam;
+mod coils;
+mod comparison;
+mod contacts;
+mod dispatch;
+mod flow;
+mod machine;
+mod moves;
 mod operands;
+mod power_flow;
+mod pulse_output;
+mod shift;
 
-use crate::decam::Decam;
-use crate::devices::Devices;
-use crate::hardware::Hardware;
-use crate::il::{BitRef, Contact, Exec, Instruction, Join, Program};
-use crate::operation_error::OperationError;
-
-/// What one instruction remembers between scans (edges, PLSY latch).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct Memory {
-    /// The previous input of an edge contact, or previous power flow of a
-    /// pulse instruction (PLS/PLF, P forms, counter coil).
-    pub previous: bool,
-    /// PLSY: the pulse train was started and has not been re-armed yet.
-    pub latched: bool,
-}
-
-/// Everything an instruction may touch.
-pub struct Machine<'a> {
-    /// Device memory.
-    pub devices: &'a mut Devices,
-    /// Pulse outputs, counters, wires.
-    pub hardware: &'a mut Hardware,
-    /// One E-cam instance per DECAM instruction, in program order.
-    pub decams: &'a mut [Decam],
-    /// Simulated time of this scan.
-    pub now_us: u64,
-}
+use self::dispatch::{Statement, execute};
+use self::flow::{Calls, Labels};
+pub(crate) use self::machine::Machine;
+use self::machine::Memory;
+use self::power_flow::PowerFlow;
+use crate::il::{Instruction, Program, is_output};
+use crate::operation_error::{CODE_SCAN_LIMIT, OperationError};
 
 /// An operation error and the source line of the instruction that raised it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -47,10 +47,9 @@ pub struct LineError {
 #[derive(Clone, Debug, Default)]
 pub struct Interpreter {
     memory: Vec<Memory>,
-    blocks: Vec<bool>,
-    pushed: Vec<bool>,
+    power_flow: PowerFlow,
     /// Statement index of each pointer label (P63: the end of the main program).
-    labels: Vec<Option<usize>>,
+    labels: Labels,
     /// For each statement, the number of the DECAM it is (program order).
     decam_of: Vec<Option<usize>>,
 }
@@ -60,30 +59,22 @@ pub struct Interpreter {
 /// on its watchdog timer). The scan ends with an operation error instead.
 pub const MAX_STEPS_PER_SCAN: usize = 1_000_000;
 
-/// A CALL being executed: where to continue and the stacks to restore.
-struct Frame {
-    return_to: usize,
-    blocks: Vec<bool>,
-    pushed: Vec<bool>,
+/// Where the scan goes after an instruction.
+enum Next {
+    /// The next statement.
+    Continue,
+    /// Statement `to` (a jump taken, a CALL, an SRET).
+    At(usize),
+    /// The scan ends (FEND, or SRET outside a subroutine).
+    End,
 }
 
 impl Interpreter {
     /// Fresh state for `program`.
     pub fn new(program: &Program) -> Self {
-        let mut labels = vec![None; crate::il::POINTER_COUNT];
         let mut decam_of = Vec::with_capacity(program.statements.len());
         let mut decams = 0usize;
-        let mut main_end = None;
-        for (index, statement) in program.statements.iter().enumerate() {
-            match statement.instruction {
-                Instruction::Label(n) => {
-                    if let Some(slot) = labels.get_mut(usize::from(n)) {
-                        *slot = Some(index);
-                    }
-                }
-                Instruction::MainEnd if main_end.is_none() => main_end = Some(index),
-                _ => {}
-            }
+        for statement in &program.statements {
             if matches!(statement.instruction, Instruction::Decam { .. }) {
                 decam_of.push(Some(decams));
                 decams += 1;
@@ -91,14 +82,10 @@ impl Interpreter {
                 decam_of.push(None);
             }
         }
-        if let Some(slot) = labels.get_mut(usize::from(crate::il::END_POINTER)) {
-            *slot = Some(main_end.unwrap_or(program.statements.len()));
-        }
         Self {
             memory: vec![Memory::default(); program.statements.len()],
-            blocks: Vec::new(),
-            pushed: Vec::new(),
-            labels,
+            power_flow: PowerFlow::default(),
+            labels: Labels::of(program),
             decam_of,
         }
     }
@@ -107,10 +94,9 @@ impl Interpreter {
     /// scan (as on the PLC); its error is returned with its line.
     pub fn scan(&mut self, program: &Program, machine: &mut Machine<'_>) -> Vec<LineError> {
         let mut errors = Vec::new();
-        self.blocks.clear();
-        self.pushed.clear();
+        self.power_flow.clear();
         let mut after_output = true;
-        let mut calls: Vec<Frame> = Vec::new();
+        let mut calls = Calls::default();
         let mut next = 0usize;
         let mut steps = 0usize;
         // The line of the last jump taken: the loop an over-long scan names.
@@ -121,7 +107,7 @@ impl Interpreter {
             steps += 1;
             if steps > MAX_STEPS_PER_SCAN {
                 let error = OperationError::new(
-                    crate::operation_error::CODE_SCAN_LIMIT,
+                    CODE_SCAN_LIMIT,
                     format!(
                         "the scan executed more than {MAX_STEPS_PER_SCAN} instructions (a CJ loop that never ends?): scan stopped"
                     ),
@@ -137,167 +123,52 @@ impl Interpreter {
                 break;
             };
             let instruction = &statement.instruction;
-            let result = match instruction {
-                Instruction::Load(contact, device) => {
-                    let (value, read) = contact_value(*contact, *device, memory, machine);
-                    if after_output && self.pushed.is_empty() {
-                        self.blocks.clear();
-                    }
-                    self.blocks.push(value);
-                    read
-                }
-                Instruction::And(contact, device) => {
-                    let (value, read) = contact_value(*contact, *device, memory, machine);
-                    if let Some(top) = self.blocks.last_mut() {
-                        *top = *top && value;
-                    }
-                    read
-                }
-                Instruction::Or(contact, device) => {
-                    let (value, read) = contact_value(*contact, *device, memory, machine);
-                    if let Some(top) = self.blocks.last_mut() {
-                        *top = *top || value;
-                    }
-                    read
-                }
-                Instruction::CompareContact {
-                    join,
-                    relation,
-                    width,
-                    s1,
-                    s2,
-                } => {
-                    let compared =
-                        operands::read_source(machine.devices, *s1, *width).and_then(|a| {
-                            operands::read_source(machine.devices, *s2, *width)
-                                .map(|b| relation.holds(a, b))
-                        });
-                    let value = *compared.as_ref().unwrap_or(&false);
-                    match join {
-                        Join::Load => {
-                            if after_output && self.pushed.is_empty() {
-                                self.blocks.clear();
-                            }
-                            self.blocks.push(value);
-                        }
-                        Join::And => {
-                            if let Some(top) = self.blocks.last_mut() {
-                                *top = *top && value;
-                            }
-                        }
-                        Join::Or => {
-                            if let Some(top) = self.blocks.last_mut() {
-                                *top = *top || value;
-                            }
-                        }
-                    }
-                    compared.map(|_| ())
-                }
-                Instruction::AndBlock | Instruction::OrBlock => {
-                    let last = self.blocks.pop().unwrap_or(false);
-                    if let Some(top) = self.blocks.last_mut() {
-                        *top = if matches!(instruction, Instruction::AndBlock) {
-                            *top && last
-                        } else {
-                            *top || last
-                        };
-                    }
-                    Ok(())
-                }
-                Instruction::Push => {
-                    self.pushed.push(power_of(&self.blocks));
-                    Ok(())
-                }
-                Instruction::Read | Instruction::Pop => {
-                    let saved = if matches!(instruction, Instruction::Read) {
-                        self.pushed.last().copied()
-                    } else {
-                        self.pushed.pop()
-                    };
-                    if let (Some(saved), Some(top)) = (saved, self.blocks.last_mut()) {
-                        *top = saved;
-                    }
-                    Ok(())
-                }
-                Instruction::Nop | Instruction::Label(_) => Ok(()),
-                Instruction::MainEnd => break,
-                Instruction::SubReturn => match calls.pop() {
-                    Some(frame) => {
-                        next = frame.return_to;
-                        self.blocks = frame.blocks;
-                        self.pushed = frame.pushed;
-                        Ok(())
-                    }
-                    None => break,
-                },
+            let power_flow = &mut self.power_flow;
+            let (result, then) = match *instruction {
                 Instruction::Jump { exec, pointer } => {
-                    let power = power_of(&self.blocks);
-                    if runs(*exec, power, memory) {
-                        if let Some(to) = self.labels.get(usize::from(*pointer)).copied().flatten()
-                        {
-                            next = to;
+                    match flow::jump((exec, pointer), &self.labels, power_flow, memory) {
+                        Some(to) => {
                             last_jump = Some(statement.line);
-                            self.blocks.clear();
-                            self.pushed.clear();
+                            (Ok(()), Next::At(to))
                         }
+                        None => (Ok(()), Next::Continue),
                     }
-                    Ok(())
                 }
                 Instruction::Call { exec, pointer } => {
-                    let power = power_of(&self.blocks);
-                    if !runs(*exec, power, memory) {
-                        Ok(())
-                    } else if calls.len() >= crate::il::CALL_DEPTH {
-                        Err(OperationError::new(
-                            crate::operation_error::CODE_CALL_NESTING,
-                            format!(
-                                "CALL P{pointer}: subroutines nested deeper than {} levels",
-                                crate::il::CALL_DEPTH
-                            ),
-                        ))
-                    } else if let Some(to) =
-                        self.labels.get(usize::from(*pointer)).copied().flatten()
-                    {
-                        calls.push(Frame {
-                            return_to: next,
-                            blocks: core::mem::take(&mut self.blocks),
-                            pushed: core::mem::take(&mut self.pushed),
-                        });
-                        next = to;
-                        Ok(())
-                    } else {
-                        Ok(())
+                    let call = (&mut calls, &mut *power_flow);
+                    match flow::call((exec, pointer), next, &self.labels, call, memory) {
+                        Ok(Some(to)) => (Ok(()), Next::At(to)),
+                        Ok(None) => (Ok(()), Next::Continue),
+                        Err(error) => (Err(error), Next::Continue),
                     }
                 }
-                Instruction::Decam { .. } => {
-                    let power = power_of(&self.blocks);
-                    match self
-                        .decam_of
-                        .get(index)
-                        .copied()
-                        .flatten()
-                        .and_then(|d| machine.decams.get_mut(d))
-                    {
-                        Some(decam) => decam.execute(power, machine.devices, machine.now_us),
-                        None => Ok(()),
-                    }
-                }
-                other => {
-                    let power = power_of(&self.blocks);
-                    applied::execute(other, index, power, memory, machine)
+                Instruction::SubReturn => match flow::sub_return(&mut calls, power_flow) {
+                    Some(to) => (Ok(()), Next::At(to)),
+                    None => (Ok(()), Next::End),
+                },
+                Instruction::MainEnd => (Ok(()), Next::End),
+                _ => {
+                    let decam = self.decam_of.get(index).copied().flatten();
+                    let at = Statement { index, decam };
+                    let result =
+                        execute(instruction, at, (power_flow, after_output), memory, machine);
+                    (result, Next::Continue)
                 }
             };
-            if let Err(error) = &result {
-                report(machine, error);
+            match then {
+                Next::Continue => {}
+                Next::At(to) => next = to,
+                Next::End => break,
             }
             if let Err(error) = result {
+                report(machine, &error);
                 errors.push(LineError {
                     line: statement.line,
                     error,
                 });
             }
             if !matches!(instruction, Instruction::Nop) {
-                after_output = crate::il::is_output(instruction);
+                after_output = is_output(instruction);
             }
         }
         errors
@@ -313,44 +184,4 @@ fn report(machine: &mut Machine<'_>, error: &OperationError) {
     let _ = machine
         .devices
         .set_m(crate::special::M_OPERATION_ERROR, true);
-}
-
-/// The power flow: the top logic block (off when there is none).
-fn power_of(blocks: &[bool]) -> bool {
-    blocks.last().copied().unwrap_or(false)
-}
-
-/// Reads a contact, remembering the device state for the edge forms. An
-/// index-modified contact out of range reads as off and returns the
-/// operation error to report.
-fn contact_value(
-    contact: Contact,
-    device: BitRef,
-    memory: &mut Memory,
-    machine: &Machine<'_>,
-) -> (bool, Result<(), OperationError>) {
-    let (state, read) = match operands::read_bit_ref(machine.devices, machine.hardware, device) {
-        Ok(state) => (state, Ok(())),
-        Err(error) => (false, Err(error)),
-    };
-    let previous = memory.previous;
-    memory.previous = state;
-    let value = match contact {
-        Contact::Open => state,
-        Contact::Closed => !state && read.is_ok(),
-        Contact::Rising => state && !previous,
-        Contact::Falling => !state && previous && read.is_ok(),
-    };
-    (value, read)
-}
-
-/// Whether an applied instruction runs this scan: continuous forms while the
-/// power flow is on, `P` forms in the scan it turns on.
-pub(crate) fn runs(exec: Exec, power: bool, memory: &mut Memory) -> bool {
-    let rising = power && !memory.previous;
-    memory.previous = power;
-    match exec {
-        Exec::Continuous => power,
-        Exec::Pulse => rising,
-    }
 }

@@ -1,15 +1,22 @@
 //! Reading and writing operands at run time.
 
-use crate::devices::{
-    C_32BIT_FIRST, C_COUNT, D_COUNT, Device, DeviceError, Devices, M_COUNT, XY_COUNT,
-};
+use crate::device::{C_32BIT_FIRST, C_COUNT, D_COUNT, Device, DeviceError, M_COUNT, XY_COUNT};
+use crate::devices::Devices;
 use crate::hardware::Hardware;
-use crate::il::{BitRef, Dest, GroupKind, IndexBase, IndexReg, Indexed, Source, Width, WordGroup};
+use crate::il::{BitRef, Dest, GroupKind, IndexBase, Indexed, Source, Width, WordGroup};
+use crate::index_register::IndexReg;
 use crate::operation_error::{CODE_DEVICE_RANGE, OperationError};
 
 /// A device error at run time (the parser checks ranges, so this is rare).
 pub(crate) fn device_error(device: impl core::fmt::Display, err: DeviceError) -> OperationError {
     OperationError::new(CODE_DEVICE_RANGE, format!("{device}: {err}"))
+}
+
+/// Sets special relay `m` (a flag such as M8020 or M8029).
+pub(crate) fn set_flag(devices: &mut Devices, m: u16, on: bool) -> Result<(), OperationError> {
+    devices
+        .set_m(m, on)
+        .map_err(|e| device_error(Device::M(m), e))
 }
 
 /// State of a bit operand: X/Y/M, or a counter's contact.

@@ -2,11 +2,11 @@
 //! layouts, wrapping and the division-by-zero operation error.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::parse;
+use ecam_plc::Program;
 use ecam_plc::{CODE_OPERAND, Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 /// Runs `body` once under M8000 and returns D0..D15 as unsigned words.
@@ -20,7 +20,7 @@ fn words_after(body: &str) -> Vec<u16> {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]
@@ -156,7 +156,7 @@ fn bad_operands_are_refused_at_their_line() {
     assert!(error("LD X0\nDWAND K1 K2 D0\n").starts_with("prog.il:2: unknown instruction `DWAND`"));
     assert!(error("LD X0\nMUL K1 K2 D8511\n").contains("the result takes 2 registers from D8511"));
     assert!(error("LD X0\nDMUL K1 K2 D8509\n").contains("the result takes 4 registers from D8509"));
-    assert!(parse("LD X0\nDDIV K1 K2 D8508\n", "t.il").is_ok());
+    assert!(Program::parse("LD X0\nDDIV K1 K2 D8508\n", "t.il").is_ok());
     assert!(
         error("LD X0\nDIV K1 K2 C0\n").contains(
             "DIV operand 3: expected a D register or a word group KnM/KnY (optionally index-modified), found C0"

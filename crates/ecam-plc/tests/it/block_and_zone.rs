@@ -2,10 +2,10 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use ecam_plc::Plc;
-use ecam_plc::il::{IndexReg, parse};
+use ecam_plc::{IndexReg, Program};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn words(plc: &Plc, from: u16, n: u16) -> Vec<i16> {
@@ -15,7 +15,7 @@ fn words(plc: &Plc, from: u16, n: u16) -> Vec<i16> {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]

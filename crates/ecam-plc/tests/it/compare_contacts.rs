@@ -1,11 +1,11 @@
 //! Comparison contacts LD= … ORD>=, 16 and 32 bit, signed as on the FX.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::{Instruction, Join, Relation, Source, Width, parse};
+use ecam_plc::Program;
 use ecam_plc::{Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn y(plc: &Plc, n: u16) -> bool {
@@ -13,7 +13,7 @@ fn y(plc: &Plc, n: u16) -> bool {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 const RELATIONS: [&str; 6] = ["=", "<>", ">", "<", ">=", "<="];
@@ -25,59 +25,6 @@ fn six_rungs(width: &str) -> String {
         .enumerate()
         .map(|(i, rel)| format!("LD{width}{rel} D0 D2\nOUT Y{i}\n"))
         .collect()
-}
-
-#[test]
-fn mnemonics_parse_into_join_width_and_relation() {
-    let program = parse(
-        "LD= D0 K5\nANDD<> D2 C235\nOR>= C0 H10\nOUT Y0\nLDD<= K-1 D4\nOR< D0 D1\nAND> D0 K0\nOUT Y1\n",
-        "t.il",
-    )
-    .unwrap();
-    let got: Vec<_> = program
-        .statements
-        .iter()
-        .map(|s| s.instruction.clone())
-        .collect();
-    assert_eq!(
-        got[0],
-        Instruction::CompareContact {
-            join: Join::Load,
-            relation: Relation::Equal,
-            width: Width::Word,
-            s1: Source::Register(0),
-            s2: Source::Constant(5),
-        }
-    );
-    assert_eq!(
-        got[1],
-        Instruction::CompareContact {
-            join: Join::And,
-            relation: Relation::NotEqual,
-            width: Width::Double,
-            s1: Source::Register(2),
-            s2: Source::Counter(235),
-        }
-    );
-    assert_eq!(
-        got[2],
-        Instruction::CompareContact {
-            join: Join::Or,
-            relation: Relation::GreaterOrEqual,
-            width: Width::Word,
-            s1: Source::Counter(0),
-            s2: Source::Constant(16),
-        }
-    );
-    assert!(matches!(
-        got[4],
-        Instruction::CompareContact {
-            join: Join::Load,
-            relation: Relation::LessOrEqual,
-            width: Width::Double,
-            ..
-        }
-    ));
 }
 
 #[test]

@@ -3,11 +3,11 @@
 //! bits; contacts latched at counts and RST as on the FX3U.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::parse;
+use ecam_plc::Program;
 use ecam_plc::{Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn set(plc: &mut Plc, device: Device, on: bool) {

@@ -4,11 +4,11 @@
 //! way an FX3U computes them.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::{IndexReg, parse};
 use ecam_plc::{Device, Plc, View};
+use ecam_plc::{IndexReg, Program};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn word(plc: &Plc, n: u16) -> i16 {
@@ -20,7 +20,7 @@ fn index(plc: &Plc, register: IndexReg) -> i16 {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]
@@ -57,7 +57,8 @@ fn d_c_t_and_constants_are_offset_by_the_register() {
     d.set_index_register(IndexReg::Z(0), 5).unwrap();
     d.set_index_register(IndexReg::V(0), -3).unwrap();
     d.set_index_pair(1, 4).unwrap();
-    d.timers_mut().set_value(5, 42).unwrap();
+    // A tool sets a timer's current value by name (`--set T5=42`).
+    ecam_plc::View::parse("T5").unwrap().write(d, "42").unwrap();
     assert!(plc.scan().is_empty());
     assert_eq!(word(&plc, 15), 123);
     assert_eq!(word(&plc, 10), 0, "the base register is untouched");

@@ -3,12 +3,12 @@
 
 use ecam_plc::Device;
 use ecam_plc::Plc;
+use ecam_plc::Program;
 use ecam_plc::Wire;
-use ecam_plc::il::parse;
 use ecam_plc::sim::{RunLength, Timing, run};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn bit(plc: &Plc, device: &str) -> bool {

@@ -61,13 +61,13 @@ proptest! {
 
     #[test]
     fn arbitrary_text(text in "\\PC{0,200}") {
-        let _ = ecam_plc::il::parse(&text, "fuzz.il");
+        let _ = ecam_plc::Program::parse(&text, "fuzz.il");
     }
 
     #[test]
     fn plausible_tokens(tokens in proptest::collection::vec(proptest::sample::select(WORDS), 0..60)) {
         let text = tokens.join(" ");
-        if let Err(err) = ecam_plc::il::parse(&text, "fuzz.il") {
+        if let Err(err) = ecam_plc::Program::parse(&text, "fuzz.il") {
             prop_assert!(err.to_string().starts_with("fuzz.il:"));
         }
     }
@@ -75,7 +75,7 @@ proptest! {
     #[test]
     fn parsed_programs_run(tokens in proptest::collection::vec(proptest::sample::select(WORDS), 0..40)) {
         let text = tokens.join(" ");
-        if let Ok(program) = ecam_plc::il::parse(&text, "fuzz.il") {
+        if let Ok(program) = ecam_plc::Program::parse(&text, "fuzz.il") {
             if let Ok(mut plc) = ecam_plc::Plc::new(program) {
                 for _ in 0..3 {
                     plc.scan();

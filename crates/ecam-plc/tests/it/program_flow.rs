@@ -3,11 +3,11 @@
 //! nowhere.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::{Exec, Instruction, parse};
+use ecam_plc::Program;
 use ecam_plc::{CODE_CALL_NESTING, CODE_SCAN_LIMIT, Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn word(plc: &Plc, n: u16) -> i16 {
@@ -23,38 +23,7 @@ fn set(plc: &mut Plc, device: Device, on: bool) {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
-}
-
-#[test]
-fn flow_instructions_parse() {
-    let program = parse(
-        "LD X0\nCJ P1\nLD X1\ncallp p2\nP1\nLD X2\nOUT Y0\nFEND\nP2\nLD M8000\nINC D0\nSRET\nEND\n",
-        "t.il",
-    )
-    .unwrap();
-    let got: Vec<_> = program
-        .statements
-        .iter()
-        .map(|s| s.instruction.clone())
-        .collect();
-    assert_eq!(
-        got[1],
-        Instruction::Jump {
-            exec: Exec::Continuous,
-            pointer: 1
-        }
-    );
-    assert_eq!(
-        got[3],
-        Instruction::Call {
-            exec: Exec::Pulse,
-            pointer: 2
-        }
-    );
-    assert_eq!(got[4], Instruction::Label(1));
-    assert_eq!(got[7], Instruction::MainEnd);
-    assert_eq!(got[11], Instruction::SubReturn);
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]

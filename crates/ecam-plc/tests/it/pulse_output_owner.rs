@@ -4,10 +4,10 @@
 
 use ecam_plc::Device;
 use ecam_plc::Plc;
-use ecam_plc::il::parse;
+use ecam_plc::Program;
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn set(plc: &mut Plc, device: &str, on: bool) {

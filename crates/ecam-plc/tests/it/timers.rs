@@ -2,12 +2,12 @@
 //! value grows when `OUT Tn` runs, by the time since it last ran.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::parse;
+use ecam_plc::Program;
 use ecam_plc::sim::{RunLength, Timing, run};
 use ecam_plc::{Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn scans(plc: &mut Plc, scan_us: u32, n: u64) {
@@ -29,7 +29,7 @@ fn set(plc: &mut Plc, device: Device, on: bool) {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]
@@ -137,5 +137,5 @@ fn bad_timer_operands_are_refused_at_their_line() {
     assert!(error("LD X0\nOUT T0 C0\n").contains("expected a K/H constant or a D register"));
     assert!(error("LD X0\nSET T0\n").contains("found T0"));
     assert!(error("LD X0\nDMOV T0 D0\n").contains("found T0"));
-    assert!(parse("LD T0\nOUT Y0\nLD X0\nRST T0\n", "t.il").is_ok());
+    assert!(Program::parse("LD T0\nOUT Y0\nLD X0\nRST T0\n", "t.il").is_ok());
 }

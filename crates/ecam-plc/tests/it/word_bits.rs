@@ -1,11 +1,11 @@
 //! Bits of data registers, `Dn.b`, as contacts and coils (FX3 family).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::{BitRef, Contact, Instruction, WordBit, parse};
+use ecam_plc::Program;
 use ecam_plc::{Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn word(plc: &Plc, n: u16) -> u16 {
@@ -17,28 +17,7 @@ fn y(plc: &Plc, n: u16) -> bool {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
-}
-
-#[test]
-fn word_bits_parse_as_contacts_and_coils() {
-    let program = parse(
-        "ld d2001.0\nANI D2001.F\nOUT d10.a\nLDI D0.1\nSET D1.2\nRST D2001.1\n",
-        "t.il",
-    )
-    .unwrap();
-    let bit = |register, bit| BitRef::WordBit(WordBit { register, bit });
-    let got: Vec<_> = program
-        .statements
-        .iter()
-        .map(|s| s.instruction.clone())
-        .collect();
-    assert_eq!(got[0], Instruction::Load(Contact::Open, bit(2001, 0)));
-    assert_eq!(got[1], Instruction::And(Contact::Closed, bit(2001, 15)));
-    assert_eq!(got[2], Instruction::Out(bit(10, 10)));
-    assert_eq!(got[3], Instruction::Load(Contact::Closed, bit(0, 1)));
-    assert_eq!(got[4], Instruction::Set(bit(1, 2)));
-    assert_eq!(got[5], Instruction::Reset(bit(2001, 1)));
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]

@@ -3,11 +3,11 @@
 //! destinations, which take only their own n × 4 bits.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use ecam_plc::il::{Dest, GroupKind, Instruction, Source, WordGroup, parse};
+use ecam_plc::Program;
 use ecam_plc::{Device, Plc};
 
 fn plc(src: &str) -> Plc {
-    Plc::new(parse(src, "t.il").unwrap()).unwrap()
+    Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
 }
 
 fn word(plc: &Plc, n: u16) -> i16 {
@@ -15,25 +15,7 @@ fn word(plc: &Plc, n: u16) -> i16 {
 }
 
 fn error(source: &str) -> String {
-    parse(source, "prog.il").unwrap_err().to_string()
-}
-
-#[test]
-fn word_groups_parse_as_sources() {
-    let program = parse("LD M8000\nMOV k2x10 D0\n", "t.il").unwrap();
-    assert_eq!(
-        program.statements[1].instruction,
-        Instruction::Move {
-            width: ecam_plc::il::Width::Word,
-            exec: ecam_plc::il::Exec::Continuous,
-            src: Source::Group(WordGroup {
-                kind: GroupKind::X,
-                first: 8,
-                digits: 2
-            }),
-            dst: Dest::Register(0),
-        }
-    );
+    Program::parse(source, "prog.il").unwrap_err().to_string()
 }
 
 #[test]
