@@ -56,12 +56,13 @@ mod generate;
 mod machine;
 mod params;
 mod report;
+mod segment_view;
 mod table_api;
 mod table_source;
 
 pub use designer::{
     DEFAULT_LAW_POINTS, MAX_LAW_POINTS, generate_json, generators_json, key_points_json,
-    law_curves_json, laws_json, segments_continuous_json, segments_json, segments_text,
+    law_curves_json, laws_json, segments_continuous_json,
 };
 pub use drive::{check_table, drive_check_json, motion_of, motion_of_cam, read_drive};
 pub use error::{DriveFileError, ExprError, GenerateError, TableSourceError};
@@ -73,5 +74,6 @@ pub use generate::{
 pub use machine::{AtSpeed, Machine, Peaks, Source, Unit, short};
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
 pub use report::TableReport;
+pub use segment_view::{segments_json, segments_text};
 pub use table_api::{limits_json, table_check_json, table_convert_json, table_read_json};
 pub use table_source::{load as load_table, resolve};

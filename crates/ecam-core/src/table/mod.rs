@@ -18,6 +18,7 @@
 //! O(1) when the master moves a little, a binary search after a jump.
 
 mod cam_table;
+mod continuity;
 pub mod derivatives;
 mod function;
 mod lines;
@@ -29,13 +30,14 @@ mod summary;
 mod uniform;
 
 pub use cam_table::CamTable;
+pub use continuity::Continuity;
 pub use function::sample_function;
 pub use point::{CamPoint, PointTable};
 pub(crate) use resolution::distribute;
 pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
 pub use segment::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION, Segment, SegmentProfile};
 pub(crate) use segment::{sample_spans, sample_uniform};
-pub use summary::{Continuity, Summary};
+pub use summary::Summary;
 pub use uniform::{MAX_CAM_COUNTS, UniformTable};
 
 /// Whether slave values taken in master order move both up and down

@@ -56,7 +56,7 @@
 
 use alloc::vec::Vec;
 
-use super::Continuity;
+use super::continuity::Continuity;
 use crate::{CamPoint, CamTable, Kinematics, PointTable, SegmentProfile, UniformTable};
 
 /// The slave movement, in pulses, below which a step is not one: the
