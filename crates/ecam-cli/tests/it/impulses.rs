@@ -131,6 +131,14 @@ const GENERATED: [(&str, &str, &str); 5] = [
     ("sine.toml", "function", "sine.csv"),
 ];
 
+/// The shipped segment-cam parameter files.
+const SEGMENTS: [&str; 4] = [
+    "segments-double-dwell.toml",
+    "segments-flying-saw.toml",
+    "segments-pick-and-place.toml",
+    "segments-rotary-knife.toml",
+];
+
 fn generate(params: &str, generator: &str, extra: &str) -> ecam_design::Generated {
     let text = std::fs::read_to_string(examples().join(params)).unwrap();
     let table: toml::Table = toml::from_str(&format!("{text}\n{extra}")).unwrap();
@@ -145,6 +153,11 @@ fn every_generated_plot_draws_the_steps_of_its_exact_curve() {
         GENERATED.iter().map(|(p, g, _)| (*p, *g, "")).collect();
     cases.push(("s-curve.toml", "s-curve", "curve = \"uniform\""));
     cases.push(("rotary-cut-demo.toml", "rotary-cut", ""));
+    // The segment cams (`ecam table gen segments`): steps where segments
+    // meet, inside a rise law, and at the seam.
+    for params in SEGMENTS {
+        cases.push((params, "segments", ""));
+    }
     for (params, generator, extra) in cases {
         let g = generate(params, generator, extra);
         let what = format!("{params} {extra}");
@@ -345,4 +358,42 @@ fn straight(f: &dyn Fn(f64) -> Kinematics, (lo, hi): (f64, f64), xs: &[f64]) -> 
         found.push((hi, seam, true));
     }
     found
+}
+
+#[test]
+fn the_shipped_segment_cam_file_plots_and_shows_the_steps_of_its_segments() {
+    // A table file that keeps its segment cam (`ecam table gen segments -o
+    // x.json`) is plotted and shown from the cam, not from its points.
+    let path = examples().join("segments-rotary-knife.json");
+    let AnyTable::Points(file) = io::read(&path).unwrap() else {
+        panic!("a point table");
+    };
+    let cam = file.segments.as_deref().expect("the file keeps its cam");
+    let chart = cam_table::segment_cam_chart(cam, file.sync, "segments-rotary-knife");
+    let span = (cam.master_first() as f64, cam.master_last() as f64);
+    let (velocity, acceleration) = exact_steps(&ExactCurve::Segments(cam.clone()), span);
+    same("segments json", &drawn(&chart, 2), &velocity, |m| m);
+    same("segments json", &drawn(&chart, 3), &acceleration, |m| m);
+    let shown: serde_json::Value = serde_json::from_str(&ok(ecam(&[
+        "table",
+        "show",
+        "--json",
+        path.to_str().unwrap(),
+    ])))
+    .unwrap();
+    for (key, k) in [("velocity", 2), ("acceleration", 3)] {
+        let listed: Vec<Found> = shown["steps"][key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| {
+                (
+                    s["master"].as_f64().unwrap(),
+                    s["size"].as_f64().unwrap(),
+                    s["seam"].as_bool().unwrap(),
+                )
+            })
+            .collect();
+        same("show segments json", &listed, &drawn(&chart, k), |m| m);
+    }
 }
