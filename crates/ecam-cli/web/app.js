@@ -433,7 +433,7 @@ const SUMMARY_LABELS = {
   sections: "sections", master_span: "master span", stroke: "stroke", slave_min: "slave min",
   slave_max: "slave max", peak_velocity: "peak velocity (table)", peak_acceleration: "peak acceleration (table)",
   design_peak_velocity: "peak velocity (design)", design_peak_acceleration: "peak acceleration (design)",
-  continuity: "continuity", seam: "seam", note: "note",
+  continuity: "continuity (table)", seam: "seam (table)", design_continuity: "continuity (design)", note: "note",
 };
 
 // The server's summary, in its order; its `note` (the rounding ripple) last.

@@ -243,6 +243,13 @@ pub fn generate_json(body: &Value) -> Result<Value, String> {
             "design_peak_acceleration": design_peaks.map(|(_, a)| a),
             "continuity": summary.continuity.to_string(),
             "seam": summary.seam.to_string(),
+            // The design's smoothness by the steps rule, as `ecam table
+            // show` prints it beside the table's: the plots draw the
+            // design, whose corners are fewer than the straight sections'.
+            "design_continuity": design_peaks.map(|_| {
+                let (inside, seam) = steps.continuity();
+                format!("{inside} (seam {seam})")
+            }),
             "note": note,
         },
     }))
@@ -309,6 +316,11 @@ mod tests {
             design_a > 0.0 && table_a > 2.0 * design_a,
             "{design_a} {table_a}"
         );
+        // Its continuity too, as `ecam table show` gives both: the table's
+        // straight sections step in velocity, the design only in
+        // acceleration.
+        assert_eq!(summary["continuity"], "C0");
+        assert_eq!(summary["design_continuity"], "C1 (seam C1)");
     }
 
     #[test]
