@@ -20,6 +20,10 @@ use crate::Row;
 /// thinned evenly.
 pub const PLOT_POINTS: usize = 2_000;
 
+/// Pulses a velocity window spans, where the run allows, so that whole-pulse
+/// rounding moves the drawn speed by 2 % at most.
+const QUIET_PULSES: i64 = 50;
+
 /// What the trace plot keeps of a run, fed one tick at a time.
 #[derive(Debug)]
 pub struct TracePlot {
@@ -107,17 +111,34 @@ impl TracePlot {
                 self.shaded.push((from, last.t));
             }
         }
-        // Velocity over each kept interval: per-tick values jump between
-        // whole pulses per tick, which hides the motion in a plot.
-        let mut velocity = Vec::with_capacity(self.kept.len());
-        let mut prev: Option<&Row> = None;
-        for r in &self.kept {
-            velocity.push(match prev {
-                Some(p) if r.t > p.t => (r.slave - p.slave) as f64 / (r.t - p.t),
-                _ => 0.0,
-            });
-            prev = Some(r);
-        }
+        // Velocity over a window of kept rows around each: per-tick (and
+        // per-interval) values jump between whole pulses, which draws a
+        // band instead of the motion. Each window widens until the slave
+        // moved [`QUIET_PULSES`] (so a pulse more or less is a small part)
+        // or spans 1 % of the run: fast motion keeps a short window and
+        // its plateaus, slow motion is near zero either way.
+        let widest = (self.kept.len() / 100).max(1);
+        let last = self.kept.len().saturating_sub(1);
+        let window = |i: usize, reach: usize| {
+            // As wide at the ends as inside: shifted, not cut.
+            let lo = i.saturating_sub(reach).min(last.saturating_sub(2 * reach));
+            (self.kept.get(lo), self.kept.get((lo + 2 * reach).min(last)))
+        };
+        let velocity: Vec<f64> = (0..self.kept.len())
+            .map(|i| {
+                let mut reach = 1;
+                while reach < widest {
+                    match window(i, reach) {
+                        (Some(a), Some(b)) if (b.slave - a.slave).abs() >= QUIET_PULSES => break,
+                        _ => reach += 1,
+                    }
+                }
+                match window(i, reach) {
+                    (Some(a), Some(b)) if b.t > a.t => (b.slave - a.slave) as f64 / (b.t - a.t),
+                    _ => 0.0,
+                }
+            })
+            .collect();
         // Put the jumps back into the commanded slave drawn.
         let mut jumped = 0i64;
         let mut jumps = self.jumps.iter().peekable();
@@ -218,6 +239,45 @@ mod tests {
             chart.shaded,
             vec![(1000.0, 1005.0), ((ticks - 2) as f64, ticks as f64)]
         );
+    }
+
+    #[test]
+    fn whole_pulse_steps_read_as_the_speed_not_a_band() {
+        // 0.45 pulses a tick: each tick moves 0 or 1 pulse, each kept
+        // interval (5 ticks) 2 or 3; the drawn speed stays within 2 %.
+        let ticks = 5 * PLOT_POINTS as u64;
+        let mut p = TracePlot::new(ticks);
+        for k in 0..=ticks {
+            let slave = (0.45 * k as f64).floor() as i64;
+            p.add(&row(k as f64, slave, false), &out(false));
+        }
+        let chart = p.chart("x.toml");
+        let speed = &chart.panels[2].traces[0].y;
+        assert!(
+            speed.iter().all(|v| (v - 0.45).abs() < 0.02 * 0.45),
+            "{speed:?}"
+        );
+    }
+
+    #[test]
+    fn a_short_fast_stretch_keeps_its_speed() {
+        // A long run at rest but for 50 ticks at 2 pulses a tick (a
+        // rotary knife's sync zone): its plateau is drawn at its speed.
+        let ticks = 5 * PLOT_POINTS as u64;
+        let mut p = TracePlot::new(ticks);
+        let mut slave = 0;
+        for k in 0..=ticks {
+            if (5000..5050).contains(&k) {
+                slave += 2;
+            }
+            p.add(&row(k as f64, slave, false), &out(false));
+        }
+        let chart = p.chart("x.toml");
+        let peak = chart.panels[2].traces[0]
+            .y
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(*v));
+        assert!((peak - 2.0).abs() < 1e-9, "{peak}");
     }
 
     #[test]
