@@ -47,6 +47,8 @@ fi
 
 g++ -std=c++17 -O2 -fno-exceptions -fno-rtti -Wall -I "$src/core" \
     "$HERE/driver.cpp" -o "$WORK/driver"
+g++ -std=c++17 -O2 -fno-exceptions -fno-rtti -Wall -I "$src/core" \
+    "$HERE/couplings.cpp" -o "$WORK/couplings"
 
 case "${1:-}" in
 --bench)
@@ -65,14 +67,16 @@ case "${1:-}" in
 esac
 
 mkdir -p "$out"
-commit=$(git -C "$ROOT" log -1 --format=%h -- scripts/plcopen-peer/driver.cpp 2>/dev/null || true)
-for c in $("$WORK/driver" --list); do
-    {
-        echo "# pyplcopen $VERSION (lusipad/plcopen, Apache-2.0) sdist sha256 $SHA256"
-        echo "# driver scripts/plcopen-peer/driver.cpp at commit ${commit:-uncommitted}"
-        echo "# command: scripts/plcopen-peer/build.sh   (driver $c); g++ $(g++ -dumpfullversion); date $(date -u +%Y-%m-%d)"
-        "$WORK/driver" "$c"
-    } >"$out/$c.csv"
+for program in driver couplings; do
+    commit=$(git -C "$ROOT" log -1 --format=%h -- "scripts/plcopen-peer/$program.cpp" 2>/dev/null || true)
+    for c in $("$WORK/$program" --list); do
+        {
+            echo "# pyplcopen $VERSION (lusipad/plcopen, Apache-2.0) sdist sha256 $SHA256"
+            echo "# driver scripts/plcopen-peer/$program.cpp at commit ${commit:-uncommitted}"
+            echo "# command: scripts/plcopen-peer/build.sh   ($program $c); g++ $(g++ -dumpfullversion); date $(date -u +%Y-%m-%d)"
+            "$WORK/$program" "$c"
+        } >"$out/$c.csv"
+    done
 done
 "$WORK/driver" --tables >"$out/tables.csv"
 if [[ "$out" != "$FIXTURES" ]]; then

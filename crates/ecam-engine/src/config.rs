@@ -134,6 +134,15 @@ pub enum SlaveAlign {
     /// The commanded position is set to this value at engage (document 003
     /// function bit 6, registers 19/20).
     At(i64),
+    /// A rotary (modulo) slave, beyond the documents: the table value plus
+    /// `offset`, moved by whole turns as the axis' [`crate::ModuloStart`]
+    /// says (see [`crate::ModuloAxis`]).
+    Modulo {
+        /// The modulo and the start mode.
+        axis: crate::ModuloAxis,
+        /// Added to the table value (PLCopen `SlaveOffset`).
+        offset: i64,
+    },
 }
 
 /// A PLCopen-style ramp-in: engage a moving master without a velocity jump.

@@ -535,6 +535,9 @@ impl Engagement {
             SlaveAlign::At(v) => i128::from(v)
                 .checked_sub(on_table)
                 .ok_or(EngineError::SlaveOverflow)?,
+            SlaveAlign::Modulo { axis, offset } => {
+                axis.engage_offset(on_table, target, i128::from(offset))
+            }
         };
         let span = match geo.extent {
             Extent::Cycles(n) => Some((

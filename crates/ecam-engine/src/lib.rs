@@ -14,7 +14,11 @@
 //!
 //! The PLC (document 003 `DECAM`) and motion-processor (document 002) faces
 //! build on [`CamAxis`]; Rust users may prefer the PLCopen-shaped
-//! [`plcopen`] module. Use something else when you need a trajectory
+//! [`plcopen`] module. Beyond the documents, [`SlaveAxis`] sums a cam, a
+//! gear and a superimposed move on one slave, with phasing, print-mark
+//! registration, a direction guard and a modulo (rotary) slave, and
+//! [`DigitalCamSwitch`] drives cam-switch tracks; [`plcopen_slave`] is
+//! their PLCopen face. Use something else when you need a trajectory
 //! generator (point-to-point moves): this crate only couples axes.
 //!
 //! ```
@@ -45,45 +49,72 @@ extern crate std;
 
 mod axis;
 mod blend;
+mod cam_part;
+mod cam_switch;
 mod coast;
 mod config;
 mod coupling;
+mod coupling_error;
+mod direction_guard;
 pub mod drive;
 mod error;
+mod gear;
 mod input;
 mod master;
+mod modulo;
 mod offset_ramp;
 mod output;
+mod phasing;
 pub mod plcopen;
 pub mod plcopen_blocks;
+pub mod plcopen_slave;
+pub mod plcopen_slave_blocks;
 mod pulse;
 mod ramp;
 mod ramp_in;
+mod registration;
 mod scaling;
+mod slave_axis;
 mod speed;
 mod start;
 mod start_rule;
 mod steady;
 mod stop;
+mod superimposed;
 mod switch;
 mod sync;
+mod timed_move;
 mod tracker;
+mod trapezoid;
 mod turn_position;
 mod zoom;
 
 pub use axis::{AfterPass, CamAxis};
 pub use blend::min_blend_distance;
+pub use cam_part::CamPart;
+pub use cam_switch::{
+    CamSwitch, DigitalCamSwitch, SwitchDirection, SwitchMode, TRACKS, TrackOptions,
+};
 pub use config::{
     AxisConfig, Compare, Coupling, MAX_FREQUENCY_HZ, MasterAlign, RampIn, SlaveAlign, StartMode,
 };
+pub use coupling_error::CouplingError;
+pub use direction_guard::{DirectionGuard, GuardDirection, GuardResume, GuardStatus};
 pub use error::EngineError;
+pub use gear::{GearIn, GearInPos, GearOut, GearRamp, GearState, GearStatus};
 pub use input::TickInput;
 pub use master::{TimeBase, Unwrap32};
+pub use modulo::{ModuloAxis, ModuloPosition, ModuloStart};
 pub use offset_ramp::OffsetChange;
 pub use output::{AxisState, Events, TickOutput};
+pub use phasing::{Phasing, PhasingMode, PhasingStatus};
 pub use ramp_in::{RampDirection, RampInLimits};
+pub use registration::{LatchSource, RegistrationConfig, RegistrationStatus};
+pub use slave_axis::{Commands, SlaveAxis, SlaveConfig, SlaveInput, SlaveOutput};
 pub use stop::StopKind;
+pub use superimposed::{MoveSuperimposed, SuperimposedStatus};
 pub use switch::{MissedActivation, SwitchAt};
 pub use sync::SyncWindow;
 pub use tracker::{MasterFilter, MasterPosition, MasterTracker};
+pub use trapezoid::MoveLimits;
 pub use zoom::Zoom;

@@ -310,6 +310,8 @@ pub struct McCamAxis<C> {
     /// Counts the commands (`cam_in`, `cam_out`) accepted, so a function
     /// block can tell when another command took over.
     command: u64,
+    /// A rotary slave (see [`McCamAxis::set_modulo`]).
+    modulo: Option<crate::ModuloAxis>,
 }
 
 impl<C: CamCurve> McCamAxis<C> {
@@ -325,7 +327,16 @@ impl<C: CamCurve> McCamAxis<C> {
             next_table: None,
             engaged_with: None,
             command: 0,
+            modulo: None,
         })
+    }
+
+    /// Makes the slave a rotary (modulo) axis for the next `cam_in`s: an
+    /// absolute table is placed in the turn the [`crate::ModuloStart`]
+    /// picks ([`SlaveAlign::Modulo`]); relative starts are unchanged.
+    /// `None` makes it linear again.
+    pub fn set_modulo(&mut self, modulo: Option<crate::ModuloAxis>) {
+        self.modulo = modulo;
     }
 
     /// `MC_CamTableSelect`: how the table is read at the next `cam_in`.
@@ -425,6 +436,15 @@ impl<C: CamCurve> McCamAxis<C> {
             CamInStartMode::Relative => (true, SlaveAlign::Offset(start)),
             _ if !self.select.slave_absolute => (true, SlaveAlign::Offset(start)),
             _ => (false, SlaveAlign::Offset(params.slave_offset)),
+        };
+        // A rotary slave places an absolute table in the turn its start
+        // mode picks (TwinCAT's modulo start modes; see modulo.rs).
+        let slave_align = match self.modulo {
+            Some(axis) if !relative => SlaveAlign::Modulo {
+                axis,
+                offset: params.slave_offset,
+            },
+            _ => slave_align,
         };
         let ramp_in = match params.start_mode {
             CamInStartMode::RampIn { distance } => Some(RampIn { distance }),
@@ -618,7 +638,13 @@ impl<C: CamCurve> McCamAxis<C> {
 
     /// One control cycle with the master at `master`, `dt_us` after the last.
     pub fn tick(&mut self, master: i64, dt_us: u32) -> CamStatus {
-        let output = self.axis.tick(&TickInput::at(master, dt_us));
+        self.tick_input(&TickInput::at(master, dt_us))
+    }
+
+    /// One control cycle with every input of a tick (a master with its
+    /// fraction, the output enable, ...).
+    pub fn tick_input(&mut self, input: &TickInput) -> CamStatus {
+        let output = self.axis.tick(input);
         // A non-periodic table on an absolute master holds its end value.
         let config = self.axis.config();
         let past_end = config.coupling == Coupling::Normal

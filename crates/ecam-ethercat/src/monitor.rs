@@ -152,6 +152,10 @@ pub struct LineMonitor {
     scheduling: std::sync::OnceLock<String>,
 }
 
+/// How long [`LineMonitor::snapshot`] waits for a publish in progress to
+/// end before it reads the image as it stands.
+pub const SNAPSHOT_PATIENCE: std::time::Duration = std::time::Duration::from_millis(50);
+
 fn zeros<const N: usize>() -> [AtomicU64; N] {
     std::array::from_fn(|_| AtomicU64::new(0))
 }
@@ -353,21 +357,35 @@ impl LineMonitor {
     }
 
     /// Copies the image out (a reader; retries while a write overlaps).
+    ///
+    /// The cycle thread may be preempted in the middle of a publish on a
+    /// loaded host, so a reader first spins, then yields its time slice,
+    /// and only after [`SNAPSHOT_PATIENCE`] takes the image as it stands:
+    /// a reader never gets an empty image (no drives) because the writer
+    /// was slow, which a Modbus client would see as its drive blocks
+    /// vanishing.
     pub fn snapshot(&self) -> LineSnapshot {
-        let mut out = LineSnapshot::default();
-        for _ in 0..100 {
+        let start = std::time::Instant::now();
+        let mut attempt = 0u32;
+        loop {
             let before = self.seq.load(Ordering::Acquire);
-            if before % 2 == 1 {
-                std::hint::spin_loop();
-                continue;
+            if before.is_multiple_of(2) {
+                let out = self.read();
+                fence(Ordering::Acquire);
+                if self.seq.load(Ordering::Relaxed) == before {
+                    return out;
+                }
             }
-            out = self.read();
-            fence(Ordering::Acquire);
-            if self.seq.load(Ordering::Relaxed) == before {
-                break;
+            if start.elapsed() > SNAPSHOT_PATIENCE {
+                return self.read();
+            }
+            attempt = attempt.saturating_add(1);
+            if attempt < 100 {
+                std::hint::spin_loop();
+            } else {
+                std::thread::yield_now();
             }
         }
-        out
     }
 
     fn read(&self) -> LineSnapshot {
@@ -484,6 +502,23 @@ mod tests {
         assert_eq!(s.drives[0], cell);
         assert_eq!(s.faults, faults);
         assert_eq!(s.fault_events, 3);
+    }
+
+    #[test]
+    fn a_reader_never_gets_an_empty_image_from_a_stalled_writer() {
+        let m = LineMonitor::new(2);
+        m.publish(
+            LineState::Running,
+            &LineCounters::default(),
+            [DriveCell::default(), DriveCell::default()].into_iter(),
+            &[],
+            0,
+        );
+        // A writer preempted between its two sequence stores.
+        m.seq.fetch_add(1, Ordering::Relaxed);
+        let s = m.snapshot();
+        assert_eq!(s.drives.len(), 2, "the drives stay in the image");
+        assert_eq!(s.state, Some(LineState::Running));
     }
 
     #[test]

@@ -7,7 +7,9 @@ use core::fmt;
 use std::path::PathBuf;
 
 use ecam_design::TableSourceError;
-use ecam_engine::EngineError;
+use ecam_engine::{CouplingError, EngineError};
+
+use crate::couplings_error::CouplingsError;
 
 /// A scenario file that does not describe a run.
 #[derive(Debug)]
@@ -157,6 +159,14 @@ pub enum ScenarioError {
         /// Why.
         error: EngineError,
     },
+    /// A coupling section (`[modulo]`, `[registration]`, `[[plcopen]]`...).
+    Couplings(CouplingsError),
+}
+
+impl From<CouplingsError> for ScenarioError {
+    fn from(e: CouplingsError) -> Self {
+        Self::Couplings(e)
+    }
 }
 
 impl fmt::Display for ScenarioError {
@@ -241,6 +251,7 @@ impl fmt::Display for ScenarioError {
                 den,
                 error,
             } => write!(f, "[cam] {what} = [{num}, {den}]: {error}"),
+            Self::Couplings(e) => write!(f, "{e}"),
         }
     }
 }
@@ -251,17 +262,18 @@ impl std::error::Error for ScenarioError {}
 /// step of it, or the caller's `record` failed (`E`, its error).
 #[derive(Debug)]
 pub enum SimulateError<E> {
-    /// The engine refuses the cam or configuration.
+    /// The engine refuses the cam or configuration (a slave axis' couplings
+    /// included).
     Refused {
         /// Why.
-        error: EngineError,
+        error: CouplingError,
         /// The table's first and last master.
         master_range: (i64, i64),
         /// `[cam] single_turn`, if set.
         single_turn: Option<u64>,
     },
     /// The start slave position cannot be set.
-    SlaveStart(EngineError),
+    SlaveStart(CouplingError),
     /// The cam cannot be armed.
     Arm(EngineError),
     /// The engine refuses the table of `[[switch]] N`.
@@ -273,6 +285,17 @@ pub enum SimulateError<E> {
         /// The new table's first and last master.
         master_range: (i64, i64),
     },
+    /// The engine refuses `[[plcopen]] N`'s block.
+    Step {
+        /// N, counting from 1.
+        number: usize,
+        /// The block's PLCopen name.
+        block: &'static str,
+        /// Why.
+        error: CouplingError,
+    },
+    /// [`crate::simulate_couplings`] on a scenario without couplings.
+    NoCouplings,
     /// The caller's `record` failed; the run stopped there.
     Record(E),
 }
@@ -305,6 +328,14 @@ impl<E: fmt::Display> fmt::Display for SimulateError<E> {
                 f,
                 "[[switch]] {number}: the engine refuses the table: {error} (table master {first} .. {last})"
             ),
+            Self::Step {
+                number,
+                block,
+                error,
+            } => write!(f, "[[plcopen]] {number} {block}: refused: {error}"),
+            Self::NoCouplings => {
+                f.write_str("the scenario has no couplings: run it with `simulate`")
+            }
             // The alternate form keeps the causes of an error that has them
             // (an `anyhow::Error` of the caller).
             Self::Record(e) => write!(f, "{e:#}"),

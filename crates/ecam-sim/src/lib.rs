@@ -7,6 +7,12 @@
 //! hands each tick's [`Row`] and engine output to the caller (to write a
 //! trace, draw a plot, or check an invariant) and returns a [`Summary`].
 //!
+//! A scenario with couplings beyond the cam (`[modulo]`,
+//! `[direction_guard]`, `[registration]`, `[cam_switches]`, `[[plcopen]]`
+//! steps) runs on an [`ecam_engine::SlaveAxis`]; [`simulate`] hands the
+//! caller the axis' sum as a cam's output, [`simulate_couplings`] every
+//! coupling's status.
+//!
 //! This is what `ecam simulate` runs, with the trace CSV it writes
 //! ([`TraceWriter`]) and the picture it draws ([`TracePlot`]); the command
 //! line only reads its arguments and wires them.
@@ -47,16 +53,28 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod coupled;
+mod couplings;
+mod couplings_error;
 mod error;
 #[doc(hidden)]
 pub mod fuzz;
 mod plot;
 mod scenario;
 mod simulate;
+mod steps;
+mod summary;
 mod trace;
+mod trigger;
 
+pub use coupled::{CouplingTick, simulate_couplings};
+pub use couplings::{CamSwitches, Couplings, Marks, SwitchAxis};
+pub use couplings_error::CouplingsError;
 pub use error::{ScenarioError, SimulateError};
 pub use plot::{PLOT_POINTS, TracePlot};
-pub use scenario::{MasterMove, Scenario, StopAt, StopTrigger};
-pub use simulate::{Summary, simulate};
+pub use scenario::{MasterMove, Scenario, StopAt};
+pub use simulate::simulate;
+pub use steps::{Block, PlcopenStep};
+pub use summary::Summary;
 pub use trace::{HEADER, Row, TraceError, TraceWriter, state_name};
+pub use trigger::StopTrigger;

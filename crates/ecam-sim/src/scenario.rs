@@ -16,6 +16,7 @@ use ecam_engine::{
 use serde::Deserialize;
 
 use crate::error::ScenarioError;
+use crate::trigger::{StopTrigger, micros, trigger};
 
 /// The TOML file as written.
 #[derive(Deserialize, Debug)]
@@ -38,6 +39,12 @@ struct RawScenario {
     master: RawMaster,
     #[serde(default)]
     switch: Vec<RawSwitch>,
+    modulo: Option<crate::couplings::RawModulo>,
+    direction_guard: Option<crate::couplings::RawGuard>,
+    registration: Option<crate::couplings::RawRegistration>,
+    cam_switches: Option<crate::couplings::RawCamSwitches>,
+    #[serde(default)]
+    plcopen: Vec<crate::steps::RawStep>,
 }
 
 /// `[[switch]]`: another table takes over at the next seam once the
@@ -211,18 +218,6 @@ pub struct MasterMove {
     pub target: i64,
 }
 
-/// What requests the stop.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StopTrigger {
-    /// At this time, in microseconds from the start.
-    Time(u64),
-    /// When the (unwrapped) master reaches this position or more: document
-    /// 002's stop breakpoint.
-    MasterAtLeast(i64),
-    /// When the master reaches this position or less.
-    MasterAtMost(i64),
-}
-
 /// A stop requested by time or master position.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StopAt {
@@ -236,17 +231,6 @@ impl StopAt {
     /// Whether the stop fires on a tick at `t_us` with the master at `master`.
     pub fn fires(&self, t_us: u64, master: i64) -> bool {
         self.trigger.fires(t_us, master)
-    }
-}
-
-impl StopTrigger {
-    /// Whether the trigger fires on a tick at `t_us` with the master at `master`.
-    pub fn fires(&self, t_us: u64, master: i64) -> bool {
-        match *self {
-            Self::Time(at) => t_us >= at,
-            Self::MasterAtLeast(p) => master >= p,
-            Self::MasterAtMost(p) => master <= p,
-        }
     }
 }
 
@@ -290,18 +274,10 @@ pub struct Scenario {
     pub stop: Option<StopAt>,
     /// Table switches, in the order they are requested.
     pub switches: Vec<TableSwitch>,
-}
-
-/// Seconds → microseconds, refusing negatives, NaN and absurd lengths.
-fn micros(seconds: f64, what: &str) -> Result<u64, ScenarioError> {
-    // A year of simulated time is far beyond any useful scenario.
-    if !(0.0..=3.2e7).contains(&seconds) {
-        return Err(ScenarioError::Seconds {
-            what: what.to_string(),
-            seconds,
-        });
-    }
-    Ok((seconds * 1e6).round() as u64)
+    /// The couplings beyond the cam (`[modulo]`, `[direction_guard]`,
+    /// `[registration]`, `[cam_switches]`, `[[plcopen]]`): the scenario
+    /// then runs on a slave axis.
+    pub couplings: Option<crate::couplings::Couplings>,
 }
 
 impl Scenario {
@@ -400,16 +376,7 @@ impl Scenario {
         let stop = raw
             .stop
             .map(|s| -> Result<StopAt, ScenarioError> {
-                let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
-                    (Some(t), None, None) => StopTrigger::Time(micros(t, "[stop] at_s")?),
-                    (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
-                    (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-                    _ => {
-                        return Err(ScenarioError::Trigger {
-                            what: "[stop]".to_string(),
-                        });
-                    }
-                };
+                let trigger = trigger(s.at_s, s.master_at_least, s.master_at_most, "[stop]")?;
                 Ok(StopAt {
                     trigger,
                     kind: match s.kind {
@@ -425,12 +392,7 @@ impl Scenario {
             .enumerate()
             .map(|(i, s)| -> Result<TableSwitch, ScenarioError> {
                 let what = format!("[[switch]] {}", i + 1);
-                let trigger = match (s.at_s, s.master_at_least, s.master_at_most) {
-                    (Some(t), None, None) => StopTrigger::Time(micros(t, &format!("{what} at_s"))?),
-                    (None, Some(p), None) => StopTrigger::MasterAtLeast(p),
-                    (None, None, Some(p)) => StopTrigger::MasterAtMost(p),
-                    _ => return Err(ScenarioError::Trigger { what }),
-                };
+                let trigger = trigger(s.at_s, s.master_at_least, s.master_at_most, &what)?;
                 let curve = ecam_design::load_table(&s.table, base).map_err(|error| {
                     ScenarioError::Table {
                         place: format!("{what} table"),
@@ -473,7 +435,23 @@ impl Scenario {
             }
             *slot = SyncWindow::new(w.low, w.high);
         }
-        let config = AxisConfig {
+        let plcopen = !raw.plcopen.is_empty();
+        if plcopen {
+            crate::couplings::plcopen_reads_no_cam_keys(
+                raw.cam.kind != CamKind::Periodic
+                    || raw.cam.master_zoom.is_some()
+                    || raw.cam.slave_zoom.is_some()
+                    || raw.cam.ramp_in.is_some()
+                    || raw.cam.single_turn.is_some()
+                    || raw.cam.max_master_step.is_some()
+                    || !raw.sync.is_empty(),
+                !matches!(raw.start.mode, StartKind::Immediate)
+                    || raw.start.master_align.is_some()
+                    || raw.start.slave_align.is_some(),
+                !raw.switch.is_empty(),
+            )?;
+        }
+        let mut config = AxisConfig {
             coupling: coupling(&raw.cam),
             start: start_mode(&raw.start)?,
             master_align: master_align(&raw.start)?,
@@ -514,6 +492,17 @@ impl Scenario {
                 None => None,
             },
         };
+        let couplings = crate::couplings::assemble(
+            crate::couplings::RawCouplings {
+                modulo: raw.modulo.as_ref(),
+                guard: raw.direction_guard.as_ref(),
+                registration: raw.registration.as_ref(),
+                cam_switches: raw.cam_switches.as_ref(),
+                steps: &raw.plcopen,
+            },
+            &mut config,
+            base,
+        )?;
         let master_update_us = match raw.master.update_us {
             Some(us) => {
                 Some(NonZeroU64::new(us).ok_or_else(|| at_least_one("[master] update_us", ""))?)
@@ -533,6 +522,7 @@ impl Scenario {
             start_input,
             stop,
             switches,
+            couplings,
         })
     }
 

@@ -230,6 +230,11 @@ async fn pulse_outputs_drive_emulated_drives_over_modbus_and_http() {
         vec![false, true]
     );
     eventually("fault relay", async || m(&mut ctx, 100).await).await;
+    // The drive passes through "fault reaction active" (6) on its way.
+    eventually("drive 1 in fault", async || {
+        drive(&mut ctx, 1).await[0] == 7
+    })
+    .await;
     let d1 = drive(&mut ctx, 1).await;
     assert_eq!((d1[0], d1[2]), (7, 29952), "fault, its code");
     assert_ne!(d1[3] & 0b100, 0);

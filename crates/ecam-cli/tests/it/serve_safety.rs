@@ -67,7 +67,14 @@ fn modbus_connections_are_capped_and_idle_ones_closed() {
 }
 
 fn http_raw(addr: SocketAddr, request: &str) -> (u16, String) {
+    http_raw_within(addr, request, Duration::from_secs(5))
+}
+
+/// As [`http_raw`], waiting up to `patience` for the answer (design work
+/// in a debug build on a loaded host takes its time).
+fn http_raw_within(addr: SocketAddr, request: &str, patience: Duration) -> (u16, String) {
     let mut s = connect(addr);
+    s.set_read_timeout(Some(patience)).unwrap();
     s.write_all(request.as_bytes()).unwrap();
     let mut response = String::new();
     let _ = s.read_to_string(&mut response);
@@ -187,15 +194,18 @@ fn design_work_does_not_hold_up_modbus() {
         .map(|_| {
             let (own, body) = (own.clone(), body.to_string());
             std::thread::spawn(move || {
-                http_raw(
+                let asked = Instant::now();
+                let status = http_raw_within(
                     http,
                     &format!(
                         "POST /api/table/gen HTTP/1.1\r\nHost: {own}\r\nConnection: close\r\n\
                          Content-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
                         body.len()
                     ),
+                    Duration::from_secs(120),
                 )
-                .0
+                .0;
+                (status, asked.elapsed())
             })
         })
         .collect();
@@ -208,11 +218,18 @@ fn design_work_does_not_hold_up_modbus() {
         worst = worst.max(asked.elapsed());
         std::thread::sleep(Duration::from_millis(20));
     }
+    let mut design = Duration::ZERO;
     for h in heavy {
-        assert_eq!(h.join().unwrap(), 200);
+        let (status, took) = h.join().unwrap();
+        assert_eq!(status, 200);
+        design = design.max(took);
     }
+    // Held up behind the design work, an answer would wait about as long
+    // as the work itself; a loaded host may delay any answer by scheduling,
+    // so the bound grows with the work when the host is slow.
+    let bound = Duration::from_secs(1).max(design / 2);
     assert!(
-        worst < Duration::from_secs(1),
-        "a Modbus answer took {worst:?}"
+        worst < bound,
+        "a Modbus answer took {worst:?} while the design work took {design:?}"
     );
 }

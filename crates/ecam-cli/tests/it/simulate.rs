@@ -540,3 +540,35 @@ fn a_switch_at_once_or_at_a_position_blends_onto_the_new_table() {
         assert_eq!(slaves[1] - slaves[0], 1);
     }
 }
+
+#[test]
+fn coupling_scenarios_run_with_a_trace_a_plot_and_their_summary_keys() {
+    // The couplings beyond the documents (docs/simulate.md): each shipped
+    // scenario runs through the binary; ecam-sim's tests check their traces.
+    for (name, key, value) in [
+        ("modulo-knife.toml", "modulo_position", 0.0),
+        ("phasing-shift.toml", "phase_shift", 1000.0),
+        ("gear-cam-superimposed.toml", "superimposed", 6000.0),
+        ("registration-print-marks.toml", "registration_missed", 1.0),
+        ("direction-guard.toml", "guard_lost", 3000.0),
+        ("cam-switch-glue.toml", "cam_switch_toggles", 19.0),
+    ] {
+        let dir = scratch(name);
+        let png = dir.join("plot.png");
+        let (sum, trace) = run(name);
+        assert_eq!(sum[key].as_f64(), Some(value), "{name}: {key}");
+        assert_eq!(sum["pulses_reverse"], 0, "{name}");
+        assert!(trace.rows.iter().all(|r| trace.int(r, "pulses") >= 0));
+        let out = ecam(&[
+            "simulate",
+            scenario(name).to_str().unwrap(),
+            "--plot",
+            png.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{name}");
+        assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
+    }
+    // A plain cam's summary has none of the coupling keys.
+    let (sum, _) = run("001-repeat.toml");
+    assert!(sum.get("gear_slave").is_none() && sum.get("modulo_position").is_none());
+}

@@ -3,6 +3,8 @@
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 mod cam_out;
+mod couplings;
+mod couplings_safe_motion;
 mod doc001_repeat;
 mod doc002_profile;
 mod doc003_decam;
@@ -11,6 +13,7 @@ mod missed_activation;
 mod offsets_on_the_fly;
 mod plcopen;
 mod plcopen_peer;
+mod plcopen_peer_couplings;
 mod plcopen_reference;
 mod properties;
 mod ramp_in_limits;

@@ -50,7 +50,7 @@ fn any_source() -> impl Strategy<Value = Source> {
 }
 
 /// A monotonic table: master strictly increasing, slave never decreasing.
-fn any_monotonic_table() -> impl Strategy<Value = PointTable> {
+pub(crate) fn any_monotonic_table() -> impl Strategy<Value = PointTable> {
     prop::collection::vec((1i64..400, 0i64..900), 1..12).prop_map(|steps| {
         let mut points = vec![(0i64, 0i64)];
         let (mut m, mut s) = (0, 0);
@@ -150,7 +150,7 @@ fn run(axis: &mut CamAxis<PointTable>, source: Source, motion: &[(i64, u32)], re
     }
 }
 
-fn reversals(values: impl Iterator<Item = i64>) -> usize {
+pub(crate) fn reversals(values: impl Iterator<Item = i64>) -> usize {
     let mut last = 0i64;
     let mut count = 0;
     for d in values {

@@ -29,6 +29,18 @@ const SCENARIO_TOKENS: &[&str] = &[
     "\"rotary-cut\"",
     "expr = ",
     "file = ",
+    "[modulo]",
+    "\"endless-positive\"",
+    "[direction_guard]",
+    "[registration]",
+    "[cam_switches]",
+    "[[cam_switches.switch]]",
+    "[[plcopen]]",
+    "MC_CamIn = {}",
+    "MC_GearIn = { ratio = [1, 2] }",
+    "MC_Phasing = ",
+    "MC_MoveSuperimposed = ",
+    "at_s = ",
 ];
 
 #[test]

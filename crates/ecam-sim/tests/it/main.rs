@@ -2,6 +2,7 @@
 //! each module is one area, named after what it checks.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
+mod couplings;
 mod fuzz;
 
 /// Property-test case count: `PROPTEST_CASES` when set (a long pass, e.g.
