@@ -65,10 +65,14 @@ impl TracePlot {
             .previous_slave
             .map_or(0, |p| row.slave.saturating_sub(p));
         self.previous_slave = Some(row.slave);
-        if out.events.seam_jump {
-            // The jump is the tick's change less the motion of the ticks
-            // before (the cam keeps moving while it jumps).
-            let jump = change.saturating_sub(self.motion.round() as i64);
+        // The jump is the tick's change less the motion of the ticks
+        // before (the cam keeps moving while it jumps).
+        let jump = change.saturating_sub(self.motion.round() as i64);
+        // A seam the slave passes without going back (an endless modulo
+        // knife's) is flagged by the engine but moves nothing: no impulse.
+        // A pulse more than the tick's own motion is rounding, not a jump.
+        let jumps = out.events.seam_jump && jump.unsigned_abs() as f64 > 1.0 + self.motion.abs();
+        if jumps {
             self.jumps.push((row.t, jump as f64));
             self.jumped = self.jumped.saturating_add(jump);
         } else {
@@ -278,6 +282,20 @@ mod tests {
             .iter()
             .fold(0.0_f64, |m, v| m.max(*v));
         assert!((peak - 2.0).abs() < 1e-9, "{peak}");
+    }
+
+    #[test]
+    fn a_seam_passed_without_going_back_draws_no_impulse() {
+        // An endless modulo knife: the engine flags the seam, the slave
+        // keeps going forward at 3 pulses a tick.
+        let mut p = TracePlot::new(100);
+        for k in 0..=100i64 {
+            p.add(&row(k as f64, 3 * k, false), &out(k % 25 == 0 && k > 0));
+        }
+        let chart = p.chart("x.toml");
+        let speed = &chart.panels[2].traces;
+        assert_eq!(speed.len(), 1, "{speed:?}");
+        assert!(speed[0].y.iter().skip(1).all(|v| (v - 3.0).abs() < 1e-12));
     }
 
     #[test]
