@@ -44,9 +44,11 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod budget;
 mod curve;
 pub mod drive_check;
 mod error;
+pub mod excerpt;
 #[cfg(feature = "std")]
 #[doc(hidden)]
 pub mod fuzz;

@@ -15,7 +15,18 @@ pub const MAX_TABLE_FILE_BYTES: u64 = 64 * 1024 * 1024;
 /// Longest expression the `function` generator parses, in bytes.
 pub const MAX_EXPRESSION_LEN: usize = 4_096;
 
+/// The work one run may do in all, in the work units of
+/// the work budget (`ecam_core::budget`): a command (`ecam plc run`, a script, a scenario, a
+/// generator) or one design request of `ecam serve`. 10⁹ units are 10⁸
+/// control cycles, or 10⁹ instructions or expression terms.
+pub const MAX_RUN_WORK: u64 = 1_000_000_000;
+
 /// Most control cycles one simulated run may take: `ecam plc run`'s
-/// hardware ticks, a script's `Tick`s in total, a scenario's ticks. 10⁸
-/// ticks are 2.8 hours of 100 µs cycles.
-pub const MAX_SIMULATED_TICKS: u64 = 100_000_000;
+/// hardware ticks, a script's `Tick`s in total, a scenario's ticks (the
+/// whole [`MAX_RUN_WORK`]). 10⁸ ticks are 2.8 hours of 100 µs cycles.
+pub const MAX_SIMULATED_TICKS: u64 = MAX_RUN_WORK / CYCLE_WORK;
+
+/// Work units one control cycle costs ([`crate::budget`]).
+pub const CYCLE_WORK: u64 = 10;
+/// Work units one instruction, or one expression term at one point, costs.
+pub const STEP_WORK: u64 = 1;

@@ -9,6 +9,7 @@
 //! key points), not about serving the PLC; `ecam-serve` stays free of the
 //! generators and the expression language.
 
+use ecam_core::budget::Budget;
 use ecam_core::generator::key_points::KeyPoint;
 use ecam_core::generator::schema;
 use ecam_core::generator::{ExactCurve, Field, FieldKind};
@@ -24,6 +25,11 @@ use crate::generate;
 pub const DEFAULT_LAW_POINTS: usize = 1001;
 /// Most points a law may be sampled at.
 pub const MAX_LAW_POINTS: usize = 100_001;
+/// Most points of a table one design request may ask for
+/// ([`generate_json`]): with its derivatives, its answer stays under about
+/// 30 MB while it is built, which bounds a server's memory by the number
+/// of requests it computes at once. `ecam table gen` has no such cap.
+pub const MAX_DESIGN_POINTS: usize = MAX_LAW_POINTS;
 
 /// Every motion law with its characteristic values (∞ as `null`).
 pub fn laws_json() -> Value {
@@ -165,12 +171,40 @@ fn design_samples(exact: &ExactCurve) -> Value {
 /// A body of the wrong shape, an unknown generator or parameter, or
 /// parameters the generator refuses (with the PLC's error code).
 pub fn generate_json(body: &Value) -> Result<Value, String> {
+    generate_json_within(body, &mut Budget::per_run())
+}
+
+/// As [`generate_json`], taking the work from `budget` (a server gives each
+/// request its own, stopped when the request is given up); at most
+/// [`MAX_DESIGN_POINTS`] points.
+///
+/// # Errors
+/// As [`generate_json`]; more points than a request may have; the budget
+/// used up or the request given up.
+pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, String> {
     let name = body.get("generator").and_then(Value::as_str).ok_or(
         "the body needs \"generator\", e.g. {\"generator\": \"rotary-cut\", \"params\": {}}",
     )?;
     let params = body.get("params").cloned().unwrap_or_else(|| json!({}));
-    let g = generate::from_json(name, params).map_err(|e| e.to_string())?;
+    // Refused before anything is computed (a string is read as the
+    // generator reads it; a bad one gets the generator's own message).
+    let asked = params.get("points").and_then(|p| match p {
+        Value::String(text) => text.trim().parse::<u64>().ok(),
+        other => other.as_u64(),
+    });
+    if let Some(asked) = asked.filter(|&n| n > MAX_DESIGN_POINTS as u64) {
+        return Err(format!(
+            "points {asked} is above the limit of {MAX_DESIGN_POINTS} points per design request"
+        ));
+    }
+    let g = generate::from_json_within(name, params, budget).map_err(|e| e.to_string())?;
     let points = g.table.points();
+    if points.len() > MAX_DESIGN_POINTS {
+        return Err(format!(
+            "the table has {} points, above the limit of {MAX_DESIGN_POINTS} per design request",
+            points.len()
+        ));
+    }
     let exact = g.kinematics.is_some();
     let kinematics = g
         .kinematics

@@ -6,7 +6,9 @@
 use core::fmt;
 
 use ecam_core::TableError;
+use ecam_core::budget::OverBudget;
 use ecam_core::drive_check::DriveError;
+use ecam_core::excerpt::excerpt;
 use ecam_core::io::FileError;
 use ecam_core::segments::SegmentError;
 
@@ -80,6 +82,8 @@ pub enum ExprError {
 
 impl fmt::Display for ExprError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // The expression, names and literals are the author's input: quoted
+        // as excerpts (a 4 KB expression gives a one-line message).
         match self {
             Self::TooLong { len, limit } => {
                 write!(
@@ -88,7 +92,7 @@ impl fmt::Display for ExprError {
                 )
             }
             Self::Syntax { text, message } => {
-                write!(f, "cannot parse expression {text:?}: {message}")
+                write!(f, "cannot parse expression {:?}: {message}", excerpt(text))
             }
             Self::UnknownName {
                 name,
@@ -96,12 +100,16 @@ impl fmt::Display for ExprError {
                 master_allowed: true,
             } => write!(
                 f,
-                "unknown name {name:?} in {text:?}: the master position is `x`; constants are pi, tau, e"
+                "unknown name {:?} in {:?}: the master position is `x`; constants are pi, tau, e",
+                excerpt(name),
+                excerpt(text)
             ),
             Self::UnknownName { name, text, .. } => {
                 write!(
                     f,
-                    "unknown name {name:?} in {text:?}: constants are pi, tau, e"
+                    "unknown name {:?} in {:?}: constants are pi, tau, e",
+                    excerpt(name),
+                    excerpt(text)
                 )
             }
             Self::UnknownFunction {
@@ -115,13 +123,21 @@ impl fmt::Display for ExprError {
             ),
             Self::TooLarge { literal, text } => write!(
                 f,
-                "the number {literal} in {text:?} is too large for a 64-bit float"
+                "the number {} in {:?} is too large for a 64-bit float",
+                excerpt(literal),
+                excerpt(text)
             ),
             Self::Eval { text, x, message } => {
-                write!(f, "cannot evaluate {text:?} at x = {x}: {message}")
+                write!(
+                    f,
+                    "cannot evaluate {:?} at x = {x}: {message}",
+                    excerpt(text)
+                )
             }
-            Self::NotFinite { text, x } => write!(f, "{text:?} is not finite at x = {x}"),
-            Self::InConstant { text, error } => write!(f, "in {text:?}: {error}"),
+            Self::NotFinite { text, x } => {
+                write!(f, "{:?} is not finite at x = {x}", excerpt(text))
+            }
+            Self::InConstant { text, error } => write!(f, "in {:?}: {error}", excerpt(text)),
         }
     }
 }
@@ -138,10 +154,7 @@ pub enum GenerateError {
         name: String,
     },
     /// The designer's `params` is not an object.
-    NotAnObject {
-        /// What the parameter reader says about it.
-        message: String,
-    },
+    NotAnObject,
     /// Parameters of a named generator that do not read (unknown key,
     /// wrong kind).
     Params {
@@ -181,6 +194,14 @@ pub enum GenerateError {
     Expr(ExprError),
     /// The segment generator (or the segment checks) refused the design.
     Segments(SegmentError),
+    /// The run's work budget is used up, or the request was given up.
+    OverBudget {
+        /// The work that did not fit, e.g. `361 points of an expression of
+        /// 9 terms` (empty when the request was given up midway).
+        work: String,
+        /// Why.
+        error: OverBudget,
+    },
 }
 
 impl fmt::Display for GenerateError {
@@ -193,9 +214,9 @@ impl fmt::Display for GenerateError {
                     .collect();
                 write!(f, "unknown generator {name:?}; known: {}", known.join(", "))
             }
-            Self::NotAnObject { message } => write!(
-                f,
-                "\"params\" must be an object of numbers, strings and booleans: {message}"
+            // In the project's words, not the parameter reader's.
+            Self::NotAnObject => f.write_str(
+                "\"params\" must be an object of numbers, strings and booleans, e.g. {\"points\": 361}",
             ),
             Self::Params { generator, message } => {
                 write!(f, "parameters of generator {generator:?}: {message}")
@@ -203,9 +224,11 @@ impl fmt::Display for GenerateError {
             Self::Values(message) => f.write_str(message),
             Self::Table(e) => write!(f, "{e}"),
             Self::Overflow { what } => write!(f, "{what} overflow"),
-            Self::MissingExpr => {
-                f.write_str("give the function with --expr, e.g. --expr \"1000*sin(2*pi*x/36000)\"")
-            }
+            // Worded for every face: `--expr` on the command line, `expr`
+            // in a parameter file and over HTTP.
+            Self::MissingExpr => f.write_str(
+                "the function generator needs its expression `expr`, a function of the master x, e.g. 1000*sin(2*pi*x/36000)",
+            ),
             Self::TooManyPoints { points, limit } => write!(
                 f,
                 "points {points} is above the limit of {limit} points per table"
@@ -217,11 +240,22 @@ impl fmt::Display for GenerateError {
             ),
             Self::Expr(e) => write!(f, "{e}"),
             Self::Segments(e) => write!(f, "{e}"),
+            Self::OverBudget { work, error } if work.is_empty() => write!(f, "{error}"),
+            Self::OverBudget { work, error } => write!(f, "{work}: {error}"),
         }
     }
 }
 
 impl std::error::Error for GenerateError {}
+
+impl From<OverBudget> for GenerateError {
+    fn from(error: OverBudget) -> Self {
+        Self::OverBudget {
+            work: String::new(),
+            error,
+        }
+    }
+}
 
 impl From<SegmentError> for GenerateError {
     fn from(e: SegmentError) -> Self {
@@ -277,7 +311,8 @@ impl fmt::Display for TableSourceError {
                     found.join(" and ")
                 )
             }
-            Self::Keys(e) => write!(f, "{e}"),
+            // TOML quotes the input: cut it, in plain words.
+            Self::Keys(e) => f.write_str(&ecam_core::io::plain_serde_message(&e.to_string())),
             Self::Table(e) => write!(f, "{e}"),
             Self::File(e) => {
                 // The file's error and its causes (the system's reason, the

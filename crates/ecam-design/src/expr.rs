@@ -77,6 +77,13 @@ impl MasterFunction {
         })
     }
 
+    /// Work units one evaluation costs (`ecam_core::budget`): one per
+    /// operator, function call or bracket of the expression, and one more.
+    pub fn cost(&self) -> u64 {
+        let terms = self.text.bytes().filter(|b| b"+-*/^(".contains(b)).count();
+        u64::try_from(terms).unwrap_or(u64::MAX).saturating_add(1)
+    }
+
     /// Value and first three derivatives in `x` (velocity ratio,
     /// acceleration, jerk) by central differences with a step of `h` counts
     /// on the exact function (not on the rounded table). Symbolic
@@ -239,6 +246,20 @@ fn unknown_function(text: &str) -> Option<&str> {
 /// operator structs, function addresses included, which say nothing to
 /// the author of the expression.
 fn plain_error(message: &str) -> String {
+    // exmex reads `sinn(` as a name followed by a bracket: say what it
+    // means to the author of the expression.
+    if let Some(name) = message
+        .split_once("left: ")
+        .and_then(|(_, rest)| rest.split_once("; right: ("))
+        .map(|(name, _)| name)
+        .filter(|name| name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+    {
+        return format!(
+            "`{}` is not a function (the functions: sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh, acosh, atanh, exp, ln, log, log2, log10, sqrt, cbrt, abs, signum, floor, ceil, round, trunc, fract)",
+            ecam_core::excerpt::excerpt(name)
+        );
+    }
+    let message = message.strip_prefix("wlog ").unwrap_or(message);
     match message
         .find(" Operator {")
         .or_else(|| message.find("Operator {"))
@@ -277,6 +298,26 @@ mod tests {
         );
         assert!(MasterFunction::parse("sqrt (x) + log10(x+1)").is_ok());
         assert_eq!(unknown_function("2(x)"), None);
+    }
+
+    #[test]
+    fn messages_quote_a_short_excerpt_of_a_long_expression() {
+        // 4 000 bytes: under the length limit, so the parser's and the
+        // evaluator's messages are the ones that quote it.
+        let long_name = format!("x*{}", "y".repeat(3_998));
+        let e = MasterFunction::parse(&long_name).err().unwrap().to_string();
+        assert!(e.len() < 200, "{} bytes: {e}", e.len());
+        assert!(
+            e.contains("(3998 bytes)") && e.contains("(4000 bytes)"),
+            "{e}"
+        );
+        let syntax = format!("1+{}(", "2".repeat(3_990));
+        let e = MasterFunction::parse(&syntax).err().unwrap().to_string();
+        assert!(e.len() < 300, "{} bytes: {e}", e.len());
+        assert!(e.contains("(3993 bytes)"), "{e}");
+        let big = format!("x+1e{}", "9".repeat(3_000));
+        let e = number(&big).unwrap_err().to_string();
+        assert!(e.len() < 300, "{} bytes: {e}", e.len());
     }
 
     #[test]

@@ -6,6 +6,8 @@
 //! generator's `Params` in `ecam_core::generator`); the values given
 //! override what they set. Numeric ratios accept arithmetic (`5/3`, `3*pi`).
 
+use ecam_core::budget::Budget;
+use ecam_core::excerpt::excerpt;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
@@ -76,6 +78,18 @@ fn kinematics_along(table: &PointTable, curve: &impl CamCurve) -> Vec<Kinematics
 /// # Errors
 /// Unknown generator names or parameters, or bad values.
 pub fn from_toml(name: &str, params: toml::Table) -> Result<Generated, GenerateError> {
+    from_toml_within(name, params, &mut Budget::per_run())
+}
+
+/// As [`from_toml`], taking the work from `budget`.
+///
+/// # Errors
+/// As [`from_toml`]; the budget used up.
+pub fn from_toml_within(
+    name: &str,
+    params: toml::Table,
+    budget: &mut Budget,
+) -> Result<Generated, GenerateError> {
     let generator = find(name)?;
     let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Value::Table(params))
@@ -83,7 +97,7 @@ pub fn from_toml(name: &str, params: toml::Table) -> Result<Generated, GenerateE
             generator: name.to_string(),
             message: ecam_core::io::plain_serde_message(&e.to_string()),
         })?;
-    generate(generator, values)
+    generate_within(generator, values, budget)
 }
 
 /// Generates from the `params` object of the designer's HTTP request.
@@ -91,13 +105,22 @@ pub fn from_toml(name: &str, params: toml::Table) -> Result<Generated, GenerateE
 /// # Errors
 /// As [`from_toml`]; a value that is not an object.
 pub fn from_json(name: &str, params: serde_json::Value) -> Result<Generated, GenerateError> {
+    from_json_within(name, params, &mut Budget::per_run())
+}
+
+/// As [`from_json`], taking the work from `budget` (see
+/// [`generate_within`]).
+///
+/// # Errors
+/// As [`from_json`]; the budget used up or the request given up.
+pub fn from_json_within(
+    name: &str,
+    params: serde_json::Value,
+    budget: &mut Budget,
+) -> Result<Generated, GenerateError> {
     let generator = find(name)?;
     if !params.is_object() {
-        let error = ValuesSeed::new(generator, true)
-            .deserialize(params)
-            .err()
-            .map_or_else(String::new, |e| e.to_string());
-        return Err(GenerateError::NotAnObject { message: error });
+        return Err(GenerateError::NotAnObject);
     }
     let values = ValuesSeed::new(generator, true)
         .deserialize(params)
@@ -105,7 +128,7 @@ pub fn from_json(name: &str, params: serde_json::Value) -> Result<Generated, Gen
             generator: name.to_string(),
             message: ecam_core::io::plain_serde_message(&e.to_string()),
         })?;
-    generate(generator, values)
+    generate_within(generator, values, budget)
 }
 
 /// The generator called `name` (or one of its aliases).
@@ -124,7 +147,24 @@ pub fn find(name: &str) -> Result<&'static Schema, GenerateError> {
 /// # Errors
 /// Values of the wrong kind or name, or parameters the generator refuses
 /// (with the PLC's error code).
-pub fn generate(generator: &Schema, mut values: Values) -> Result<Generated, GenerateError> {
+pub fn generate(generator: &Schema, values: Values) -> Result<Generated, GenerateError> {
+    generate_within(generator, values, &mut Budget::per_run())
+}
+
+/// As [`generate`], taking the work from `budget`: the `function`
+/// generator spends one unit per term of its expression at each
+/// evaluation (five per table point: the value and the four around it of
+/// its exact derivatives); the others, bounded by their parameters'
+/// ranges, only look at whether the request was given up.
+///
+/// # Errors
+/// As [`generate`]; the budget used up, or the request given up.
+pub fn generate_within(
+    generator: &Schema,
+    mut values: Values,
+    budget: &mut Budget,
+) -> Result<Generated, GenerateError> {
+    budget.check().map_err(GenerateError::from)?;
     match generator.name {
         "s-curve" => s_curve_table(&typed(values)?),
         "rotary-cut" => rotary_cut_table(&typed(values)?),
@@ -134,7 +174,7 @@ pub fn generate(generator: &Schema, mut values: Values) -> Result<Generated, Gen
         }
         "keypoints" => key_points_table(&typed(values)?),
         "segments" => segments_table(&typed(values)?),
-        _ => function(&typed(values)?),
+        _ => function(&typed(values)?, budget),
     }
 }
 
@@ -267,15 +307,24 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> Result<Generated, GenerateE
 /// # Errors
 /// What is wrong with `text`, naming the flag.
 pub fn parse_key(text: &str) -> Result<KeyPoint, String> {
+    let quoted = excerpt(text);
     KeyPoint::parse_line(text).map_err(|e| match e {
-        LineError::TooFew => format!("--key {text:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]"),
-        LineError::TooMany => format!("--key {text:?}: too many fields"),
-        LineError::NotInteger { what, text: field } => {
-            format!("{what} {field:?} in --key {text:?} is not an integer")
+        LineError::TooFew => {
+            format!("--key {quoted:?}: expected MASTER:SLAVE[:CURVE[:RESOLUTION]]")
         }
-        LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
+        LineError::TooMany => format!("--key {quoted:?}: too many fields"),
+        LineError::NotInteger { what, text: field } => {
+            let field = excerpt(field);
+            format!("{what} {field:?} in --key {quoted:?} is not an integer")
+        }
+        LineError::UnknownCurve(c) => {
+            format!("unknown curve {:?}; use {}", excerpt(c), CurveType::NAMES)
+        }
         LineError::BadResolution(r) => {
-            format!("resolution {r:?} in --key {text:?} must be 0..=512")
+            format!(
+                "resolution {:?} in --key {quoted:?} must be 0..=512",
+                excerpt(r)
+            )
         }
     })
 }
@@ -289,9 +338,13 @@ pub fn parse_key_lines(text: &str) -> Result<Vec<KeyPoint>, String> {
         let what = match e {
             LineError::TooFew => "expected MASTER SLAVE [CURVE [RESOLUTION]]".to_string(),
             LineError::TooMany => "too many fields".to_string(),
-            LineError::NotInteger { what, text } => format!("{what} {text:?} is not an integer"),
-            LineError::UnknownCurve(c) => format!("unknown curve {c:?}; use {}", CurveType::NAMES),
-            LineError::BadResolution(r) => format!("resolution {r:?} must be 0..=512"),
+            LineError::NotInteger { what, text } => {
+                format!("{what} {:?} is not an integer", excerpt(text))
+            }
+            LineError::UnknownCurve(c) => {
+                format!("unknown curve {:?}; use {}", excerpt(c), CurveType::NAMES)
+            }
+            LineError::BadResolution(r) => format!("resolution {:?} must be 0..=512", excerpt(r)),
         };
         format!("key point line {line}: {what}")
     })
@@ -320,11 +373,27 @@ fn key_points_table(params: &key_points::Params) -> Result<Generated, GenerateEr
 
 // ---------------------------------------------------------------- function
 
-fn function(params: &function::Params) -> Result<Generated, GenerateError> {
+fn function(params: &function::Params, budget: &mut Budget) -> Result<Generated, GenerateError> {
     let expr = params.expr.as_deref().ok_or(GenerateError::MissingExpr)?;
     let (from, to, points) = (params.from, params.to, params.points);
-    let table = function_table(expr, from, to, points)?;
+    let limit = ecam_core::limits::MAX_TABLE_POINTS;
+    if points > limit {
+        return Err(GenerateError::TooManyPoints { points, limit });
+    }
     let f = MasterFunction::parse(expr)?;
+    // The four evaluations per point of the exact derivatives, taken
+    // before any work so that a table that cannot fit is refused at once.
+    let evaluations = u64::try_from(points).unwrap_or(u64::MAX);
+    budget
+        .spend(f.cost().saturating_mul(4).saturating_mul(evaluations))
+        .map_err(|error| GenerateError::OverBudget {
+            work: format!(
+                "{points} points of an expression of {} terms, each evaluated 5 times",
+                f.cost()
+            ),
+            error,
+        })?;
+    let table = function_table_within(expr, from, to, points, budget)?;
     // Central differences a quarter of the point spacing wide: small
     // against the curve's features, large against f64 round-off.
     let h = (to as f64 - from as f64) / (points.max(2) - 1) as f64 / 4.0;
@@ -332,6 +401,7 @@ fn function(params: &function::Params) -> Result<Generated, GenerateError> {
         .points()
         .iter()
         .map(|p| {
+            budget.check()?;
             let k = f.kinematics(p.master as f64, h)?;
             Ok(Kinematics {
                 s: p.slave as f64,
@@ -478,6 +548,21 @@ pub fn function_table(
     to: i64,
     points: usize,
 ) -> Result<PointTable, GenerateError> {
+    function_table_within(expr, from, to, points, &mut Budget::per_run())
+}
+
+/// As [`function_table`], one unit of `budget` per term of the expression
+/// at each point.
+///
+/// # Errors
+/// As [`function_table`]; the budget used up, or the request given up.
+pub fn function_table_within(
+    expr: &str,
+    from: i64,
+    to: i64,
+    points: usize,
+    budget: &mut Budget,
+) -> Result<PointTable, GenerateError> {
     use ecam_core::limits::{MAX_EXPRESSION_LEN, MAX_TABLE_POINTS};
     if points > MAX_TABLE_POINTS {
         return Err(GenerateError::TooManyPoints {
@@ -498,9 +583,23 @@ pub fn function_table(
     if to <= from {
         return Err(GenerateError::EmptyRange { from, to });
     }
+    // Known before the work starts: refused at once when it cannot fit;
+    // each point then only looks at whether the request was given up.
+    let evaluations = u64::try_from(points).unwrap_or(u64::MAX);
+    budget
+        .spend(f.cost().saturating_mul(evaluations))
+        .map_err(|error| GenerateError::OverBudget {
+            work: format!("{points} points of an expression of {} terms", f.cost()),
+            error,
+        })?;
+    let budget = &*budget;
     let first_error = std::cell::RefCell::new(None);
     let sampled = ecam_core::table::sample_function(
-        |x| match f.at(x) {
+        |x| match budget
+            .check()
+            .map_err(GenerateError::from)
+            .and_then(|()| f.at(x).map_err(GenerateError::from))
+        {
             Ok(y) => y,
             Err(e) => {
                 first_error.borrow_mut().get_or_insert(e);
@@ -512,7 +611,7 @@ pub fn function_table(
         points,
     );
     if let Some(e) = first_error.into_inner() {
-        return Err(e.into());
+        return Err(e);
     }
     Ok(sampled?)
 }

@@ -61,19 +61,20 @@ mod table_api;
 mod table_source;
 
 pub use designer::{
-    DEFAULT_LAW_POINTS, MAX_LAW_POINTS, generate_json, generators_json, key_points_json,
-    law_curves_json, laws_json, segments_continuous_json,
+    DEFAULT_LAW_POINTS, MAX_DESIGN_POINTS, MAX_LAW_POINTS, generate_json, generate_json_within,
+    generators_json, key_points_json, law_curves_json, laws_json, segments_continuous_json,
 };
 pub use drive::{check_table, drive_check_json, motion_of, motion_of_cam, read_drive};
 pub use error::{DriveFileError, ExprError, GenerateError, TableSourceError};
 pub use expr::{MasterFunction, number};
 pub use generate::{
-    Generated, default_values, find, from_json, from_toml, function_table, generate, parse_key,
-    parse_key_lines, parse_point_flag, parse_segment_flag,
+    Generated, default_values, find, from_json, from_json_within, from_toml, from_toml_within,
+    function_table, function_table_within, generate, generate_within, parse_key, parse_key_lines,
+    parse_point_flag, parse_segment_flag,
 };
 pub use machine::{AtSpeed, Machine, Peaks, Source, Unit, short};
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
 pub use report::TableReport;
 pub use segment_view::{segments_json, segments_text};
 pub use table_api::{limits_json, table_check_json, table_convert_json, table_read_json};
-pub use table_source::{load as load_table, resolve};
+pub use table_source::{load as load_table, load_within as load_table_within, resolve};

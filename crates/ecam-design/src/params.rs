@@ -305,7 +305,7 @@ pub fn read_toml(generator: &'static Schema, text: &str) -> Result<Values, Gener
             let written = text.lines().nth(line.saturating_sub(1)).unwrap_or_default();
             return Err(GenerateError::Values(format!(
                 "line {line}: `{}`: {problem}",
-                ecam_core::io::excerpt(written.trim())
+                ecam_core::excerpt::excerpt(written.trim())
             )));
         }
     }

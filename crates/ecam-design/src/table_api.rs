@@ -46,7 +46,7 @@ fn pairs(body: &Value) -> Result<Vec<(i64, i64)>, String> {
                 _ => Err(format!(
                     "point {}: `{}`: master and slave are whole numbers",
                     i + 1,
-                    ecam_core::io::excerpt(&p.to_string())
+                    ecam_core::excerpt::excerpt(&p.to_string())
                 )),
             }
         })

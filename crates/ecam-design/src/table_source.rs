@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use ecam_core::budget::Budget;
 use ecam_core::table::UniformTable;
 use ecam_core::{CamCurve, PointTable};
 use serde::Deserialize;
@@ -41,6 +42,19 @@ struct File {
 /// No or several source keys, keys that do not belong to the source, or a
 /// table the core refuses.
 pub fn load(table: &toml::Table, base: &Path) -> Result<Box<dyn CamCurve>, TableSourceError> {
+    load_within(table, base, &mut Budget::per_run())
+}
+
+/// As [`load`], taking a generator's or an expression's work from
+/// `budget` (a scenario's tables and its run share one).
+///
+/// # Errors
+/// As [`load`]; the budget used up.
+pub fn load_within(
+    table: &toml::Table,
+    base: &Path,
+    budget: &mut Budget,
+) -> Result<Box<dyn CamCurve>, TableSourceError> {
     let given: Vec<&str> = SOURCES
         .iter()
         .copied()
@@ -78,7 +92,7 @@ pub fn load(table: &toml::Table, base: &Path) -> Result<Box<dyn CamCurve>, Table
         // Exactly `ecam table gen function`'s keys and defaults (from 0,
         // to 36000, 361 points), as docs/simulate.md promises.
         "expr" => Box::new(
-            generate::from_toml("function", table.clone())
+            generate::from_toml_within("function", table.clone(), budget)
                 .map_err(TableSourceError::Generate)?
                 .table,
         ),
@@ -89,7 +103,7 @@ pub fn load(table: &toml::Table, base: &Path) -> Result<Box<dyn CamCurve>, Table
                 .and_then(|v| v.as_str().map(str::to_string))
                 .ok_or(TableSourceError::GeneratorName)?;
             Box::new(
-                generate::from_toml(&name, params)
+                generate::from_toml_within(&name, params, budget)
                     .map_err(TableSourceError::Generate)?
                     .table,
             )

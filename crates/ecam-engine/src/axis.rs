@@ -31,9 +31,11 @@ use crate::{
 
 mod cam_out;
 mod engage;
+mod landing;
 mod lane;
 mod online;
 mod phase;
+mod plan;
 #[cfg(test)]
 mod steady_tests;
 mod takeover;
@@ -410,23 +412,10 @@ impl<C: CamCurve> CamAxis<C> {
         // A running cam with a ramp, blend or change on top: the general
         // tick's fast lane (`lane.rs`), from the same constants.
         if steady_allowed && settled.is_none() && estimate.fraction == 0 {
-            let Self {
-                phase,
-                curve,
-                geometry,
-                cursor,
-                ..
-            } = self;
-            let lane = match phase {
-                Phase::Running(engaged) => {
-                    engaged.follow_lane(geometry, curve, cursor, None, master)
+            if let Some((ended, followed, happened)) = self.lane(master) {
+                if ended {
+                    self.finish_run();
                 }
-                Phase::Stopping(engaged, end) => {
-                    engaged.follow_lane(geometry, curve, cursor, Some(end), master)
-                }
-                _ => None,
-            };
-            if let Some((followed, happened)) = lane {
                 events.merge(happened);
                 self.commanded = followed.slave;
                 let pulses = self
@@ -508,6 +497,50 @@ impl<C: CamCurve> CamAxis<C> {
         }
     }
 
+    /// The fast lane for an engaged phase (`lane.rs`); `None` for any
+    /// other phase or when the lane leaves the tick to the general path.
+    #[inline(always)]
+    fn lane(&mut self, master: i64) -> Option<lane::Followed> {
+        let Self {
+            phase,
+            curve,
+            geometry,
+            cursor,
+            config,
+            retired,
+            commanded,
+            missed_policy,
+            ..
+        } = self;
+        let mut coupled = Coupled {
+            curve,
+            geometry,
+            cursor,
+            config,
+            retired,
+            commanded,
+            missed_policy: *missed_policy,
+        };
+        match phase {
+            Phase::Running(engaged) => coupled.follow_lane(engaged, None, master),
+            Phase::Stopping(engaged, end) => {
+                let end = *end;
+                coupled.follow_lane(engaged, Some(&end), master)
+            }
+            _ => None,
+        }
+    }
+
+    /// Ends the engaged phase's run where it stands: `Finished`.
+    fn finish_run(&mut self) {
+        if let Phase::Running(engaged) | Phase::Stopping(engaged, _) =
+            core::mem::replace(&mut self.phase, Phase::Idle)
+        {
+            self.end_run(engaged);
+            self.phase = Phase::Finished;
+        }
+    }
+
     /// The general tick for any phase: follows the cam in place when
     /// engaged (the phase is large, so it is borrowed apart from the rest
     /// of the axis rather than moved out and back) and moves on to the
@@ -562,12 +595,7 @@ impl<C: CamCurve> CamAxis<C> {
             Ok((ended, followed, happened)) => {
                 if ended {
                     // A cam's run ends in `Finished`, a coast at rest in `Idle`.
-                    if let Phase::Running(engaged) | Phase::Stopping(engaged, _) =
-                        core::mem::replace(&mut self.phase, Phase::Idle)
-                    {
-                        self.end_run(engaged);
-                        self.phase = Phase::Finished;
-                    }
+                    self.finish_run();
                 }
                 *sample = followed;
                 events.merge(happened);
@@ -748,6 +776,7 @@ impl<C: CamCurve> Coupled<'_, C> {
     ) -> Result<(bool, Option<FollowSample>, Events), EngineError> {
         let mut events = Events::default();
         engaged.steady = None;
+        engaged.lane = None;
         // Ramps and blends end where the position itself reaches their
         // end, not its whole count (below the position when the master
         // runs backwards), so the straight line between counts never

@@ -57,9 +57,9 @@ pub(crate) struct Geometry {
     /// The integers in 64 bits when they all fit (nearly always), for the
     /// 64-bit routes (`locate`, the steady constants).
     narrow: Option<NarrowGeometry>,
-    /// The table moves the slave both ways inside a cycle (for the start
-    /// rule, `start_rule.rs`).
-    turns_back: bool,
+    /// What the start rule needs of the cycle (`start_rule.rs`), taken
+    /// once here rather than at every engage.
+    strokes: start_rule::StrokeGeometry,
 }
 
 /// A geometry's integers in 64 bits.
@@ -180,17 +180,32 @@ impl Geometry {
             stroke,
             jumps_at_seam: extent != Extent::Single && stroke == 0 && raw_stroke != 0,
             extent,
-            turns_back: curve.turns_back(),
             floats: ZoomFloats::of(mnum, mden, snum, sden),
             narrow: None,
+            strokes: start_rule::StrokeGeometry {
+                per_stroke: 0.0,
+                forward: 0,
+                turns_back: curve.turns_back(),
+            },
         };
-        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry.derive();
         Ok(geometry)
+    }
+
+    /// Takes what follows from the integers: their 64-bit copies and the
+    /// start rule's figures.
+    fn derive(&mut self) {
+        self.narrow = NarrowGeometry::of(self);
+        self.strokes = start_rule::StrokeGeometry {
+            per_stroke: to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden),
+            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
+            turns_back: self.strokes.turns_back,
+        };
     }
 
     /// One stroke in output pulses (0 for a cam that does not accumulate).
     pub(crate) fn stroke_pulses(&self) -> f64 {
-        to_f64(self.stroke) * to_f64(self.snum) / to_f64(self.sden)
+        self.strokes.per_stroke
     }
 
     /// What the start rule needs of the cycle: a stroke in pulses, which
@@ -198,11 +213,7 @@ impl Geometry {
     /// never turns back (the sign of stroke × both zooms, 0 without a
     /// stroke), and whether the table turns back.
     pub(crate) fn strokes(&self) -> start_rule::StrokeGeometry {
-        start_rule::StrokeGeometry {
-            per_stroke: self.stroke_pulses(),
-            forward: self.stroke.signum() * self.snum.signum() * self.mnum.signum(),
-            turns_back: self.turns_back,
-        }
+        self.strokes
     }
 
     /// The master zoom's denominator (the unit of table-input offsets).
@@ -220,7 +231,7 @@ impl Geometry {
             floats: ZoomFloats::of(self.mnum, self.mden, snum, sden),
             ..*self
         };
-        geometry.narrow = NarrowGeometry::of(&geometry);
+        geometry.derive();
         geometry
     }
 
@@ -242,10 +253,13 @@ impl Geometry {
                     k: 0,
                     r_num: i128::from(u.clamp(0, n.period_num)),
                 },
-                Extent::Cyclic | Extent::Cycles(_) => Place {
-                    k: i128::from(u.div_euclid(n.period_num)),
-                    r_num: i128::from(u.rem_euclid(n.period_num)),
-                },
+                Extent::Cyclic | Extent::Cycles(_) => {
+                    let (k, r_num) = floor_div_rem(u, n.period_num);
+                    Place {
+                        k: i128::from(k),
+                        r_num: i128::from(r_num),
+                    }
+                }
             };
         }
         let u = t_num.saturating_sub(self.origin_num);
@@ -328,16 +342,24 @@ impl Geometry {
     /// value leaves them (the 128-bit route then decides).
     #[inline]
     fn zoomed_narrow(&self, strokes: i64, table: f64) -> Option<i64> {
-        let narrow = |v: i128| i64::try_from(v).ok();
-        let accumulated = strokes
-            .checked_mul(narrow(self.stroke)?)?
-            .checked_mul(narrow(self.snum)?)?;
-        let sden = narrow(self.sden)?;
-        let whole = accumulated.div_euclid(sden);
-        let rem = accumulated.rem_euclid(sden);
+        // `strokes × (stroke × snum)`: where it fits it is the product
+        // in either order (the 128-bit route decides where it does not).
+        let n = self.narrow.as_ref()?;
+        let accumulated = strokes.checked_mul(n.stroke_snum)?;
+        let (whole, rem) = floor_div_rem(accumulated, n.sden);
         let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
         whole.checked_add(fraction)
     }
+}
+
+/// `(a.div_euclid(b), a.rem_euclid(b))` for `b > 0`, from one hardware
+/// division (the two library calls take one each, and are not always
+/// inlined): the same pair (tested).
+#[inline(always)]
+pub(crate) fn floor_div_rem(a: i64, b: i64) -> (i64, i64) {
+    debug_assert!(b > 0);
+    let (q, r) = (a.wrapping_div(b), a.wrapping_rem(b));
+    if r < 0 { (q - 1, r + b) } else { (q, r) }
 }
 
 /// Floor division and its non-negative remainder for `b > 0`. Cycle
@@ -347,7 +369,10 @@ impl Geometry {
 #[inline]
 fn div_floor(a: i128, b: i128) -> (i128, i128) {
     match (i64::try_from(a), i64::try_from(b)) {
-        (Ok(a), Ok(b)) if b > 0 => (i128::from(a.div_euclid(b)), i128::from(a.rem_euclid(b))),
+        (Ok(a), Ok(b)) if b > 0 => {
+            let (q, r) = floor_div_rem(a, b);
+            (i128::from(q), i128::from(r))
+        }
         _ => (a.div_euclid(b), a.rem_euclid(b)),
     }
 }
@@ -419,8 +444,18 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
 pub(crate) fn exact_f64(v: i128) -> f64 {
     match i64::try_from(v) {
         Ok(small) => small as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_to_f64(v),
     }
+}
+
+/// The 128-bit conversion, out of line: inlined, the compiler sees that
+/// both arms of [`exact_f64`] give the same float and keeps only this
+/// one, the library routine, for every value (about 45 instructions
+/// instead of one).
+#[cold]
+#[inline(never)]
+fn wide_to_f64(v: i128) -> f64 {
+    v as f64
 }
 
 /// `v` as a float, for a count that is never negative (travel, spans):
@@ -429,8 +464,34 @@ pub(crate) fn exact_f64(v: i128) -> f64 {
 pub(crate) fn unsigned_to_f64(v: u128) -> f64 {
     match u64::try_from(v) {
         Ok(small) => small as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_unsigned_to_f64(v),
     }
+}
+
+/// [`wide_to_f64`] for [`unsigned_to_f64`].
+#[cold]
+#[inline(never)]
+fn wide_unsigned_to_f64(v: u128) -> f64 {
+    v as f64
+}
+
+/// `v.ceil() as i128` (saturating, NaN as 0) with one conversion where
+/// the result fits 64 bits; the same integer.
+#[inline]
+pub(crate) fn ceil_to_i128(v: f64) -> i128 {
+    let up = libm::ceil(v);
+    if up > -9.2e18 && up < 9.2e18 {
+        i128::from(up as i64)
+    } else {
+        wide_from_f64(up)
+    }
+}
+
+/// The 128-bit conversion of [`ceil_to_i128`], out of line (see [`wide_to_f64`]).
+#[cold]
+#[inline(never)]
+fn wide_from_f64(v: f64) -> i128 {
+    v as i128
 }
 
 /// `libm::round(v) as i128` (saturating, NaN as 0) with the fast rounding
@@ -508,6 +569,18 @@ impl Engagement {
         master_at: i64,
         slave_now: i64,
     ) -> Result<Self, EngineError> {
+        Self::placed(geo, config, curve, cursor, master_at, slave_now).map(|(e, _)| e)
+    }
+
+    /// [`Engagement::new`], and the place of `master_at` under it.
+    pub(crate) fn placed<C: CamCurve + ?Sized>(
+        geo: &Geometry,
+        config: &AxisConfig,
+        curve: &C,
+        cursor: &mut Cursor,
+        master_at: i64,
+        slave_now: i64,
+    ) -> Result<(Self, Place), EngineError> {
         let zoomed = geo.zoomed_master(master_at);
         let t_engage = match config.master_align {
             MasterAlign::Absolute => zoomed,
@@ -518,14 +591,17 @@ impl Engagement {
         let place = geo.locate(t_engage);
         let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
-        let strokes =
+        let (strokes, valued) =
             start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
                 geo.zoomed(n, table)
             })?;
         // The stroke count of the cycle the master is in is `strokes`:
         // cycles count from there, not from the table's origin.
         let shift = strokes.saturating_sub(place.k);
-        let on_table = geo.zoomed(strokes, table)?;
+        let on_table = match valued {
+            Some(value) => value,
+            None => geo.zoomed(strokes, table)?,
+        };
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
             SlaveAlign::Offset(o) => i128::from(o),
@@ -546,13 +622,16 @@ impl Engagement {
             )),
             Extent::Cyclic | Extent::Single => None,
         };
-        Ok(Self {
-            input_offset_num: t_engage.saturating_sub(zoomed),
-            shift,
-            output_offset,
-            k_engage: place.k,
-            span,
-        })
+        Ok((
+            Self {
+                input_offset_num: t_engage.saturating_sub(zoomed),
+                shift,
+                output_offset,
+                k_engage: place.k,
+                span,
+            },
+            place,
+        ))
     }
 
     /// Table input (× den units) for a master position.
@@ -841,6 +920,69 @@ mod tests {
             Some(x ^ (x << 17))
         })
         .skip(1)
+    }
+
+    #[test]
+    fn floor_div_rem_is_div_euclid_and_rem_euclid() {
+        let mut words = xorshift(0x1234_5678_9ABC_DEF1);
+        for _ in 0..100_000 {
+            let a = words.next().unwrap_or(1) as i64;
+            let b = (words.next().unwrap_or(1) >> (words.next().unwrap_or(1) % 63)) as i64;
+            for (a, b) in [
+                (a, b.max(1)),
+                (a >> 40, (b >> 50).max(1)),
+                (i64::MIN, b.max(1)),
+            ] {
+                assert_eq!(
+                    floor_div_rem(a, b),
+                    (a.div_euclid(b), a.rem_euclid(b)),
+                    "{a} {b}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn conversions_give_the_plain_casts_values() {
+        let wide = [
+            0i128,
+            1,
+            -1,
+            (1 << 53) + 1,
+            -(1 << 53) - 1,
+            i128::from(i64::MAX),
+            i128::from(i64::MIN),
+            i128::from(i64::MAX) + 1,
+            i128::from(i64::MIN) - 1,
+            i128::MAX,
+            i128::MIN,
+            12_345_678_901_234_567_890_123,
+        ];
+        for v in wide {
+            assert_eq!(exact_f64(v).to_bits(), (v as f64).to_bits(), "{v}");
+            let u = v.unsigned_abs();
+            assert_eq!(unsigned_to_f64(u).to_bits(), (u as f64).to_bits(), "{u}");
+        }
+        for v in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0000001,
+            9.1e18,
+            -9.1e18,
+            9.3e18,
+            -9.3e18,
+            1e30,
+            -1e30,
+            1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert_eq!(ceil_to_i128(v), libm::ceil(v) as i128, "{v}");
+        }
     }
 
     #[test]

@@ -78,14 +78,21 @@ impl OffsetRamp {
         engagement: &Engagement,
         master: i64,
     ) -> Result<Engagement, EngineError> {
-        let (input, output) = if self.finished(master) {
+        let (input, output) = self.parts(master);
+        engagement.shifted(input, output)
+    }
+
+    /// The part of the change ramped in at `master`: table input (×
+    /// master-zoom-denominator units) and output pulses.
+    #[inline]
+    pub(crate) fn parts(&self, master: i64) -> (i128, i128) {
+        if self.finished(master) {
             (self.input_num, self.output)
         } else {
             let w = quintic(unsigned_to_f64(self.travelled(master)) / self.distance as f64);
             let part = |v: i128| round_to_i128(exact_f64(v) * w);
             (part(self.input_num), part(self.output))
-        };
-        engagement.shifted(input, output)
+        }
     }
 }
 

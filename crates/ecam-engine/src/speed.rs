@@ -7,6 +7,7 @@
 //! its limits at the true speed.
 
 use crate::MasterPosition;
+use crate::coupling::exact_f64;
 
 const WINDOW: usize = 32;
 const _: () = assert!(WINDOW.is_power_of_two());
@@ -71,7 +72,7 @@ impl MasterSpeed {
             return 0.0;
         }
         let travel = self.position(newest) - self.position(oldest);
-        travel as f64 / 4_294_967_296.0 * 1.0e6 / us as f64
+        exact_f64(travel) / 4_294_967_296.0 * 1.0e6 / us as f64
     }
 
     /// An upper bound of the master's speed (counts/s, either sign as
@@ -91,7 +92,7 @@ impl MasterSpeed {
             return 0.0;
         }
         let travel = self.position(newest) - self.position(oldest);
-        let counts = (travel as f64 / 4_294_967_296.0).abs();
+        let counts = (exact_f64(travel) / 4_294_967_296.0).abs();
         if counts == 0.0 {
             return 0.0;
         }

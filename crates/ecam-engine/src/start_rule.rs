@@ -20,11 +20,12 @@
 //! table's first value, whenever that lies within one stroke ahead of 0:
 //! the documents' own examples start exactly as before.
 
+use crate::coupling::{ceil_to_i128, exact_f64};
 use crate::{EngineError, SlaveAlign};
 
 /// What the start rule needs to know of a cam's cycle (the coupling works
 /// it out; kept to plain numbers so the rule depends on nothing else).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct StrokeGeometry {
     /// One stroke in output pulses after the slave zoom (signed; 0 for a
     /// cam that does not accumulate one).
@@ -37,9 +38,10 @@ pub(crate) struct StrokeGeometry {
 }
 
 /// The strokes to add to the table value at the start: the stroke count
-/// the cycle the master is in takes. `value(n)` is the zoomed table value
-/// at the engage place plus `n` strokes (exact, rounded once), `slave`
-/// where the slave stands. Only an absolute slave
+/// the cycle the master is in takes, and `value` of it when the rule
+/// worked it out already (so the caller need not again). `value(n)` is
+/// the zoomed table value at the engage place plus `n` strokes (exact,
+/// rounded once), `slave` where the slave stands. Only an absolute slave
 /// ([`SlaveAlign::Absolute`], [`SlaveAlign::NearestEquivalent`]) on a cam
 /// with a stroke looks for the equivalent position; every other start
 /// counts the engage cycle as cycle 0.
@@ -48,67 +50,80 @@ pub(crate) fn strokes_at_start(
     align: SlaveAlign,
     slave: i128,
     value: impl Fn(i128) -> Result<i128, EngineError>,
-) -> Result<i128, EngineError> {
+) -> Result<(i128, Option<i128>), EngineError> {
     match align {
         SlaveAlign::Absolute | SlaveAlign::NearestEquivalent
             if geo.forward != 0 && geo.per_stroke != 0.0 =>
         {
-            equivalent(geo, slave, value)
+            equivalent(geo, slave, value).map(|(n, v)| (n, Some(v)))
         }
-        _ => Ok(0),
+        _ => Ok((0, None)),
     }
 }
 
 /// The strokes that put `value(n)` first at or ahead of `slave` in the
 /// cam's forward direction, or nearest either way on a table that turns
-/// back.
+/// back, and `value` there. Each place is valued once (the engage tick
+/// pays for every one).
 fn equivalent(
     geo: StrokeGeometry,
     slave: i128,
     value: impl Fn(i128) -> Result<i128, EngineError>,
-) -> Result<i128, EngineError> {
+) -> Result<(i128, i128), EngineError> {
     let direction = geo.forward;
     // Travel to the position of `m` steps, each step one stroke in
-    // `direction`: it grows with `m`.
+    // `direction`: it grows with `m`. With the value there.
     let step = direction * geo.per_stroke.signum() as i128;
-    let travel = |m: i128| -> Result<i128, EngineError> {
-        value(m.checked_mul(step).ok_or(EngineError::SlaveOverflow)?)?
-            .checked_sub(slave)
-            .map(|t| t * direction)
+    let travel = |m: i128| -> Result<(i128, i128), EngineError> {
+        let v = value(m.checked_mul(step).ok_or(EngineError::SlaveOverflow)?)?;
+        v.checked_sub(slave)
+            .map(|t| (t * direction, v))
             .ok_or(EngineError::SlaveOverflow)
     };
-    let estimate = -(travel(0)? as f64) / geo.per_stroke.abs();
+    let origin = travel(0)?;
+    let estimate = -exact_f64(origin.0) / geo.per_stroke.abs();
     if !estimate.is_finite() || estimate.abs() > 1e30 {
         return Err(EngineError::SlaveOverflow);
     }
-    let guess = libm::ceil(estimate) as i128;
+    let guess = ceil_to_i128(estimate);
+    let at_guess = if guess == 0 { origin } else { travel(guess)? };
     // Bracket the first `m` with travel >= 0 around the guess (a rounding
     // away, or a stroke below one pulse), then halve: bounded work.
-    let (mut below, mut ahead) = (guess, guess);
+    // `below` has travel < 0, `ahead` travel >= 0.
+    let (mut below, mut ahead) = ((guess, at_guess), (guess, at_guess));
     let mut reach = 1i128;
-    while travel(below)? >= 0 {
-        below = below.checked_sub(reach).ok_or(EngineError::SlaveOverflow)?;
+    while below.1.0 >= 0 {
+        let m = below
+            .0
+            .checked_sub(reach)
+            .ok_or(EngineError::SlaveOverflow)?;
+        below = (m, travel(m)?);
         reach = reach.saturating_mul(2);
     }
     reach = 1;
-    while travel(ahead)? < 0 {
-        ahead = ahead.checked_add(reach).ok_or(EngineError::SlaveOverflow)?;
+    while ahead.1.0 < 0 {
+        let m = ahead
+            .0
+            .checked_add(reach)
+            .ok_or(EngineError::SlaveOverflow)?;
+        ahead = (m, travel(m)?);
         reach = reach.saturating_mul(2);
     }
-    while ahead - below > 1 {
-        let mid = below + (ahead - below) / 2;
-        if travel(mid)? >= 0 {
+    while ahead.0 - below.0 > 1 {
+        let m = below.0 + (ahead.0 - below.0) / 2;
+        let mid = (m, travel(m)?);
+        if mid.1.0 >= 0 {
             ahead = mid;
         } else {
             below = mid;
         }
     }
-    let m = if geo.turns_back && -travel(below)? < travel(ahead)? {
+    let (m, (_, v)) = if geo.turns_back && -below.1.0 < ahead.1.0 {
         below
     } else {
         ahead
     };
-    Ok(m * step)
+    Ok((m * step, v))
 }
 
 #[cfg(test)]
@@ -131,10 +146,12 @@ mod tests {
     fn start(table: &PointTable, at: f64, slave: i128, zoom: Zoom) -> i128 {
         let geo = geometry(table, zoom, Zoom::ONE);
         let value = table.position(at, &mut Cursor::new());
-        let n = strokes_at_start(geo.strokes(), SlaveAlign::Absolute, slave, |n| {
+        let (n, at) = strokes_at_start(geo.strokes(), SlaveAlign::Absolute, slave, |n| {
             geo.zoomed(n, value)
         })
         .unwrap();
+        // The value handed back is the value of the strokes handed back.
+        assert_eq!(at, Some(geo.zoomed(n, value).unwrap()));
         geo.zoomed(n, value).unwrap()
     }
 

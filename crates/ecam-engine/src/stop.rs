@@ -79,6 +79,27 @@ impl CycleEnd {
             None
         }
     }
+
+    /// [`CycleEnd::reached`] for the place (`k`, `r_num`) of the table
+    /// input, in 64 bits (the lane's): the same answer, the end as a place.
+    #[inline]
+    pub(crate) fn reached_place(
+        &self,
+        geo: &Geometry,
+        k: i64,
+        r_num: i64,
+    ) -> Option<(Place, bool)> {
+        // t ≥ the forward boundary: a later cycle; t ≤ the backward one:
+        // an earlier cycle, or this one's start itself.
+        let k = i128::from(k);
+        if k > self.k {
+            Some((geo.cycle_end(self.k), true))
+        } else if k < self.k || r_num == 0 {
+            Some((Geometry::cycle_start(self.k), false))
+        } else {
+            None
+        }
+    }
 }
 
 #[cfg(test)]

@@ -103,13 +103,8 @@ impl<C> Pending<C> {
     }
 
     /// The master position where the switch takes effect, if it does in
-    /// the tick from `previous` to `now` (fixed point: counts × 2^32 plus
-    /// the fraction). A switch always takes effect at a whole count that
-    /// lies between the two, so the old cam is followed up to it and the
-    /// new one from it, also while the master stands between two counts
-    /// (an at-once switch then waits for the next whole count). While
-    /// `blending`, a due switch waits for the blend to end and then takes
-    /// effect as an at-once switch.
+    /// the tick from `previous` to `now` (see [`Trigger::fires`]); a due
+    /// switch that waits for a blend's end becomes an at-once switch.
     pub(crate) fn fires(
         &mut self,
         previous: i128,
@@ -118,10 +113,45 @@ impl<C> Pending<C> {
         policy: MissedActivation,
         turn: Option<NonZeroU64>,
     ) -> Fired {
+        let (fired, trigger) = self.trigger.fires(previous, now, blending, policy, turn);
+        self.trigger = trigger;
+        fired
+    }
+
+    /// What makes it fire.
+    pub(crate) fn trigger(&self) -> Trigger {
+        self.trigger
+    }
+
+    /// Replaces what makes it fire (the trigger [`Trigger::fires`] gave).
+    pub(crate) fn set_trigger(&mut self, trigger: Trigger) {
+        self.trigger = trigger;
+    }
+}
+
+impl Trigger {
+    /// The master position where a switch waiting for this trigger takes
+    /// effect, if it does in the tick from `previous` to `now` (fixed
+    /// point: counts × 2^32 plus the fraction), and the trigger it waits
+    /// for afterwards. A switch always takes effect at a whole count that
+    /// lies between the two, so the old cam is followed up to it and the
+    /// new one from it, also while the master stands between two counts
+    /// (an at-once switch then waits for the next whole count). While
+    /// `blending`, a due switch waits for the blend to end and then takes
+    /// effect as an at-once switch. Changes nothing itself, so a caller
+    /// can look before it commits.
+    pub(crate) fn fires(
+        self,
+        previous: i128,
+        now: i128,
+        blending: bool,
+        policy: MissedActivation,
+        turn: Option<NonZeroU64>,
+    ) -> (Fired, Self) {
         let (low, high) = (previous.min(now), previous.max(now));
         let mut missed = false;
-        let at = match self.trigger {
-            Trigger::Position(p) => {
+        let at = match self {
+            Self::Position(p) => {
                 // The whole count at or beyond `previous` in the direction
                 // of travel, for the turn's place of `p`.
                 let forward = now >= previous;
@@ -138,7 +168,7 @@ impl<C> Pending<C> {
                 missed = passed && now < previous;
                 (passed && (!missed || policy == MissedActivation::StartNow)).then_some(p)
             }
-            Trigger::Now => {
+            Self::Now => {
                 // The first whole count the master reaches from `previous`.
                 let first = if now >= previous {
                     (previous + ((1 << 32) - 1)) >> 32
@@ -154,10 +184,9 @@ impl<C> Pending<C> {
             }
         };
         if at.is_some() && blending {
-            self.trigger = Trigger::Now;
-            return Fired { at: None, missed };
+            return (Fired { at: None, missed }, Self::Now);
         }
-        Fired { at, missed }
+        (Fired { at, missed }, self)
     }
 }
 

@@ -33,6 +33,7 @@ use crate::follow::{Follower, Scale, ScaleError};
 use crate::line::Master;
 use crate::rt::RtConfig;
 use crate::segment::{MAX_DRIVES, SegmentConfig};
+use crate::startup::{DriveSetup, SdoValue, SdoWrite};
 use crate::supervisor::default_max_lost_cycles;
 
 /// Stop time when the file gives none, ms.
@@ -164,6 +165,116 @@ impl AxisSpec {
     }
 }
 
+/// The CoE type of a start-up SDO's value.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SdoType {
+    /// UNSIGNED8.
+    U8,
+    /// INTEGER8.
+    I8,
+    /// UNSIGNED16.
+    U16,
+    /// INTEGER16.
+    I16,
+    /// UNSIGNED32.
+    U32,
+    /// INTEGER32.
+    I32,
+}
+
+/// One `[[drive.sdo]]`: an object the master writes in PRE-OP.
+#[derive(Clone, Debug, Deserialize, PartialEq, Eq)]
+#[serde(deny_unknown_fields)]
+pub struct SdoSpec {
+    /// Object index (e.g. `0x6065`).
+    pub index: u16,
+    /// Sub-index (omit: 0).
+    #[serde(default)]
+    pub sub_index: u8,
+    /// The CoE type the object has.
+    #[serde(rename = "type")]
+    pub kind: SdoType,
+    /// The value.
+    pub value: i64,
+}
+
+/// Objects ecam writes itself at start-up (the PDO assignment and
+/// mapping, the mode): a start-up list may not write them.
+fn reserved(index: u16) -> bool {
+    matches!(index, 0x1600..=0x17FF | 0x1A00..=0x1BFF | 0x1C12 | 0x1C13 | 0x6060)
+}
+
+impl SdoSpec {
+    /// The write, its value checked against the type.
+    ///
+    /// # Errors
+    /// [`ConfigError::SdoValue`] or [`ConfigError::SdoReserved`].
+    pub fn write(&self) -> Result<SdoWrite, ConfigError> {
+        if reserved(self.index) {
+            return Err(ConfigError::SdoReserved(self.index));
+        }
+        let v = self.value;
+        let bad = || ConfigError::SdoValue {
+            index: self.index,
+            sub_index: self.sub_index,
+            value: v,
+            kind: self.kind,
+        };
+        let value = match self.kind {
+            SdoType::U8 => SdoValue::U8(u8::try_from(v).map_err(|_| bad())?),
+            SdoType::I8 => SdoValue::I8(i8::try_from(v).map_err(|_| bad())?),
+            SdoType::U16 => SdoValue::U16(u16::try_from(v).map_err(|_| bad())?),
+            SdoType::I16 => SdoValue::I16(i16::try_from(v).map_err(|_| bad())?),
+            SdoType::U32 => SdoValue::U32(u32::try_from(v).map_err(|_| bad())?),
+            SdoType::I32 => SdoValue::I32(i32::try_from(v).map_err(|_| bad())?),
+        };
+        Ok(SdoWrite {
+            index: self.index,
+            sub_index: self.sub_index,
+            value,
+        })
+    }
+}
+
+/// One `[[drive]]`: what a drive must be and what it gets at start-up.
+#[derive(Clone, Debug, Deserialize, PartialEq, Eq)]
+#[serde(deny_unknown_fields)]
+pub struct DriveSpec {
+    /// Position in the line.
+    pub drive: usize,
+    /// Vendor id it must report (SII; omit: any).
+    pub vendor_id: Option<u32>,
+    /// Product code it must report (omit: any).
+    pub product_code: Option<u32>,
+    /// Revision it must report (omit: any).
+    pub revision: Option<u32>,
+    /// Objects written in PRE-OP, in order.
+    #[serde(default)]
+    pub sdo: Vec<SdoSpec>,
+}
+
+/// Checks the `[[drive]]` entries and turns them into set-ups.
+fn setups(drives: &[DriveSpec]) -> Result<Vec<DriveSetup>, ConfigError> {
+    let mut out: Vec<DriveSetup> = Vec::with_capacity(drives.len());
+    for d in drives {
+        if d.drive >= MAX_DRIVES {
+            return Err(ConfigError::Drive(d.drive));
+        }
+        if out.iter().any(|s| s.position == d.drive) {
+            return Err(ConfigError::DescribedTwice(d.drive));
+        }
+        out.push(DriveSetup {
+            position: d.drive,
+            vendor_id: d.vendor_id,
+            product_code: d.product_code,
+            revision: d.revision,
+            sdo: d.sdo.iter().map(SdoSpec::write).collect::<Result<_, _>>()?,
+        });
+    }
+    Ok(out)
+}
+
 /// A whole configuration file.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -190,6 +301,9 @@ pub struct LineConfig {
     /// The cams.
     #[serde(rename = "axis")]
     pub axes: Vec<AxisSpec>,
+    /// What the drives must be and what they get at start-up.
+    #[serde(rename = "drive", default)]
+    pub drives: Vec<DriveSpec>,
 }
 
 /// A configuration that cannot run.
@@ -224,6 +338,21 @@ pub enum ConfigError {
     },
     /// `max_lost_cycles = 0`.
     MaxLost,
+    /// Two `[[drive]]` entries for one drive.
+    DescribedTwice(usize),
+    /// A start-up SDO value outside its type.
+    SdoValue {
+        /// Object index.
+        index: u16,
+        /// Sub-index.
+        sub_index: u8,
+        /// The value given.
+        value: i64,
+        /// The type given.
+        kind: SdoType,
+    },
+    /// A start-up SDO on an object ecam writes itself.
+    SdoReserved(u16),
 }
 
 impl core::fmt::Display for ConfigError {
@@ -260,6 +389,21 @@ impl core::fmt::Display for ConfigError {
                 "{key} = {value} must be above 0 and below the cycle ({cycle_us} µs)"
             ),
             Self::MaxLost => f.write_str("max_lost_cycles = 0: at least one cycle must be allowed"),
+            Self::DescribedTwice(d) => write!(f, "two [[drive]] entries describe drive {d}"),
+            Self::SdoValue {
+                index,
+                sub_index,
+                value,
+                kind,
+            } => write!(
+                f,
+                "[[drive.sdo]] {index:#06x}:{sub_index:02x}: value {value} does not fit type \"{}\"",
+                format!("{kind:?}").to_lowercase()
+            ),
+            Self::SdoReserved(index) => write!(
+                f,
+                "[[drive.sdo]] {index:#06x}: ecam writes the PDO assignment and mapping and the mode itself"
+            ),
         }
     }
 }
@@ -314,7 +458,14 @@ impl LineConfig {
             }
             used.push(a.drive);
         }
+        setups(&config.drives)?;
         Ok(config)
+    }
+
+    /// The `[[drive]]` entries as start-up set-ups (checked by
+    /// [`LineConfig::parse`]; an entry that fails here was not parsed).
+    pub fn setups(&self) -> Vec<DriveSetup> {
+        setups(&self.drives).unwrap_or_default()
     }
 
     /// The cycle time.
@@ -411,6 +562,9 @@ pub struct FollowConfig {
     /// The outputs and their drives.
     #[serde(rename = "output", default)]
     pub outputs: Vec<OutputSpec>,
+    /// What the drives must be and what they get at start-up.
+    #[serde(rename = "drive", default)]
+    pub drives: Vec<DriveSpec>,
 }
 
 fn yes() -> bool {
@@ -450,7 +604,13 @@ impl FollowConfig {
             }
             used.push(follower.drive);
         }
+        setups(&config.drives)?;
         Ok(config)
+    }
+
+    /// The `[[drive]]` entries as start-up set-ups.
+    pub fn setups(&self) -> Vec<DriveSetup> {
+        setups(&self.drives).unwrap_or_default()
     }
 
     /// The followers, in file order (each checked by [`FollowConfig::parse`]).
@@ -573,6 +733,73 @@ drive = 0
             ConfigError::Output("Y7".into())
                 .to_string()
                 .contains("Y0, Y1, Y2 and Y3")
+        );
+    }
+
+    #[test]
+    fn drives_are_described_with_identity_and_start_up_sdos() {
+        let text = format!(
+            "{EXAMPLE}
+[[drive]]
+drive = 1
+vendor_id = 0x00000002
+product_code = 0x4543414D
+revision = 1
+sdo = [
+    {{ index = 0x6065, type = \"u32\", value = 2000 }},
+    {{ index = 0x60C2, sub_index = 2, type = \"i8\", value = -3 }},
+]
+"
+        );
+        let c = LineConfig::parse(&text).unwrap();
+        let setups = c.setups();
+        assert_eq!(setups.len(), 1);
+        assert_eq!(setups[0].position, 1);
+        assert_eq!(setups[0].vendor_id, Some(2));
+        assert_eq!(setups[0].product_code, Some(0x4543_414D));
+        assert_eq!(
+            setups[0].sdo[1],
+            SdoWrite {
+                index: 0x60C2,
+                sub_index: 2,
+                value: SdoValue::I8(-3)
+            }
+        );
+        let bad = |from: &str, to: &str| LineConfig::parse(&text.replace(from, to)).unwrap_err();
+        assert_eq!(
+            bad("value = 2000", "value = -1"),
+            ConfigError::SdoValue {
+                index: 0x6065,
+                sub_index: 0,
+                value: -1,
+                kind: SdoType::U32
+            }
+        );
+        assert!(
+            bad("value = 2000", "value = -1")
+                .to_string()
+                .contains("does not fit type \"u32\"")
+        );
+        assert_eq!(
+            bad("index = 0x6065", "index = 0x1C12"),
+            ConfigError::SdoReserved(0x1C12)
+        );
+        assert!(matches!(bad("\"u32\"", "\"f32\""), ConfigError::Syntax(_)));
+        assert!(matches!(
+            bad("revision", "revisions"),
+            ConfigError::Syntax(_)
+        ));
+        let twice = format!("{text}[[drive]]\ndrive = 1\n");
+        assert_eq!(
+            LineConfig::parse(&twice).unwrap_err(),
+            ConfigError::DescribedTwice(1)
+        );
+        assert_eq!(
+            FollowConfig::parse(&format!("{FOLLOW}[[drive]]\ndrive = 0\nproduct_code = 7\n"))
+                .unwrap()
+                .setups()[0]
+                .product_code,
+            Some(7)
         );
     }
 

@@ -87,6 +87,9 @@ pub trait Line {
     fn faults(&self) -> &[LineFault];
     /// The faults first seen in the last cycle.
     fn new_faults(&self) -> &[LineFault];
+    /// Codes and emergencies added to reported faults so far
+    /// ([`crate::supervisor::Supervisor::annotations`]).
+    fn annotations(&self) -> u64;
     /// The target last sent to a drive.
     fn target_of(&self, position: usize) -> i64;
     /// Virtual master position (0 where there is none).
@@ -127,6 +130,9 @@ impl<C: CamCurve> Line for CamLine<C> {
     }
     fn new_faults(&self) -> &[LineFault] {
         CamLine::new_faults(self)
+    }
+    fn annotations(&self) -> u64 {
+        self.supervisor().annotations()
     }
     fn target_of(&self, position: usize) -> i64 {
         self.axes()
@@ -218,6 +224,9 @@ impl Line for Following {
     }
     fn new_faults(&self) -> &[LineFault] {
         self.line.new_faults()
+    }
+    fn annotations(&self) -> u64 {
+        self.line.supervisor().annotations()
     }
     fn target_of(&self, position: usize) -> i64 {
         self.line.target_of(position).unwrap_or_else(|| {
@@ -353,6 +362,10 @@ struct Driver {
     flowing_for: u64,
     recover_after: u64,
     recovering: bool,
+    /// Where the faults holding the line start in the summary's log.
+    episode_start: usize,
+    /// The line's annotations the log has taken.
+    annotations_seen: u64,
 }
 
 impl Driver {
@@ -372,6 +385,8 @@ impl Driver {
             flowing_for: 0,
             recover_after: cycles(RECOVER_AFTER).max(1),
             recovering: false,
+            episode_start: 0,
+            annotations_seen: 0,
         }
     }
 
@@ -524,11 +539,34 @@ impl Driver {
         }
         c.late_replies = line.segment().link_stats().late_discarded;
         let cycle = c.cycles;
+        if line.faults().is_empty() {
+            self.episode_start = self.summary.faults.len();
+        }
         for &fault in line.new_faults() {
             if self.summary.faults.len() < FAULT_LOG {
                 self.summary.faults.push((cycle, fault));
             } else {
                 self.summary.faults_dropped += 1;
+            }
+        }
+        self.take_annotations(line);
+    }
+
+    /// A fault's AL status code or emergency arrives cycles after the
+    /// fault: the log takes them from the line's faults.
+    fn take_annotations<L: Line>(&mut self, line: &L) {
+        let annotations = line.annotations();
+        if annotations == self.annotations_seen {
+            return;
+        }
+        self.annotations_seen = annotations;
+        let start = self.episode_start.min(self.summary.faults.len());
+        for (_, logged) in &mut self.summary.faults[start..] {
+            if let Some(now) = line.faults().iter().find(|f| {
+                f.drive == logged.drive
+                    && core::mem::discriminant(&f.cause) == core::mem::discriminant(&logged.cause)
+            }) {
+                *logged = *now;
             }
         }
     }
@@ -566,6 +604,7 @@ impl Driver {
     }
 
     fn summary<L: Line>(mut self, line: &L) -> Summary {
+        self.take_annotations(line);
         self.summary.state = Some(line.state());
         self.summary.actual = line.segment().drives().iter().map(|d| d.actual()).collect();
         self.summary.link = line.segment().link_stats();

@@ -3,6 +3,7 @@
 use std::time::Duration;
 
 use crate::pdo::PdoSizeError;
+use crate::startup::StartupError;
 
 /// Errors of the EtherCAT layer.
 #[derive(Debug)]
@@ -46,6 +47,18 @@ pub enum EthercatError {
     CycleTime(Duration),
     /// Frame storage could not be set up.
     Storage,
+    /// A drive was refused at start-up (PRE-OP configuration over CoE).
+    Startup {
+        /// Position in the line.
+        position: usize,
+        /// The name it reports.
+        name: String,
+        /// Why.
+        error: StartupError,
+    },
+    /// The bring-up stopped on a panic in ethercrab (it panics on an
+    /// emergency message in the middle of one of its SDO transfers).
+    MailboxInterrupted,
 }
 
 impl core::fmt::Display for EthercatError {
@@ -79,6 +92,20 @@ impl core::fmt::Display for EthercatError {
             ),
             Self::CycleTime(c) => write!(f, "cycle time {c:?} out of range (above 0, at most 1 s)"),
             Self::Storage => f.write_str("EtherCAT frame storage could not be set up"),
+            Self::Startup {
+                position,
+                name,
+                error,
+            } => {
+                if name.is_empty() {
+                    write!(f, "drive {position} {error}")
+                } else {
+                    write!(f, "drive {position} ({name}) {error}")
+                }
+            }
+            Self::MailboxInterrupted => f.write_str(
+                "the bring-up stopped on a panic in ethercrab (a drive's emergency message in the middle of an SDO transfer does that); try again",
+            ),
         }
     }
 }

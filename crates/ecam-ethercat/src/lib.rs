@@ -33,6 +33,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod cia402;
+pub mod coe;
 pub mod config;
 pub mod dc;
 pub mod drive;
@@ -47,6 +48,7 @@ pub mod monitor;
 pub mod pdo;
 pub mod rt;
 pub mod segment;
+pub mod startup;
 pub mod summary;
 pub mod supervisor;
 

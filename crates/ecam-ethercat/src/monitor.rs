@@ -12,6 +12,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering, fence};
 
 use crate::cia402::DriveState;
+use crate::coe::Emergency;
 use crate::segment::AlState;
 use crate::supervisor::{FaultCause, LineFault, LineState};
 
@@ -141,7 +142,8 @@ pub struct LineMonitor {
     state: AtomicU64,
     counters: [AtomicU64; COUNTER_WORDS],
     drives: Vec<[AtomicU64; DRIVE_WORDS]>,
-    faults: Vec<AtomicU64>,
+    /// Two words per fault: the fault, its emergency.
+    faults: Vec<[AtomicU64; 2]>,
     fault_count: AtomicUsize,
     fault_events: AtomicU64,
     commands: [AtomicU64; COMMAND_SLOTS],
@@ -186,8 +188,11 @@ fn al_from(code: u64) -> AlState {
     .unwrap_or(AlState::Unknown)
 }
 
-fn encode_fault(f: &LineFault) -> u64 {
-    let drive = f.drive.map_or(0xFFFF, |d| d as u64 & 0xFFFF);
+/// The fault as two words: kind (bits 0–6), emergency present (bit 7),
+/// drive (8–15, 0xFF: none), a (16–31), b (32–63); then the emergency:
+/// code (0–15), error register (16–23), data (24–63).
+fn encode_fault(f: &LineFault) -> [u64; 2] {
+    let drive = f.drive.map_or(0xFF, |d| d.min(0xFE) as u64);
     let (kind, a, b) = match f.cause {
         FaultCause::Drive { code } => (1, u64::from(code), 0),
         FaultCause::Lost { cycles } => (2, 0, u64::from(cycles)),
@@ -199,17 +204,41 @@ fn encode_fault(f: &LineFault) -> u64 {
         FaultCause::EnableTimeout => (4, 0, 0),
         FaultCause::RecoveryFailed => (5, 0, 0),
     };
-    kind | (drive << 8) | (a << 24) | (b << 40)
+    let (flag, emergency) = match f.emergency {
+        Some(e) => {
+            let mut data = [0u8; 8];
+            data[3..].copy_from_slice(&e.data);
+            (
+                0x80,
+                u64::from(e.code) | (u64::from(e.register) << 16) | u64::from_le_bytes(data),
+            )
+        }
+        None => (0, 0),
+    };
+    [
+        kind | flag | (drive << 8) | (a << 16) | (b << 32),
+        emergency,
+    ]
 }
 
-fn decode_fault(w: u64) -> Option<LineFault> {
-    let drive = match (w >> 8) & 0xFFFF {
-        0xFFFF => None,
+fn decode_fault([w, e]: [u64; 2]) -> Option<LineFault> {
+    let drive = match (w >> 8) & 0xFF {
+        0xFF => None,
         d => usize::try_from(d).ok(),
     };
-    let a = (w >> 24) & 0xFFFF;
-    let b = w >> 40;
-    let cause = match w & 0xFF {
+    let a = (w >> 16) & 0xFFFF;
+    let b = w >> 32;
+    let emergency = (w & 0x80 != 0).then(|| {
+        let bytes = e.to_le_bytes();
+        let mut data = [0u8; 5];
+        data.copy_from_slice(&bytes[3..]);
+        Emergency {
+            code: (e & 0xFFFF) as u16,
+            register: bytes[2],
+            data,
+        }
+    });
+    let cause = match w & 0x7F {
         1 => FaultCause::Drive { code: a as u16 },
         2 => FaultCause::Lost {
             cycles: u32::try_from(b).unwrap_or(u32::MAX),
@@ -222,7 +251,11 @@ fn decode_fault(w: u64) -> Option<LineFault> {
         5 => FaultCause::RecoveryFailed,
         _ => return None,
     };
-    Some(LineFault { drive, cause })
+    Some(LineFault {
+        drive,
+        cause,
+        emergency,
+    })
 }
 
 impl LineMonitor {
@@ -233,7 +266,7 @@ impl LineMonitor {
             state: AtomicU64::new(0),
             counters: zeros(),
             drives: (0..drives).map(|_| zeros()).collect(),
-            faults: (0..MAX_FAULTS).map(|_| AtomicU64::new(0)).collect(),
+            faults: (0..MAX_FAULTS).map(|_| zeros()).collect(),
             fault_count: AtomicUsize::new(0),
             fault_events: AtomicU64::new(0),
             commands: zeros(),
@@ -349,7 +382,9 @@ impl LineMonitor {
         }
         let n = faults.len().min(MAX_FAULTS);
         for (slot, f) in self.faults.iter().zip(&faults[..n]) {
-            slot.store(encode_fault(f), Ordering::Relaxed);
+            for (w, v) in slot.iter().zip(encode_fault(f)) {
+                w.store(v, Ordering::Relaxed);
+            }
         }
         self.fault_count.store(n, Ordering::Relaxed);
         self.fault_events.store(fault_events, Ordering::Relaxed);
@@ -433,7 +468,9 @@ impl LineMonitor {
         let n = self.fault_count.load(Ordering::Relaxed).min(MAX_FAULTS);
         let faults = self.faults[..n]
             .iter()
-            .filter_map(|a| decode_fault(a.load(Ordering::Relaxed)))
+            .filter_map(|[a, b]| {
+                decode_fault([a.load(Ordering::Relaxed), b.load(Ordering::Relaxed)])
+            })
             .collect();
         LineSnapshot {
             state: state_from(self.state.load(Ordering::Relaxed)),
@@ -455,20 +492,20 @@ mod tests {
         assert_eq!(m.snapshot().state, None, "nothing published yet");
         let faults = [
             LineFault {
-                drive: Some(1),
-                cause: FaultCause::Drive { code: 0x2310 },
+                emergency: Some(Emergency {
+                    data: [1, 2, 3, 4, 0xFF],
+                    ..Emergency::for_code(0x2310)
+                }),
+                ..LineFault::new(Some(1), FaultCause::Drive { code: 0x2310 })
             },
-            LineFault {
-                drive: Some(0),
-                cause: FaultCause::LeftOp {
+            LineFault::new(
+                Some(0),
+                FaultCause::LeftOp {
                     state: AlState::SafeOp,
                     code: Some(0x001B),
                 },
-            },
-            LineFault {
-                drive: None,
-                cause: FaultCause::Lost { cycles: 101 },
-            },
+            ),
+            LineFault::new(None, FaultCause::Lost { cycles: 4_000_000 }),
         ];
         let cell = DriveCell {
             state: DriveState::OperationEnabled,

@@ -11,11 +11,13 @@ use ethercrab::{
     RetryBehaviour, SubDeviceGroup, SubDeviceState, Timeouts,
 };
 
+use crate::coe::Emergency;
 use crate::drive::Cia402Drive;
 use crate::error::EthercatError;
 pub use crate::link::Transport;
 use crate::link::{self, Link, LinkStats, LoopId};
-use crate::pdo::{CspInputs, INPUTS_LEN, OUTPUTS_LEN};
+use crate::pdo::{INPUTS_LEN, OUTPUTS_LEN, PdoLayout};
+use crate::startup::{self, Configured, DriveSetup, StartupError};
 
 /// Most drives one segment carries.
 pub const MAX_DRIVES: usize = 64;
@@ -167,6 +169,28 @@ pub struct DriveInfo {
     pub name: String,
     /// Vendor id, product code, revision and serial number (SII).
     pub identity: [u32; 4],
+    /// It kept its own PDO mapping (ecam decodes it as read back).
+    pub fixed_mapping: bool,
+    /// 0x1C32/0x1C33 were set to DC SYNC0 (false: it has none).
+    pub sync_parameters: bool,
+}
+
+impl core::fmt::Display for DriveInfo {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let [vendor, product, revision, serial] = self.identity;
+        write!(
+            f,
+            "{} (vendor {vendor:#010x}, product {product:#010x}, revision {revision:#x}, serial {serial})",
+            self.name
+        )?;
+        if self.fixed_mapping {
+            f.write_str(", its own PDO order")?;
+        }
+        if !self.sync_parameters {
+            f.write_str(", no 0x1C32/0x1C33")?;
+        }
+        Ok(())
+    }
 }
 
 /// A single-register step of a drive's recovery, run between cycles.
@@ -177,6 +201,9 @@ pub enum AcyclicStep {
     /// Write AL control (0x0120): the requested state, with the error
     /// acknowledge bit.
     RequestState(u8),
+    /// Read the message waiting in the drive's mailbox (SM1), if any: an
+    /// emergency is how a drive tells its error in detail.
+    ReadMailbox,
 }
 
 /// The answer of an [`AcyclicStep`].
@@ -193,6 +220,12 @@ pub enum AcyclicAnswer {
     },
     /// The write was taken.
     Written,
+    /// The mailbox held nothing.
+    MailboxEmpty,
+    /// The mailbox held a message that is not an emergency.
+    MailboxOther,
+    /// The mailbox held an emergency.
+    Emergency(Emergency),
 }
 
 /// A segment in OP, ready to cycle.
@@ -206,6 +239,10 @@ pub struct Segment {
     group: OpGroup,
     drives: Vec<Cia402Drive>,
     info: Vec<DriveInfo>,
+    /// Where each drive's CSP objects sit in its process data.
+    layouts: Vec<PdoLayout>,
+    /// The configuration's `[[drive]]` entries.
+    setups: Vec<DriveSetup>,
     al_states: Vec<AlState>,
     config: SegmentConfig,
     expected_working_counter: u16,
@@ -236,11 +273,25 @@ fn storage() -> Result<
 }
 
 impl Segment {
-    /// Finds the drives, checks each maps the CSP process data, starts
-    /// distributed clocks with SYNC0 at the cycle time and brings every
-    /// drive to OP. Drives are left disabled (CiA 402 "switch on
-    /// disabled"); [`Cia402Drive::set_request`] enables them.
+    /// [`Segment::bring_up_with`] without `[[drive]]` entries: every
+    /// drive gets ecam's CoE configuration, none is checked against an
+    /// identity.
     pub fn bring_up(transport: Transport, config: SegmentConfig) -> Result<Self, EthercatError> {
+        Self::bring_up_with(transport, config, Vec::new())
+    }
+
+    /// Finds the drives, configures each in PRE-OP over CoE (identity
+    /// checked against `setups`, CSP mode checked through 0x6061, the PDO
+    /// mapping written and read back, 0x1C32/0x1C33 on SYNC0, the
+    /// start-up SDOs: [`crate::startup`]), starts distributed clocks with
+    /// SYNC0 at the cycle time and brings every drive to OP. Drives are
+    /// left disabled (CiA 402 "switch on disabled");
+    /// [`Cia402Drive::set_request`] enables them.
+    pub fn bring_up_with(
+        transport: Transport,
+        config: SegmentConfig,
+        setups: Vec<DriveSetup>,
+    ) -> Result<Self, EthercatError> {
         if config.cycle.is_zero() || config.cycle > Duration::from_secs(1) {
             return Err(EthercatError::CycleTime(config.cycle));
         }
@@ -260,6 +311,10 @@ impl Segment {
                 // EEPROM reads happen at bring-up only; a loaded host must
                 // not fail them (ethercrab's default is 10 ms).
                 eeprom: config.state_timeout,
+                // Mailbox waits likewise (ethercrab's 100 ms for the
+                // request mailbox to empty fails on a stalled host).
+                mailbox_echo: config.state_timeout,
+                mailbox_response: config.state_timeout,
                 ..Timeouts::default()
             },
             MainDeviceConfig {
@@ -281,18 +336,25 @@ impl Segment {
             },
         );
         let deadline = Instant::now() + BRING_UP_LIMIT;
-        let group = link::run(&mut link, bring_up_group(&acyclic, config), deadline)
-            .ok_or(EthercatError::NotOp)??;
+        let (group, configured) = guarded_run(
+            &mut link,
+            || bring_up_group(&acyclic, config, &setups),
+            deadline,
+        )?;
         let info = group
             .iter(&acyclic)
-            .map(|sd| {
+            .zip(&configured)
+            .map(|(sd, c)| {
                 let id = sd.identity();
                 DriveInfo {
                     name: sd.name().to_string(),
                     identity: [id.vendor_id, id.product_id, id.revision, id.serial],
+                    fixed_mapping: c.fixed_mapping,
+                    sync_parameters: c.sync_parameters,
                 }
             })
             .collect::<Vec<_>>();
+        let layouts = configured.iter().map(|c| c.layout).collect();
         let drives = vec![Cia402Drive::new(); group.len()];
         // 3 per drive (read and write of its process data); more when
         // ethercrab splits the image over frames and a drive's outputs
@@ -307,6 +369,8 @@ impl Segment {
             group,
             drives,
             info,
+            layouts,
+            setups,
             config,
             expected_working_counter: minimum,
         };
@@ -379,7 +443,8 @@ impl Segment {
         for (position, drive) in self.drives.iter_mut().enumerate() {
             let subdevice = self.group.subdevice(&self.cyclic, position)?;
             let mut io = subdevice.io_raw_mut();
-            drive.outputs().pack(io.outputs())?;
+            let layout = self.layouts.get(position).unwrap_or(&PdoLayout::CSP);
+            layout.pack(&drive.outputs(), io.outputs())?;
         }
         let expected = self.expected_working_counter;
         let deadline = Instant::now() + self.config.reply_timeout;
@@ -415,7 +480,8 @@ impl Segment {
             if matches!(state, AlState::Op | AlState::SafeOp) {
                 let subdevice = self.group.subdevice(&self.cyclic, position)?;
                 let io = subdevice.io_raw();
-                drive.update(Some(CspInputs::unpack(io.inputs())?));
+                let layout = self.layouts.get(position).unwrap_or(&PdoLayout::CSP);
+                drive.update(Some(layout.unpack(io.inputs())?));
             } else {
                 drive.update(None);
             }
@@ -467,6 +533,27 @@ impl Segment {
                 .ok()?;
                 AcyclicAnswer::Written
             }
+            AcyclicStep::ReadMailbox => {
+                let acyclic = &self.acyclic;
+                let read = async {
+                    // SM1's registers: start, length, control, status.
+                    let sm = subdevice.register_read::<[u8; 8]>(0x0808u16).await?;
+                    let start = u16::from_le_bytes([sm[0], sm[1]]);
+                    let len = u16::from_le_bytes([sm[2], sm[3]]);
+                    if sm[5] & 0x08 == 0 || len == 0 {
+                        return Ok(AcyclicAnswer::MailboxEmpty);
+                    }
+                    // Reading up to its last byte empties the mailbox.
+                    let message = ethercrab::Command::fprd(subdevice.configured_address(), start)
+                        .receive_slice(acyclic, len)
+                        .await?;
+                    Ok::<_, ethercrab::error::Error>(
+                        Emergency::from_mailbox(&message)
+                            .map_or(AcyclicAnswer::MailboxOther, AcyclicAnswer::Emergency),
+                    )
+                };
+                link::run(&mut self.link, read, deadline)?.ok()?
+            }
         };
         self.link.forget(LoopId::Acyclic);
         Some(answer)
@@ -481,12 +568,12 @@ impl Segment {
     /// As [`Segment::bring_up`]; the old group stays in place.
     pub fn reinitialise(&mut self) -> Result<(), EthercatError> {
         let deadline = Instant::now() + BRING_UP_LIMIT;
-        let group = link::run(
+        let (acyclic, config, setups) = (&self.acyclic, self.config, &self.setups);
+        let (group, configured) = guarded_run(
             &mut self.link,
-            bring_up_group(&self.acyclic, self.config),
+            || bring_up_group(acyclic, config, setups),
             deadline,
-        )
-        .ok_or(EthercatError::NotOp)??;
+        )?;
         if group.len() != self.drives.len() {
             return Err(EthercatError::DriveCount {
                 expected: self.drives.len(),
@@ -494,6 +581,7 @@ impl Segment {
             });
         }
         self.group = group;
+        self.layouts = configured.iter().map(|c| c.layout).collect();
         self.link.forget(LoopId::Acyclic);
         for drive in &mut self.drives {
             *drive = Cia402Drive::new();
@@ -507,18 +595,73 @@ impl Segment {
     }
 }
 
+/// Stack of the thread a bring-up runs on: ethercrab's futures for a
+/// group of [`MAX_DRIVES`] are large, and a debug build copies them.
+const BRING_UP_STACK: usize = 16 << 20;
+
+/// Runs a bring-up on the link, on a thread of its own with a large
+/// stack (the caller waits). ethercrab stops with a panic when an
+/// emergency arrives in the middle of one of its SDO transfers; that ends
+/// the bring-up with an error instead of the process.
+fn guarded_run<T, F>(
+    link: &mut Link,
+    future: impl FnOnce() -> F + Send,
+    deadline: Instant,
+) -> Result<T, EthercatError>
+where
+    T: Send,
+    F: std::future::Future<Output = Result<T, EthercatError>>,
+{
+    std::thread::scope(|scope| {
+        let run = std::thread::Builder::new()
+            .name("ecam-ethercat-bring-up".into())
+            .stack_size(BRING_UP_STACK)
+            .spawn_scoped(scope, move || {
+                let future = Box::pin(future());
+                link::run(link, future, deadline)
+            })?;
+        match run.join() {
+            Ok(Some(result)) => result,
+            Ok(None) => Err(EthercatError::NotOp),
+            Err(_) => Err(EthercatError::MailboxInterrupted),
+        }
+    })
+}
+
 async fn bring_up_group(
     maindevice: &MainDevice<'static>,
     config: SegmentConfig,
-) -> Result<OpGroup, EthercatError> {
+    setups: &[DriveSetup],
+) -> Result<(OpGroup, Vec<Configured>), EthercatError> {
     let mut group = maindevice
         .init_single_group::<MAX_DRIVES, MAX_PDI>(ethercrab::std::ethercat_now)
         .await?;
     if group.is_empty() {
         return Err(EthercatError::NoDrives);
     }
+    if let Some(beyond) = setups.iter().find(|s| s.position >= group.len()) {
+        return Err(EthercatError::Startup {
+            position: beyond.position,
+            name: String::new(),
+            error: StartupError::NotOnSegment,
+        });
+    }
     for mut subdevice in group.iter_mut(maindevice) {
         subdevice.set_dc_sync(DcSync::Sync0);
+    }
+    let mut configured = Vec::with_capacity(group.len());
+    for (position, subdevice) in group.iter(maindevice).enumerate() {
+        let setup = setups.iter().find(|s| s.position == position);
+        // On the heap: ethercrab's SDO futures are large, a thread's
+        // stack is not.
+        let done = Box::pin(startup::configure(&subdevice, setup, config.cycle))
+            .await
+            .map_err(|error| EthercatError::Startup {
+                position,
+                name: subdevice.name().to_string(),
+                error,
+            })?;
+        configured.push(done);
     }
     let group = group.into_pre_op_pdi(maindevice).await?;
     for (position, subdevice) in group.iter(maindevice).enumerate() {
@@ -553,7 +696,7 @@ async fn bring_up_group(
     loop {
         let response = group.tx_rx_dc(maindevice).await?;
         if response.all_op() {
-            return Ok(group);
+            return Ok((group, configured));
         }
         if Instant::now() > deadline {
             return Err(EthercatError::NotOp);
@@ -564,7 +707,7 @@ async fn bring_up_group(
 
 /// Waits `period` inside a future driven by [`link::run`] (which polls
 /// about every millisecond), without a timer of async-io's.
-async fn async_io_free_sleep(period: Duration) {
+pub(crate) async fn async_io_free_sleep(period: Duration) {
     let until = Instant::now() + period;
     std::future::poll_fn(|_| {
         if Instant::now() >= until {

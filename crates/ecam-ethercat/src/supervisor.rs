@@ -12,6 +12,7 @@
 use std::time::Duration;
 
 use crate::cia402::{DriveState, Request, error_code_text};
+use crate::coe::Emergency;
 use crate::segment::{AcyclicAnswer, AcyclicStep, AlState, CycleReport, Segment, al_status_text};
 
 /// Where the line is.
@@ -132,14 +133,32 @@ pub struct LineFault {
     pub drive: Option<usize>,
     /// What happened.
     pub cause: FaultCause,
+    /// The emergency the drive sent about it, once the master read it
+    /// from the drive's mailbox.
+    pub emergency: Option<Emergency>,
+}
+
+impl LineFault {
+    /// A fault without an emergency (yet).
+    pub const fn new(drive: Option<usize>, cause: FaultCause) -> Self {
+        Self {
+            drive,
+            cause,
+            emergency: None,
+        }
+    }
 }
 
 impl core::fmt::Display for LineFault {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self.drive {
-            Some(drive) => write!(f, "drive {drive}: {}", self.cause),
-            None => f.write_str("working counter short: a device on the segment did not answer"),
+            Some(drive) => write!(f, "drive {drive}: {}", self.cause)?,
+            None => f.write_str("working counter short: a device on the segment did not answer")?,
         }
+        if let Some(emergency) = &self.emergency {
+            write!(f, "; {emergency}")?;
+        }
+        Ok(())
     }
 }
 
@@ -164,6 +183,9 @@ pub const RECOVERY_TIMEOUT: Duration = Duration::from_secs(5);
 /// The default lost-cycle limit spans this long: the process-data
 /// watchdog an ESC starts with (ETG1000.4: divider 2498, 1000 ticks).
 pub const DEFAULT_LOST_SPAN: Duration = Duration::from_millis(100);
+/// Times a faulted drive's mailbox is looked at for its emergency (one
+/// look per cycle with time to spare) before the master gives up.
+const EMERGENCY_LOOKS: u8 = 20;
 
 /// The lost-cycle limit sized to [`DEFAULT_LOST_SPAN`] for a cycle.
 pub fn default_max_lost_cycles(cycle: Duration) -> u32 {
@@ -180,6 +202,8 @@ enum Recovery {
     Idle,
     /// Read its AL status code (after it left OP).
     Diagnose,
+    /// Read its emergency (after a fault), the looks so far.
+    ReadEmergency(u8),
     /// Acknowledge the error and ask for SAFE-OP.
     AckSafeOp,
     /// Ask for OP.
@@ -205,6 +229,8 @@ pub struct Supervisor {
     next_step: usize,
     /// An enable asked for during a recovery: enabling follows it.
     start_after_recovery: bool,
+    /// Codes and emergencies added to faults already reported.
+    annotations: u64,
 }
 
 /// The AL state code in registers (0 none, 1 INIT, 2 PRE-OP, 3 BOOT,
@@ -243,7 +269,15 @@ impl Supervisor {
             max_lost: max_lost.max(1),
             next_step: 0,
             start_after_recovery: false,
+            annotations: 0,
         }
+    }
+
+    /// How many times an AL status code or an emergency was added to a
+    /// fault already reported (a reader whose copy of the faults is older
+    /// than this number copies them again).
+    pub fn annotations(&self) -> u64 {
+        self.annotations
     }
 
     /// Where the line is.
@@ -375,7 +409,7 @@ impl Supervisor {
     }
 
     fn fault(&mut self, drive: Option<usize>, cause: FaultCause) {
-        let fault = LineFault { drive, cause };
+        let fault = LineFault::new(drive, cause);
         // Bounded: one entry per drive and cause at most.
         if self.new_faults.len() < self.new_faults.capacity() && !self.new_faults.contains(&fault) {
             self.new_faults.push(fault);
@@ -431,12 +465,17 @@ impl Supervisor {
                 }
             } else if ours && d.reachable() {
                 match d.state() {
-                    DriveState::Fault | DriveState::FaultReactionActive => self.fault(
-                        Some(position),
-                        FaultCause::Drive {
-                            code: d.inputs().error_code,
-                        },
-                    ),
+                    DriveState::Fault | DriveState::FaultReactionActive => {
+                        self.fault(
+                            Some(position),
+                            FaultCause::Drive {
+                                code: d.inputs().error_code,
+                            },
+                        );
+                        if let Some(slot @ Recovery::Idle) = self.recovery.get_mut(position) {
+                            *slot = Recovery::ReadEmergency(0);
+                        }
+                    }
                     state if late && state != DriveState::OperationEnabled => {
                         self.fault(Some(position), FaultCause::EnableTimeout);
                     }
@@ -548,6 +587,7 @@ impl Supervisor {
         let step = match phase {
             Recovery::Idle => return,
             Recovery::Diagnose => AcyclicStep::ReadAlStatus,
+            Recovery::ReadEmergency(_) => AcyclicStep::ReadMailbox,
             Recovery::AckSafeOp => AcyclicStep::RequestState(4),
             Recovery::RequestOp => AcyclicStep::RequestState(8),
             Recovery::WaitOp => {
@@ -565,15 +605,31 @@ impl Supervisor {
             return;
         };
         self.recovery[position] = match (phase, answer) {
-            (Recovery::Diagnose, AcyclicAnswer::AlStatus { state, code, .. }) => {
+            (Recovery::Diagnose, AcyclicAnswer::AlStatus { code, .. }) => {
                 for fault in self.faults.iter_mut().filter(|f| f.drive == Some(position)) {
                     if let FaultCause::LeftOp { code: slot, .. } = &mut fault.cause {
                         *slot = Some(code);
                     }
                 }
-                let _ = state;
+                self.annotations += 1;
+                // A drive that left OP on a watchdog often faulted too.
+                Recovery::ReadEmergency(0)
+            }
+            (Recovery::ReadEmergency(_), AcyclicAnswer::Emergency(e)) if e.code != 0 => {
+                for fault in self
+                    .faults
+                    .iter_mut()
+                    .filter(|f| f.drive == Some(position) && f.emergency.is_none())
+                {
+                    fault.emergency = Some(e);
+                }
+                self.annotations += 1;
                 Recovery::Idle
             }
+            (Recovery::ReadEmergency(looks), _) if looks + 1 < EMERGENCY_LOOKS => {
+                Recovery::ReadEmergency(looks + 1)
+            }
+            (Recovery::ReadEmergency(_), _) => Recovery::Idle,
             (Recovery::AckSafeOp, _) => Recovery::RequestOp,
             (Recovery::RequestOp, _) => Recovery::WaitOp,
             (other, _) => other,

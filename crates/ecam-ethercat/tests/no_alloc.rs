@@ -134,6 +134,8 @@ fn the_cycle_allocates_nothing() {
                     ..DriveCell::default()
                 });
             monitor.publish(line.state(), &counters, cells, line.faults(), 0);
+            // Between cycles: the faulted drive's emergency is read.
+            line.acyclic_step(Duration::from_millis(20));
         }
     };
 
@@ -163,6 +165,11 @@ fn the_cycle_allocates_nothing() {
     WATCHING.with(|w| w.set(false));
     assert_eq!(line.state(), LineState::Faulted);
     assert!(counters.lost_cycles > 40, "{counters:?}");
+    assert!(
+        line.faults().iter().any(|f| f.emergency.is_some()),
+        "{:?}",
+        line.faults()
+    );
 
     assert_eq!(ALLOCATIONS.load(Ordering::SeqCst), 0);
 }

@@ -9,7 +9,7 @@ use crate::index_register::{INDEX_COUNT, IndexReg};
 use crate::timers::Timers;
 
 /// All device memory of one PLC.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Debug, PartialEq, Eq)]
 pub struct Devices {
     d: Vec<u16>,
     m: Vec<bool>,
@@ -24,6 +24,32 @@ pub struct Devices {
 impl Default for Devices {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+impl Clone for Devices {
+    fn clone(&self) -> Self {
+        Self {
+            d: self.d.clone(),
+            m: self.m.clone(),
+            x: self.x.clone(),
+            y: self.y.clone(),
+            c: self.c.clone(),
+            index: self.index,
+            timers: self.timers.clone(),
+        }
+    }
+
+    /// Copies into the memory already there (a server publishes device
+    /// memory after every scan period: no allocation then).
+    fn clone_from(&mut self, source: &Self) {
+        self.d.clone_from(&source.d);
+        self.m.clone_from(&source.m);
+        self.x.clone_from(&source.x);
+        self.y.clone_from(&source.y);
+        self.c.clone_from(&source.c);
+        self.index = source.index;
+        self.timers.clone_from(&source.timers);
     }
 }
 

@@ -53,6 +53,7 @@ pub mod error;
 pub mod fuzz;
 pub mod sim;
 pub mod special;
+pub mod watchdog;
 
 mod device;
 mod devices;
@@ -68,7 +69,7 @@ mod view;
 
 // Loading and running a program.
 pub use il::{ParseError, Program};
-pub use interpreter::{LineError, MAX_STEPS_PER_SCAN};
+pub use interpreter::LineError;
 pub use scan::Plc;
 
 // Device memory.
@@ -85,9 +86,7 @@ pub use view::{Value, View, ViewError};
 pub use hardware::{Hardware, OutputOwner, Wire, WireError};
 
 // Run-time errors of instructions.
-pub use operation_error::{
-    CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, CODE_SCAN_LIMIT, OperationError,
-};
+pub use operation_error::{CODE_CALL_NESTING, CODE_DEVICE_RANGE, CODE_OPERAND, OperationError};
 
 // Writes from outside the program into its cam blocks.
-pub use remote_write::WriteRefusal;
+pub use remote_write::{WriteRefusal, check_register_writes, check_table_load};

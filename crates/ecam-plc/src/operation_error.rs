@@ -23,10 +23,6 @@ pub const CODE_DEVICE_RANGE: u16 = 6706;
 
 /// FX code for CALL nested deeper than the FX3U's five levels.
 pub const CODE_CALL_NESTING: u16 = 6702;
-/// A scan that executed more than a million instructions (a CJ loop that
-/// never ends): the FX stops on its watchdog timer (D8000), ecam reports this
-/// code and ends the scan.
-pub const CODE_SCAN_LIMIT: u16 = 6709;
 
 impl OperationError {
     /// An error with `code` and a message.

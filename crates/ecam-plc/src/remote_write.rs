@@ -16,7 +16,7 @@
 use core::fmt;
 use core::ops::Range;
 
-use crate::decam::{BlockError, Decam, offsets};
+use crate::decam::{BlockError, check_table_at, offsets};
 use crate::device::SPECIAL_FIRST;
 use crate::devices::Devices;
 use crate::scan::Plc;
@@ -125,22 +125,7 @@ impl Plc {
     /// # Errors
     /// [`WriteRefusal::SpecialRegisters`], [`WriteRefusal::OverlapsCamBlock`].
     pub fn check_table_load(&self, block: u16, points: u16) -> Result<(), WriteRefusal> {
-        let target = u32::from(block)..u32::from(block) + offsets::block_words(points);
-        if target.end > u32::from(SPECIAL_FIRST) {
-            return Err(WriteRefusal::SpecialRegisters {
-                block,
-                end: target.end,
-            });
-        }
-        let devices = self.devices();
-        match self
-            .cam_blocks()
-            .filter(|&named| named != block)
-            .find(|&named| overlap(&target, &occupied(devices, named)))
-        {
-            Some(named) => Err(WriteRefusal::OverlapsCamBlock { block, named }),
-            None => Ok(()),
-        }
+        check_table_load(self.devices(), self.cam_blocks(), block, points)
     }
 
     /// Checks data-register writes `(register, value)` from outside against
@@ -153,32 +138,63 @@ impl Plc {
     /// # Errors
     /// [`WriteRefusal::RunningTable`] with the error the block would show.
     pub fn check_register_writes(&self, writes: &[(u16, i16)]) -> Result<(), WriteRefusal> {
-        let devices = self.devices();
-        let touched = |d: &&Decam| {
-            d.is_running()
-                && writes
-                    .iter()
-                    .any(|&(n, _)| table_word(d.operands().block, n))
-                && d.check_table(devices).is_ok()
-        };
-        let mut after: Option<Devices> = None;
-        for decam in self.decams().iter().filter(touched) {
-            let after = after.get_or_insert_with(|| {
-                let mut copy = devices.clone();
-                for &(n, value) in writes {
-                    let _ = copy.set_word(n, value);
-                }
-                copy
-            });
-            if let Err(error) = decam.check_table(after) {
-                return Err(WriteRefusal::RunningTable {
-                    block: decam.operands().block,
-                    error,
-                });
-            }
-        }
-        Ok(())
+        check_register_writes(self.devices(), self.running_cams(), writes)
     }
+}
+
+/// [`Plc::check_table_load`] against a copy of the PLC: its device memory
+/// and the blocks its DECAMs name (a server checks its clients' writes
+/// against the copy they see, without waiting for a scan).
+///
+/// # Errors
+/// [`WriteRefusal::SpecialRegisters`], [`WriteRefusal::OverlapsCamBlock`].
+pub fn check_table_load(
+    devices: &Devices,
+    named: impl Iterator<Item = u16>,
+    block: u16,
+    points: u16,
+) -> Result<(), WriteRefusal> {
+    let target = u32::from(block)..u32::from(block) + offsets::block_words(points);
+    if target.end > u32::from(SPECIAL_FIRST) {
+        return Err(WriteRefusal::SpecialRegisters {
+            block,
+            end: target.end,
+        });
+    }
+    let mut named = named;
+    match named.find(|&named| named != block && overlap(&target, &occupied(devices, named))) {
+        Some(named) => Err(WriteRefusal::OverlapsCamBlock { block, named }),
+        None => Ok(()),
+    }
+}
+
+/// [`Plc::check_register_writes`] against a copy of the PLC: its device
+/// memory and the blocks of the cams running.
+///
+/// # Errors
+/// [`WriteRefusal::RunningTable`] with the error the block would show.
+pub fn check_register_writes(
+    devices: &Devices,
+    running: impl Iterator<Item = u16>,
+    writes: &[(u16, i16)],
+) -> Result<(), WriteRefusal> {
+    let touched = |&block: &u16| {
+        writes.iter().any(|&(n, _)| table_word(block, n)) && check_table_at(devices, block).is_ok()
+    };
+    let mut after: Option<Devices> = None;
+    for block in running.filter(touched) {
+        let after = after.get_or_insert_with(|| {
+            let mut copy = devices.clone();
+            for &(n, value) in writes {
+                let _ = copy.set_word(n, value);
+            }
+            copy
+        });
+        if let Err(error) = check_table_at(after, block) {
+            return Err(WriteRefusal::RunningTable { block, error });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

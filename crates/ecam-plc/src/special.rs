@@ -10,6 +10,20 @@ pub const M_NOT_RUNNING: u16 = 8001;
 pub const M_FIRST_SCAN: u16 = 8002;
 /// M8003: off during the first scan only.
 pub const M_NOT_FIRST_SCAN: u16 = 8003;
+/// M8004: on while an error stops the PLC (here: the watchdog, M8061);
+/// D8004 gives that flag's number.
+pub const M_ERROR: u16 = 8004;
+/// D8004: the number of the error flag that is on (8061).
+pub const D_ERROR: u16 = 8004;
+/// D8000: the watchdog time, ms (see [`crate::watchdog`]).
+pub const D_WATCHDOG: u16 = 8000;
+/// D8010, D8011, D8012: the current, shortest and longest scan time since
+/// the start, in 0.1 ms (as the FX3U; how a scan is timed: [`crate::watchdog`]).
+pub const D_SCAN_TIME: [u16; 3] = [8010, 8011, 8012];
+/// M8061: PLC hardware error (here: the watchdog timer error); the PLC stops.
+pub const M_HARDWARE_ERROR: u16 = 8061;
+/// D8061: the code of the PLC hardware error (6105: watchdog timer).
+pub const D_HARDWARE_ERROR: u16 = 8061;
 /// Clock relays M8011 (10 ms), M8012 (100 ms), M8013 (1 s), M8014 (1 min),
 /// with their periods in µs: on for the first half of every period, counted
 /// from t = 0 of simulated time, updated at the start of each scan.

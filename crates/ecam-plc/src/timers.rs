@@ -31,9 +31,21 @@ struct Timer {
 }
 
 /// All timers of one PLC.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Debug, PartialEq, Eq)]
 pub struct Timers {
     timers: Vec<Timer>,
+}
+
+impl Clone for Timers {
+    fn clone(&self) -> Self {
+        Self {
+            timers: self.timers.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.timers.clone_from(&source.timers);
+    }
 }
 
 impl Default for Timers {

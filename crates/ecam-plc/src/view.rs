@@ -64,6 +64,7 @@ impl fmt::Display for ViewError {
 impl std::error::Error for ViewError {}
 
 fn device_message(text: &str, err: DeviceError) -> ViewError {
+    let text = ecam_core::excerpt::excerpt(text);
     ViewError(match err {
         DeviceError::OutOfRange => format!(
             "device `{text}` is out of range (D0-D8511, M0-M8511, X/Y 0-377 octal, C0-C255)"
@@ -100,7 +101,12 @@ impl View {
             let bit = u8::from_str_radix(bit, 16)
                 .ok()
                 .filter(|b| *b < 16 && bit.len() == 1)
-                .ok_or_else(|| ViewError(format!("`{text}`: the bit is one hex digit 0-F")))?;
+                .ok_or_else(|| {
+                    ViewError(format!(
+                        "`{text}`: the bit is one hex digit 0-F",
+                        text = ecam_core::excerpt::excerpt(text)
+                    ))
+                })?;
             return Ok(Self::WordBit(n, bit));
         }
         for (prefix, make) in [
@@ -134,7 +140,12 @@ impl View {
                 .parse::<u16>()
                 .ok()
                 .filter(|n| *n < crate::timers::T_COUNT)
-                .ok_or_else(|| ViewError(format!("timer `{text}` is out of range (T0-T255)")))?;
+                .ok_or_else(|| {
+                    ViewError(format!(
+                        "timer `{text}` is out of range (T0-T255)",
+                        text = ecam_core::excerpt::excerpt(text)
+                    ))
+                })?;
             return Ok(Self::Timer(n));
         }
         for (prefix, double) in [("DD", true), ("DE", false)] {
@@ -247,6 +258,7 @@ impl View {
     pub fn write(self, devices: &mut Devices, text: &str) -> Result<(), ViewError> {
         let text = text.trim();
         let bad = |range: &str| {
+            let text = ecam_core::excerpt::excerpt(text);
             ViewError(format!(
                 "`{text}` is not a value for {self} (expected {range})"
             ))

@@ -11,6 +11,8 @@
 
 use std::collections::HashMap;
 
+use ecam_core::excerpt::excerpt;
+
 use ecam_core::script_line::{NumberError, ScriptLine, parse_number};
 
 use crate::CamParam;
@@ -122,6 +124,14 @@ pub enum ParseError {
         /// The parameter as written.
         word: String,
     },
+    /// A `Tick` that takes the script's `Tick`s past the cycles one run
+    /// may take ([`ecam_core::budget`]).
+    TicksOverBudget {
+        /// The command name as written.
+        cmd: String,
+        /// The `Tick`'s cycles.
+        ticks: u64,
+    },
 }
 
 impl ParseError {
@@ -134,7 +144,8 @@ impl ParseError {
             | Self::NotANumber { cmd, .. }
             | Self::BadName { cmd, .. }
             | Self::TickCount { cmd, .. }
-            | Self::UnknownCamParam { cmd, .. } => cmd,
+            | Self::UnknownCamParam { cmd, .. }
+            | Self::TicksOverBudget { cmd, .. } => cmd,
         }
     }
 }
@@ -142,7 +153,9 @@ impl ParseError {
 impl core::fmt::Display for ParseError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            Self::UnknownCommand { cmd } => write!(f, "unknown command '{cmd}'"),
+            Self::UnknownCommand { cmd } => {
+                write!(f, "unknown command '{cmd}'", cmd = excerpt(cmd))
+            }
             Self::ArgumentCount { cmd, usage, got } => {
                 let shape = if usage.is_empty() {
                     String::from("no arguments")
@@ -154,14 +167,22 @@ impl core::fmt::Display for ParseError {
                     "{cmd} takes {} argument{} ({shape}), got {got}",
                     usage.len(),
                     if usage.len() == 1 { "" } else { "s" },
+                    cmd = excerpt(cmd)
                 )
             }
             Self::NumberOutOfRange { cmd, word } => write!(
                 f,
-                "{cmd}: {word} is out of range: numbers must fit a signed 64-bit value (and the command's own range)"
+                "{cmd}: {word} is out of range: numbers must fit a signed 64-bit value (and the command's own range)",
+                cmd = excerpt(cmd),
+                word = excerpt(word)
             ),
             Self::NotANumber { cmd, word, names } => {
-                write!(f, "{cmd}: '{word}' is not a number or a known name: ")?;
+                write!(
+                    f,
+                    "{cmd}: '{word}' is not a number or a known name: ",
+                    cmd = excerpt(cmd),
+                    word = excerpt(word)
+                )?;
                 if names.is_empty() {
                     f.write_str(
                         "give a number (decimal or 0x hex) or a name set by `Define NAME VALUE`",
@@ -177,7 +198,8 @@ impl core::fmt::Display for ParseError {
             }
             Self::BadName { name, .. } => write!(
                 f,
-                "Define: '{name}' is not a name (letters, digits and _, not starting with a digit)"
+                "Define: '{name}' is not a name (letters, digits and _, not starting with a digit)",
+                name = excerpt(name)
             ),
             Self::TickCount { count, .. } => write!(
                 f,
@@ -186,7 +208,14 @@ impl core::fmt::Display for ParseError {
             ),
             Self::UnknownCamParam { cmd, word } => write!(
                 f,
-                "{cmd}: unknown cam parameter '{word}': use 0 CamBufferID, 1 CamCounts, 2 CamStartCount, 3 CamSource, 4 CamOutputOffset or 5 CamInputOffset"
+                "{cmd}: unknown cam parameter '{word}': use 0 CamBufferID, 1 CamCounts, 2 CamStartCount, 3 CamSource, 4 CamOutputOffset or 5 CamInputOffset",
+                cmd = excerpt(cmd),
+                word = excerpt(word)
+            ),
+            Self::TicksOverBudget { ticks, .. } => write!(
+                f,
+                "Tick {ticks}: the script's Ticks add up to more than the {} cycles one run may take",
+                ecam_core::limits::MAX_SIMULATED_TICKS
             ),
         }
     }
@@ -214,10 +243,13 @@ const ACTIONS: Names = &[
     ("StartCam", 9),
 ];
 
-/// Parses lines into commands, remembering `Define`d names.
+/// Parses lines into commands, remembering `Define`d names and how many
+/// cycles the script's `Tick`s take in all (one run's budget,
+/// `ecam_core::budget`).
 #[derive(Clone, Debug, Default)]
 pub struct Parser {
     symbols: HashMap<String, i64>,
+    budget: ecam_core::budget::Budget,
 }
 
 struct Args<'a> {
@@ -409,6 +441,12 @@ impl Parser {
                         cmd: cmd.to_owned(),
                         count: n,
                     })?;
+                self.budget
+                    .cycles(n)
+                    .map_err(|_| ParseError::TicksOverBudget {
+                        cmd: cmd.to_owned(),
+                        ticks: n,
+                    })?;
                 Command::Tick(n)
             }
             _ => {
@@ -458,6 +496,37 @@ mod tests {
             p.parse_line("SetProfileMode ElectronicCam").unwrap(),
             Some(Command::SetProfileMode(8))
         );
+    }
+
+    #[test]
+    fn messages_quote_a_short_excerpt_of_a_huge_word() {
+        let mut p = Parser::new();
+        let huge = "Q".repeat(100_000);
+        let e = p.parse_line(&huge).unwrap_err().to_string();
+        assert!(e.len() < 100, "{} bytes: {e}", e.len());
+        assert!(e.contains("(100000 bytes)"), "{e}");
+        let e = p
+            .parse_line(&format!("Tick {huge}"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.len() < 300, "{} bytes: {e}", e.len());
+    }
+
+    #[test]
+    fn a_scripts_ticks_share_one_budget() {
+        let mut p = Parser::new();
+        for _ in 0..4 {
+            assert_eq!(
+                p.parse_line("Tick 25000000").unwrap(),
+                Some(Command::Tick(25_000_000))
+            );
+        }
+        let e = p.parse_line("Tick 1").unwrap_err();
+        assert!(
+            e.to_string().contains("add up to more than the 100000000"),
+            "{e}"
+        );
+        assert_eq!(p.parse_line("Tick 0").unwrap(), Some(Command::Tick(0)));
     }
 
     #[test]

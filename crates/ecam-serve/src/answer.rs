@@ -152,6 +152,7 @@ mod tests {
                 modbus: addr,
                 http: addr,
                 state_dir: None,
+                limits: Default::default(),
             },
             |_| {},
         )

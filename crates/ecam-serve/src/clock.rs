@@ -137,13 +137,29 @@ pub fn scan_on_bus_ticks(
 }
 
 /// Runs one scan period now (one scan, then the hardware ticks covering
-/// the scan period) and reports the operation errors it raised: each is
-/// counted and kept as the last one, and each distinct one (by line and
-/// code) is reported once as [`Event::OperationError`].
+/// the scan period), between the clients' writes made since the last one
+/// and the publication of the image they read, and reports the operation
+/// errors it raised: each is counted and kept as the last one, and each
+/// distinct one (by line and code) is reported once as
+/// [`Event::OperationError`]. A watchdog stop is reported once as
+/// [`Event::ProgramStopped`].
 pub fn scan_period(shared: &Shared) {
     let timing = shared.info.timing;
-    let result = shared.with_plc(|plc| sim::run(plc, timing, RunLength::Scans(1), |_| {}));
-    // The timing was checked non-zero at start, so `run` cannot fail.
+    let (result, fault) = shared.exchange(|plc| {
+        let result = sim::run(plc, timing, RunLength::Scans(1), |_| {});
+        let fault = plc.fault().map(|f| (f.line(), f.code(), f.to_string()));
+        (result, fault)
+    });
+    if let Some((line, code, text)) = fault {
+        if !shared.stats.fault_reported.swap(true, Ordering::Relaxed) {
+            let file = shared.info.program.as_deref().unwrap_or("program");
+            shared.report(Event::ProgramStopped(format!(
+                "{file}:{line}: {text} (D8061={code}, M8061=1)"
+            )));
+        }
+    }
+    // The timing was checked non-zero at start and one scan period fits
+    // any budget, so `run` cannot fail.
     let errors = result.unwrap_or_default();
     for e in errors {
         shared
@@ -195,6 +211,7 @@ mod tests {
             modbus: addr,
             http: addr,
             state_dir: None,
+            limits: Default::default(),
         };
         let heard = Arc::new(Mutex::new(Vec::new()));
         let sink = Arc::clone(&heard);

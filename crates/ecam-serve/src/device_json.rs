@@ -26,12 +26,18 @@ pub fn parse_device_names(names: &str) -> Result<Vec<View>, String> {
     for item in names.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let (name, count) = match item.split_once(':') {
             Some((name, count)) => {
-                let count: u16 = count
-                    .trim()
-                    .parse()
-                    .ok()
-                    .filter(|&c| c >= 1)
-                    .ok_or_else(|| format!("`{item}`: COUNT must be a whole number 1..65535"))?;
+                let count: u16 =
+                    count
+                        .trim()
+                        .parse()
+                        .ok()
+                        .filter(|&c| c >= 1)
+                        .ok_or_else(|| {
+                            format!(
+                                "`{item}`: COUNT must be a whole number 1..65535",
+                                item = ecam_core::excerpt::excerpt(item)
+                            )
+                        })?;
                 (name, count)
             }
             None => (item, 1),
@@ -75,9 +81,20 @@ pub fn devices_to_json(views: &[View], devices: &Devices) -> String {
 /// Not JSON, not an object, an unknown name, a Y output or counter (read
 /// only from outside), or a value that does not fit the device.
 pub fn parse_device_sets(body: &[u8]) -> Result<(WriteBatch, Vec<View>), String> {
-    serde_json::from_slice::<Value>(body)
-        .map_err(|e| format!("the body is not JSON: {e}"))
-        .and_then(|value| sets_from_json(&value))
+    parse_json_body(body).and_then(|value| sets_from_json(&value))
+}
+
+/// Reads an HTTP request body as JSON.
+///
+/// # Errors
+/// `the body is not JSON (…)`, saying where, in the server's words.
+pub fn parse_json_body(body: &[u8]) -> Result<Value, String> {
+    serde_json::from_slice::<Value>(body).map_err(|e| {
+        format!(
+            "the body is not JSON: {}",
+            ecam_core::io::json_syntax_message(&e)
+        )
+    })
 }
 
 /// [`parse_device_sets`] once the body is JSON.

@@ -33,6 +33,7 @@ fn server() -> Option<Shared> {
         modbus: addr,
         http: addr,
         state_dir: None,
+        limits: Default::default(),
     };
     Some(Shared::new(plc, None, info, |_| {}))
 }

@@ -11,13 +11,18 @@
 //! [`LatchedImage`]), device names as JSON for the HTTP API
 //! ([`parse_device_names`], [`devices_to_json`], [`parse_device_sets`]),
 //! the PLC shared by the scan loop and the servers ([`Shared`]), paced
-//! by the wall clock ([`scan_loop`]), and what the designer's live view
-//! samples of a DECAM block ([`LiveRequest`], [`LiveSample`]).
+//! by the wall clock ([`scan_loop`]) and timed by the watchdog
+//! ([`ThreadCpuTime`]), the copy of it clients read and write so that no
+//! request waits for a scan ([`Image`]), what the designer's live view
+//! samples of a DECAM block ([`LiveRequest`], [`LiveSample`]), and what
+//! keeps clients from holding the server: every cap and deadline
+//! ([`Limits`]), who makes room at a full cap ([`Connections`]), and where
+//! design requests run ([`DesignPool`]).
 //!
 //! It has no async runtime and prints nothing: the binary owns the
-//! sockets, the threads and stderr, and hears what the operator should
+//! sockets, the async tasks and stderr, and hears what the operator should
 //! through [`Event`]. The scan loop and the latched-value saver block the
-//! thread they run on. Use it to serve the PLC over another transport, or
+//! thread they run on; the design pool runs its own worker threads. Use it to serve the PLC over another transport, or
 //! to test what a client sees without a network; to run PLC programs in
 //! simulated time, use `ecam_plc::sim` directly. `docs/modbus.md` describes
 //! the server as a user sees it.
@@ -35,6 +40,7 @@
 //!     modbus: addr,
 //!     http: addr,
 //!     state_dir: None,
+//!     limits: Default::default(),
 //! };
 //! let shared = Shared::new(plc, None, info, |event| eprintln!("{event:?}"));
 //!
@@ -57,19 +63,27 @@
 
 mod answer;
 mod bus;
+mod bus_request;
 mod clock;
+mod connections;
+mod design_pool;
 mod device_json;
 #[doc(hidden)]
 pub mod fuzz;
+mod image;
 mod journal;
+mod limits;
 mod live;
 mod map;
 mod mbap;
 mod pdu;
 mod retain;
+mod scan_time;
 mod state;
 mod state_file;
+mod sync;
 mod table_load;
+mod web_guard;
 mod write;
 
 pub use answer::answer_request;
@@ -77,11 +91,21 @@ pub use bus::{
     BUS_REGISTER_BASE, BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, DRIVE_WORDS,
     DriveView, ENABLE_COIL, FAULT_COIL, HEADER_WORDS,
 };
+pub use bus_request::{BusRequestError, DEFAULT_FAULT_CODE, parse_bus_command};
 pub use clock::{BusTicks, MAX_LAG, Step, next_step, scan_loop, scan_on_bus_ticks, scan_period};
-pub use device_json::{MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets};
+pub use connections::{Activity, Busy as RequestBusy, Caps, Connections, Kind, Registration};
+pub use design_pool::{Busy, DesignPool, Outcome, Ticket};
+pub use device_json::{
+    MAX_DEVICE_NAMES, devices_to_json, parse_device_names, parse_device_sets, parse_json_body,
+};
+pub use image::Image;
 pub use journal::{
     COMPACT_AFTER, COMPACT_AFTER_BYTES, DAMAGED_SUFFIX, JOURNAL_FILE, Journal, JournalError,
     OnDamage, Recovery, SNAPSHOT_FILE,
+};
+pub use limits::{
+    BODY, DEFAULT_DESIGN_DEADLINE, DEFAULT_IDLE, DEFAULT_MAX_CONNECTIONS, DESIGN_QUEUE,
+    DESIGN_WORKERS, LIVE_IDLE, LIVE_SEND, Limits, MAX_BODY_BYTES, MAX_LIVE_VIEWS, PARTIAL,
 };
 pub use live::{DEFAULT_LIVE_RATE, LiveRequest, LiveSample, MAX_LIVE_RATE};
 pub use map::{
@@ -96,7 +120,9 @@ pub use pdu::{
 pub use retain::{
     LatchedImage, Overridden, SAVE_PERIOD, is_kept, overridden, save_latched_periodically,
 };
-pub use state::{Event, ServeInfo, Shared, Stats, WriteError};
+pub use scan_time::ThreadCpuTime;
+pub use state::{Closer, Event, ServeInfo, Shared, Stats, WriteError};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
 pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
+pub use web_guard::{Access, MIN_TOKEN_LEN, Refusal, RequestFacts, TokenError, read_token};
 pub use write::{LineError, Slot, WriteBatch};

@@ -5,7 +5,9 @@
 //! holds and how often one may be asked for.
 
 use ecam_plc::decam::{flags, offsets};
-use ecam_plc::{D_COUNT, Device, Plc};
+use ecam_plc::{D_COUNT, Device};
+
+use crate::image::Image;
 use serde_json::{Value, json};
 
 /// Samples per second when the client names none.
@@ -37,9 +39,12 @@ impl LiveRequest {
     pub fn parse(block: Option<&str>, rate: Option<&str>) -> Result<Self, String> {
         let text = block.ok_or("name the cam's register block: /api/live?block=2000")?;
         let digits = text.trim().trim_start_matches(['D', 'd']);
-        let block: u16 = digits
-            .parse()
-            .map_err(|_| format!("block must be a D register number, not `{text}`"))?;
+        let block: u16 = digits.parse().map_err(|_| {
+            format!(
+                "block must be a D register number, not `{text}`",
+                text = ecam_core::excerpt::excerpt(text)
+            )
+        })?;
         if u32::from(block) + BLOCK_WORDS > u32::from(D_COUNT) {
             return Err(format!(
                 "block D{block} runs past D{}: a DECAM block needs 40 words and its table",
@@ -54,7 +59,10 @@ impl LiveRequest {
                 .ok()
                 .filter(|r| (1..=MAX_LIVE_RATE).contains(r))
                 .ok_or_else(|| {
-                    format!("rate must be 1..={MAX_LIVE_RATE} samples per second, not `{text}`")
+                    format!(
+                        "rate must be 1..={MAX_LIVE_RATE} samples per second, not `{text}`",
+                        text = ecam_core::excerpt::excerpt(text)
+                    )
                 })?,
         };
         Ok(Self { block, rate })
@@ -96,9 +104,10 @@ pub struct LiveSample {
 }
 
 impl LiveSample {
-    /// Reads block `block` of `plc`. Registers that cannot be read (never,
-    /// for a block [`LiveRequest::parse`] accepted) read as 0.
-    pub fn read(plc: &Plc, block: u16) -> Self {
+    /// Reads block `block` of the PLC as clients see it. Registers that
+    /// cannot be read (never, for a block [`LiveRequest::parse`] accepted)
+    /// read as 0.
+    pub fn read(plc: &Image, block: u16) -> Self {
         let d = plc.devices();
         let word = |offset: u16| {
             d.word(block.saturating_add(offset))
@@ -277,8 +286,8 @@ mod tests {
 
     #[test]
     fn a_block_of_an_idle_plc_reads_stopped() {
-        let plc = Plc::new(ecam_plc::Program::parse("", "empty.il").unwrap()).unwrap();
-        let s = LiveSample::read(&plc, 2000);
+        let plc = ecam_plc::Plc::new(ecam_plc::Program::parse("", "empty.il").unwrap()).unwrap();
+        let s = LiveSample::read(&Image::of(&plc), 2000);
         assert!(!s.running);
         assert_eq!(s.to_json(2000, None)["mode"], "stopped");
     }

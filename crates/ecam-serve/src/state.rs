@@ -1,10 +1,12 @@
 //! The PLC shared by the scan loop and the Modbus and HTTP servers.
 //!
-//! One lock guards the PLC (program, device memory, hardware); the scan
-//! loop holds it for one scan period's work, a client request for one read
-//! or one write. Writes go through a second lock, the journal's, which is
-//! taken first and held until the write is applied, so the journal's order
-//! is the order writes reach device memory.
+//! One lock guards the PLC (program, device memory, hardware): the scan
+//! side holds it for a scan period's work. Clients never take it: they
+//! read and write the [`Image`] the scan side publishes after each period,
+//! behind its own lock held for a copy at most, so a request is answered at
+//! once however long the program makes a scan. Writes go through the
+//! journal's lock, which is taken first and held until the write is in the
+//! image, so the journal's order is the order writes reach device memory.
 //!
 //! The library prints nothing: what a server operator should hear about
 //! (a new operation error, a refused write, a failed save) is handed to the
@@ -14,7 +16,7 @@ use std::collections::HashSet;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use ecam_plc::Devices;
 use ecam_plc::Plc;
@@ -22,9 +24,14 @@ use ecam_plc::WriteRefusal;
 use ecam_plc::sim::Timing;
 use serde_json::{Value, json};
 
+use crate::connections::Connections;
+use crate::design_pool::DesignPool;
+use crate::image::Image;
 use crate::journal::{Journal, JournalError};
+use crate::limits::Limits;
 use crate::pdu::{Exception, Response};
 use crate::retain::LatchedImage;
+pub(crate) use crate::sync::lock;
 use crate::write::WriteBatch;
 
 /// How the server was started (for `GET /api/status`).
@@ -40,7 +47,13 @@ pub struct ServeInfo {
     pub http: SocketAddr,
     /// The state directory, if writes are kept.
     pub state_dir: Option<PathBuf>,
+    /// Caps and deadlines of the connections.
+    pub limits: Limits,
 }
+
+/// How the server closes a connection the registry chose to make room
+/// (see [`Connections`]): the listener's own way to end that task.
+pub type Closer = Arc<dyn Fn() + Send + Sync>;
 
 /// Counters the servers and the scan loop update.
 #[derive(Debug, Default)]
@@ -68,6 +81,8 @@ pub struct Stats {
     /// Latched-value saves done (each compares the latched devices with
     /// what is kept and journals the differences, if any).
     pub latched_saves: AtomicU64,
+    /// The fault that stopped the program has been reported.
+    pub fault_reported: AtomicBool,
 }
 
 impl Stats {
@@ -98,6 +113,9 @@ pub enum Event {
     LatchedSaveFailing(JournalError),
     /// Periodic saves of latched values work again after failing.
     LatchedSavesResumed,
+    /// The watchdog stopped the program: `file:line: message (D8061=code,
+    /// M8061=1)`; it stays stopped until the server is restarted.
+    ProgramStopped(String),
 }
 
 /// A client's write that was not made; device memory is as it was.
@@ -166,15 +184,10 @@ impl From<JournalError> for WriteError {
     }
 }
 
-/// Locks `mutex`, carrying on after a panic elsewhere: device memory is
-/// plain data, always in a usable state.
-pub(crate) fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
-    mutex.lock().unwrap_or_else(PoisonError::into_inner)
-}
-
 /// Everything the server threads share.
 pub struct Shared {
     plc: Mutex<Plc>,
+    image: Mutex<Image>,
     journal: Mutex<Option<Journal>>,
     /// How the server was started.
     pub info: ServeInfo,
@@ -183,26 +196,44 @@ pub struct Shared {
     /// The drives on a fieldbus, when the server runs them (`--ethercat`);
     /// set once at start.
     pub bus: std::sync::OnceLock<crate::bus::BusFace>,
+    /// The open connections, within `info.limits`.
+    pub connections: Arc<Connections<Closer>>,
+    /// Where design requests are computed; started by the first one.
+    design: OnceLock<Option<DesignPool>>,
     events: Box<dyn Fn(Event) + Send + Sync>,
 }
 
 impl Shared {
     /// Shares `plc` (with any kept values already restored) and `journal`;
-    /// `events` hears what the operator should (see [`Event`]).
+    /// `events` hears what the operator should (see [`Event`]). From now
+    /// on the watchdog times scans by the scan thread's CPU time
+    /// ([`ThreadCpuTime`](crate::ThreadCpuTime)).
     pub fn new(
-        plc: Plc,
+        mut plc: Plc,
         journal: Option<Journal>,
         info: ServeInfo,
         events: impl Fn(Event) + Send + Sync + 'static,
     ) -> Self {
+        plc.set_scan_timer(Box::new(crate::scan_time::ThreadCpuTime::default()));
         Self {
+            image: Mutex::new(Image::of(&plc)),
             plc: Mutex::new(plc),
             journal: Mutex::new(journal),
+            connections: Arc::new(Connections::new(info.limits.caps())),
             info,
             stats: Stats::default(),
             bus: std::sync::OnceLock::new(),
+            design: OnceLock::new(),
             events: Box::new(events),
         }
+    }
+
+    /// The design requests' pool, started on first use; `None` when its
+    /// threads could not be started (design requests are then refused).
+    pub fn design(&self) -> Option<&DesignPool> {
+        self.design
+            .get_or_init(|| DesignPool::start().ok())
+            .as_ref()
     }
 
     /// Hands `event` to the sink given to [`Self::new`].
@@ -219,44 +250,64 @@ impl Shared {
         appended
     }
 
-    /// Runs `f` with the PLC locked (the scan loop).
+    /// Runs `f` with the PLC locked: the scan side only (the scan loop, a
+    /// fieldbus cycle); it waits while a scan runs. Clients use
+    /// [`Self::read`], [`Self::image`] and [`Self::write`].
     pub fn with_plc<T>(&self, f: impl FnOnce(&mut Plc) -> T) -> T {
         f(&mut lock(&self.plc))
     }
 
-    /// Reads device memory.
+    /// Reads device memory as clients see it (the [`Image`]).
     pub fn read<T>(&self, f: impl FnOnce(&Devices) -> T) -> T {
-        f(lock(&self.plc).devices())
+        f(lock(&self.image).devices())
     }
 
-    /// Checks `batch` against the program's running cams, makes it
-    /// durable (when there is a state directory), then applies it to
-    /// device memory. Once this returns `Ok` the write may be
+    /// Reads the PLC as clients see it.
+    pub fn image<T>(&self, f: impl FnOnce(&Image) -> T) -> T {
+        f(&lock(&self.image))
+    }
+
+    /// The scan side's exchange with the clients around one scan period:
+    /// `f` runs with the PLC locked, after the writes made since the last
+    /// period were handed to it, and the image is published after it.
+    pub(crate) fn exchange<T>(&self, f: impl FnOnce(&mut Plc) -> T) -> T {
+        let mut plc = lock(&self.plc);
+        lock(&self.image).deliver(&mut plc);
+        let out = f(&mut plc);
+        lock(&self.image).publish(&plc);
+        out
+    }
+
+    /// Checks `batch` against the program's running cams (as clients see
+    /// them, in the [`Image`]), makes it durable (when there is a state
+    /// directory), then applies it to device memory as clients see it; the
+    /// PLC takes it at the start of its next scan period. Never waits for a
+    /// scan. Once this returns `Ok` the write may be
     /// acknowledged.
     ///
     /// # Errors
     /// [`WriteError::Refused`] when it would leave a running cam's table
-    /// invalid ([`Plc::check_register_writes`]); [`WriteError::Journal`]
+    /// invalid ([`ecam_plc::check_register_writes`]); [`WriteError::Journal`]
     /// when the journal could not be written. Either way nothing was
     /// applied.
     pub fn write(&self, batch: &WriteBatch) -> Result<(), WriteError> {
         let mut journal = lock(&self.journal);
         let words: Vec<(u16, i16)> = batch.words().collect();
         if !words.is_empty() {
-            lock(&self.plc).check_register_writes(&words)?;
+            lock(&self.image).check_register_writes(&words)?;
         }
         if let Some(journal) = journal.as_mut() {
             self.append(journal, batch)?;
         }
-        batch.apply(lock(&self.plc).devices_mut());
+        lock(&self.image).write(batch.clone());
         Ok(())
     }
 
     /// Saves the latched devices' values that differ from what a restart
     /// would restore, as one journal record (see [`LatchedImage`]); returns
     /// how many were saved. The journal's lock is held throughout, so no
-    /// client write falls between the copy and the record; the PLC's only
-    /// for the copy into `image`.
+    /// client write falls between the copy and the record; the image's
+    /// only for the copy into `image` (the PLC's not at all).
     ///
     /// # Errors
     /// The record could not be written; it is tried again next time.
@@ -265,7 +316,7 @@ impl Shared {
         let Some(journal) = journal.as_mut() else {
             return Ok(0);
         };
-        image.capture(lock(&self.plc).devices());
+        image.capture(lock(&self.image).devices());
         let changes = image.changes(journal.persisted());
         self.append(journal, &changes)?;
         self.stats.latched_saves.fetch_add(1, Ordering::Relaxed);
@@ -274,13 +325,17 @@ impl Shared {
 
     /// The body of `GET /api/status`.
     pub fn status(&self) -> Value {
-        let (scans, now_us, operation_error) = self.with_plc(|plc| {
+        let (scans, now_us, operation_error, fault, scan_times, watchdog) = self.image(|image| {
+            let word = |n: u16| image.devices().word(n).unwrap_or(0);
+            let [current, shortest, longest] = ecam_plc::special::D_SCAN_TIME.map(word);
             (
-                plc.scans(),
-                plc.now_us(),
-                plc.devices()
-                    .word(ecam_plc::special::D_OPERATION_ERROR)
-                    .unwrap_or(0),
+                image.scans(),
+                image.now_us(),
+                word(ecam_plc::special::D_OPERATION_ERROR),
+                image.fault().map(str::to_string),
+                json!({"last_ms": f64::from(current) / 10.0, "min_ms": f64::from(shortest) / 10.0,
+                       "max_ms": f64::from(longest) / 10.0}),
+                ecam_plc::watchdog::limit_us(word(ecam_plc::special::D_WATCHDOG)) / 1000,
             )
         });
         let (kept, records, read_only) = lock(&self.journal).as_ref().map_or((0, 0, None), |j| {
@@ -304,6 +359,12 @@ impl Shared {
             "operation_errors": load(&s.operation_errors),
             "last_operation_error": *lock(&s.last_operation_error),
             "D8067": operation_error,
+            "plc": {
+                "state": if fault.is_some() { "stopped" } else { "run" },
+                "fault": fault,
+                "watchdog_ms": watchdog,
+                "scan_time": scan_times,
+            },
             "modbus": {
                 "address": self.info.modbus.to_string(),
                 "connections": load(&s.modbus_connections),
@@ -312,6 +373,9 @@ impl Shared {
                 "closed_malformed": load(&s.modbus_garbage),
             },
             "http": self.info.http.to_string(),
+            "connections": self.connections.json(),
+            "design": self.design.get().and_then(Option::as_ref).map(DesignPool::json),
+            "limits": self.info.limits.json(),
             "ethercat": self.bus.get().map(|b| {
                 let s = b.snapshot();
                 json!({"state": s.state, "drives": s.drives.len(), "cycles": s.cycles})

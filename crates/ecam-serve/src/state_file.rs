@@ -66,6 +66,14 @@ pub enum Damage {
     },
     /// A record (or, in an old-format file, a line) that cannot be read.
     Unreadable(LineError),
+    /// The journal's last line, without its newline, holds what no record
+    /// has (a NUL, another control character, bytes that are not UTF-8):
+    /// not a write cut short by a crash but a file zeroed or overwritten,
+    /// whose records are lost.
+    NotText {
+        /// Bytes in that line (invalid UTF-8 counted as read).
+        bytes: usize,
+    },
 }
 
 impl fmt::Display for Damage {
@@ -94,6 +102,11 @@ impl fmt::Display for Damage {
                 "record {found} where {expected} was due: a record removed or moved"
             ),
             Self::Unreadable(err) => write!(f, "unreadable record: {err}"),
+            Self::NotText { bytes } => write!(
+                f,
+                "{bytes} bytes that are not text at the end of the file (NULs or other \
+                 control characters): it was zeroed or overwritten, not cut short by a crash"
+            ),
         }
     }
 }
@@ -125,6 +138,9 @@ impl fmt::Display for Dropped {
         match (self.records, &self.damage) {
             (0, Damage::Missing | Damage::Empty) => f.write_str("whatever it held is lost"),
             (0, Damage::CutShort | Damage::NoEndMarker) => f.write_str("whatever followed is lost"),
+            (0, Damage::NotText { .. }) => {
+                f.write_str("the records before it are kept; whatever it held is lost")
+            }
             (0, _) => f.write_str("the records that check out are kept"),
             (1, _) => f.write_str("1 record dropped"),
             (n, _) => write!(f, "{n} records dropped (this one and all after it)"),
@@ -389,8 +405,10 @@ pub(crate) struct JournalRead {
 }
 
 /// Replays a journal's `text` (from `path`) into `replay`. A last line
-/// without its newline was never acknowledged and is dropped; recovering,
-/// the first damaged record and every later one are dropped, so what is
+/// without its newline was never acknowledged and is dropped when it is
+/// the beginning of a record, printable text; anything else there (the
+/// zeroes of a file whose blocks were lost) is damage. Recovering, the
+/// first damaged record and every later one are dropped, so what is
 /// restored is a state the server really was in.
 pub(crate) fn read_journal(
     text: &str,
@@ -416,7 +434,12 @@ pub(crate) fn read_journal(
     let mut expected = 1;
     for (k, piece) in pieces.iter().enumerate() {
         let Some(line) = piece.strip_suffix('\n') else {
-            read.torn = true;
+            if piece.chars().all(|c| c == ' ' || c.is_ascii_graphic()) {
+                read.torn = true;
+            } else {
+                let damage = Damage::NotText { bytes: piece.len() };
+                replay.damage(path, k + 1, damage, 0)?;
+            }
             break;
         };
         let damage = match format {
@@ -576,6 +599,41 @@ mod tests {
                 !journal[..cut].ends_with('\n') && cut > 0
             );
         }
+    }
+
+    #[test]
+    fn a_zeroed_journal_or_a_zeroed_tail_is_damage_not_a_torn_record() {
+        let journal = journal();
+        let zeroed = vec![0u8; journal.len()];
+        let mut tail = journal.as_bytes()[..lines(&journal)[0].len()].to_vec();
+        tail.extend_from_slice(&[0u8; 4096]);
+        let mut junk = journal.as_bytes().to_vec();
+        junk.extend_from_slice(&[0x40, 0x31, 0xFF, 0xFE]);
+        for (bytes, line) in [(zeroed, 1), (tail, 2), (junk, 4)] {
+            match open(snapshot().as_bytes(), &bytes, OnDamage::Refuse) {
+                Err(JournalError::Corrupt {
+                    line: at,
+                    damage: Damage::NotText { .. },
+                    ..
+                }) => assert_eq!(at, line),
+                other => panic!("not refused: {other:?}"),
+            }
+            let (values, recovery) =
+                open(snapshot().as_bytes(), &bytes, OnDamage::Recover).unwrap();
+            assert_eq!(values, state_after(line - 1));
+            assert!(!recovery.torn_tail);
+            assert_eq!(recovery.dropped.len(), 1);
+            let said = recovery.dropped[0].to_string();
+            assert!(said.contains(&format!("journal.log:{line}: ")), "{said}");
+            assert!(said.contains("zeroed or overwritten"), "{said}");
+            assert_eq!(recovery.set_aside.len(), 1, "kept as journal.log.damaged");
+        }
+        // A torn tail of text is still an unacknowledged write.
+        let mut torn = journal.into_bytes();
+        torn.extend_from_slice(b"@4 0123");
+        let (values, recovery) = open(snapshot().as_bytes(), &torn, OnDamage::Refuse).unwrap();
+        assert_eq!(values, state_after(3));
+        assert!(recovery.torn_tail);
     }
 
     #[test]

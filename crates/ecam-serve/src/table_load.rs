@@ -49,8 +49,7 @@ pub struct TableLoad {
 /// A message naming what is wrong: not JSON, no `block` D register, no
 /// `points`, a table the core refuses, or the DECAM checks (6782, 6783).
 pub fn parse_table_load(body: &[u8]) -> Result<TableLoad, String> {
-    let value: Value =
-        serde_json::from_slice(body).map_err(|e| format!("the body is not JSON: {e}"))?;
+    let value = crate::device_json::parse_json_body(body)?;
     let block =
         match value.get("block") {
             Some(Value::Number(n)) => n
@@ -195,7 +194,7 @@ impl Shared {
     pub fn load_table(&self, load: &TableLoad) -> Result<TableSwitch, TableLoadError> {
         // 2..=512 points: parse_table_load checked.
         let points = u16::try_from(load.points).unwrap_or(u16::MAX);
-        let running = self.with_plc(|plc| {
+        let running = self.image(|plc| {
             plc.check_table_load(load.block, points)
                 .map(|()| plc.cam_running(load.block))
         });
@@ -238,6 +237,7 @@ mod tests {
             modbus: addr,
             http: addr,
             state_dir: None,
+            limits: Default::default(),
         };
         Shared::new(plc, None, info, |_| {})
     }

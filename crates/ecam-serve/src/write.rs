@@ -192,28 +192,46 @@ impl WriteBatch {
         let mut batch = Self::new();
         for run in line.split(';') {
             let mut fields = run.split_whitespace();
-            let name = fields
-                .next()
-                .ok_or_else(|| LineError(format!("empty run in `{line}`")))?;
-            let mut slot = Device::parse(name)
-                .ok()
-                .and_then(Slot::of)
-                .ok_or_else(|| LineError(format!("`{name}` is not a D, M, X or C device")))?;
+            let name = fields.next().ok_or_else(|| {
+                LineError(format!(
+                    "empty run in `{line}`",
+                    line = ecam_core::excerpt::excerpt(line)
+                ))
+            })?;
+            let mut slot = Device::parse(name).ok().and_then(Slot::of).ok_or_else(|| {
+                LineError(format!(
+                    "`{name}` is not a D, M, X or C device",
+                    name = ecam_core::excerpt::excerpt(name)
+                ))
+            })?;
             let mut values = fields.peekable();
             if values.peek().is_none() {
-                return Err(LineError(format!("`{name}` has no value")));
+                return Err(LineError(format!(
+                    "`{name}` has no value",
+                    name = ecam_core::excerpt::excerpt(name)
+                )));
             }
             while let Some(text) = values.next() {
-                let value: i64 = text
-                    .parse()
-                    .map_err(|_| LineError(format!("`{text}` is not a number")))?;
+                let value: i64 = text.parse().map_err(|_| {
+                    LineError(format!(
+                        "`{text}` is not a number",
+                        text = ecam_core::excerpt::excerpt(text)
+                    ))
+                })?;
                 let value = slot.holds(value).ok_or_else(|| {
-                    LineError(format!("`{text}` is not a value for {}", slot.device()))
+                    LineError(format!(
+                        "`{text}` is not a value for {}",
+                        slot.device(),
+                        text = ecam_core::excerpt::excerpt(text)
+                    ))
                 })?;
                 batch.writes.push((slot, value));
                 if values.peek().is_some() {
                     slot = slot.next().ok_or_else(|| {
-                        LineError(format!("the run at `{name}` goes past the device's end"))
+                        LineError(format!(
+                            "the run at `{name}` goes past the device's end",
+                            name = ecam_core::excerpt::excerpt(name)
+                        ))
                     })?;
                 }
             }

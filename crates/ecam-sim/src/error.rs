@@ -176,7 +176,8 @@ impl fmt::Display for ScenarioError {
                 write!(f, "cannot read scenario {}: {source}", path.display())
             }
             Self::In { path, error } => write!(f, "in scenario {}: {error}", path.display()),
-            Self::Toml(e) => write!(f, "{e}"),
+            // TOML quotes the input (a whole line): cut it, in plain words.
+            Self::Toml(e) => f.write_str(&ecam_core::io::plain_serde_message(&e.to_string())),
             Self::Table { place, error } => write!(f, "in {place}: {error}"),
             Self::Seconds { what, seconds } => write!(
                 f,

@@ -316,10 +316,14 @@ impl Scenario {
             return Err(at_least_one("trace_every", " (1 writes every tick)"));
         }
         unused_keys(&raw.cam, &raw.start)?;
+        // One run, one budget: its tables' generators and its ticks.
+        let mut budget = ecam_core::budget::Budget::per_run();
         let curve =
-            ecam_design::load_table(&raw.table, base).map_err(|error| ScenarioError::Table {
-                place: "[table]".to_string(),
-                error: Box::new(error),
+            ecam_design::load_table_within(&raw.table, base, &mut budget).map_err(|error| {
+                ScenarioError::Table {
+                    place: "[table]".to_string(),
+                    error: Box::new(error),
+                }
             })?;
         let moves = raw
             .master
@@ -353,7 +357,7 @@ impl Scenario {
         }
         let ticks = duration_us.div_ceil(u64::from(raw.tick_us.max(1)));
         let limit = ecam_core::limits::MAX_SIMULATED_TICKS;
-        if ticks > limit {
+        if ticks > limit || budget.cycles(ticks).is_err() {
             return Err(ScenarioError::TooManyTicks {
                 ticks,
                 tick_us: raw.tick_us,
@@ -386,40 +390,39 @@ impl Scenario {
                 })
             })
             .transpose()?;
-        let switches = raw
-            .switch
-            .iter()
-            .enumerate()
-            .map(|(i, s)| -> Result<TableSwitch, ScenarioError> {
-                let what = format!("[[switch]] {}", i + 1);
-                let trigger = trigger(s.at_s, s.master_at_least, s.master_at_most, &what)?;
-                let curve = ecam_design::load_table(&s.table, base).map_err(|error| {
-                    ScenarioError::Table {
-                        place: format!("{what} table"),
-                        error: Box::new(error),
-                    }
-                })?;
-                let blend = match s.blend {
-                    Some(b) => Some(
-                        NonZeroU64::new(b)
-                            .ok_or_else(|| at_least_one(&format!("{what} blend"), " count"))?,
-                    ),
-                    None => None,
-                };
-                let at = match (s.mode, s.position) {
-                    (RawSwitchMode::Seam, None) => SwitchAt::NextSeam { blend },
-                    (RawSwitchMode::Now, None) => SwitchAt::Now { blend },
-                    (RawSwitchMode::Position, Some(position)) => {
-                        SwitchAt::MasterPosition { position, blend }
-                    }
-                    (RawSwitchMode::Position, None) => {
-                        return Err(ScenarioError::SwitchPositionMissing { what });
-                    }
-                    (_, Some(_)) => return Err(ScenarioError::SwitchPositionUnused { what }),
-                };
-                Ok(TableSwitch { trigger, at, curve })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let switches =
+            raw.switch
+                .iter()
+                .enumerate()
+                .map(|(i, s)| -> Result<TableSwitch, ScenarioError> {
+                    let what = format!("[[switch]] {}", i + 1);
+                    let trigger = trigger(s.at_s, s.master_at_least, s.master_at_most, &what)?;
+                    let curve = ecam_design::load_table_within(&s.table, base, &mut budget)
+                        .map_err(|error| ScenarioError::Table {
+                            place: format!("{what} table"),
+                            error: Box::new(error),
+                        })?;
+                    let blend = match s.blend {
+                        Some(b) => Some(
+                            NonZeroU64::new(b)
+                                .ok_or_else(|| at_least_one(&format!("{what} blend"), " count"))?,
+                        ),
+                        None => None,
+                    };
+                    let at = match (s.mode, s.position) {
+                        (RawSwitchMode::Seam, None) => SwitchAt::NextSeam { blend },
+                        (RawSwitchMode::Now, None) => SwitchAt::Now { blend },
+                        (RawSwitchMode::Position, Some(position)) => {
+                            SwitchAt::MasterPosition { position, blend }
+                        }
+                        (RawSwitchMode::Position, None) => {
+                            return Err(ScenarioError::SwitchPositionMissing { what });
+                        }
+                        (_, Some(_)) => return Err(ScenarioError::SwitchPositionUnused { what }),
+                    };
+                    Ok(TableSwitch { trigger, at, curve })
+                })
+                .collect::<Result<Vec<_>, _>>()?;
         if raw.sync.len() > 4 {
             return Err(ScenarioError::TooManySyncWindows {
                 got: raw.sync.len(),

@@ -128,14 +128,14 @@ fn run_line(args: RunArgs) -> anyhow::Result<()> {
         });
     }
     let timing = config.timing();
-    let segment = Segment::bring_up(transport, timing.segment())?;
+    let segment = Segment::bring_up_with(transport, timing.segment(), config.setups())?;
     println!(
         "segment: {} drives in OP, SYNC0 every {} µs",
         segment.len(),
         config.cycle_us
     );
     for (position, info) in segment.drive_info().iter().enumerate() {
-        println!("  drive {position}: {}", info.name);
+        println!("  drive {position}: {info}");
     }
     let drives = segment.len();
     let mut line = CamLine::new(segment, axes, timing.max_lost_cycles(), timing.stop())?;

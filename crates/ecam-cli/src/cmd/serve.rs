@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use anyhow::{Context as _, bail};
+use anyhow::Context as _;
 use ecam_plc::Plc;
 use ecam_plc::Wire;
 use ecam_plc::sim::{self, Timing};
@@ -20,7 +20,6 @@ use ecam_serve::{
 };
 use tokio::net::TcpListener;
 
-use crate::serve::limits::ConnectionLimits;
 use crate::serve::{ethercat, http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
@@ -70,17 +69,22 @@ pub struct Args {
     /// Wire a pulse output to a counter input, e.g. Y1:X0.
     #[arg(long = "wire", value_name = "Yn:Xm")]
     pub wires: Vec<String>,
-    /// Most connections each listener (Modbus, HTTP) keeps at once; at the
-    /// cap the newest is refused and the others go on.
+    /// Most connections each listener (Modbus, HTTP with its live views)
+    /// keeps at once; at the cap the idlest makes room for the newcomer.
     #[arg(long, value_name = "N", default_value_t = 64,
           value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub max_connections: u32,
     /// Seconds a Modbus connection may stay without a request before it is
-    /// closed; also the longest wait for the rest of a half-sent Modbus
-    /// frame or HTTP header (at most 10 s).
+    /// closed; also caps every other client deadline (the rest of a
+    /// half-sent request, a request body, a live view's answer to pings).
     #[arg(long, value_name = "S", default_value_t = 60,
           value_parser = clap::value_parser!(u32).range(1..=86_400))]
     pub idle_timeout: u32,
+    /// Seconds a design request (table generators, laws, key points) may
+    /// compute before it is answered 503 and its work stopped.
+    #[arg(long, value_name = "S", default_value_t = 30,
+          value_parser = clap::value_parser!(u32).range(1..=3600))]
+    pub design_timeout: u32,
     /// Another name the HTTP face answers to (the `Host` header), e.g. the
     /// machine's name when it listens beyond loopback; repeatable. The bound
     /// address, localhost and 127.0.0.1 are always accepted.
@@ -152,18 +156,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     };
     let token = match &args.token_file {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("--token-file {}", path.display()))?;
-            let token = text.trim().to_string();
-            if token.len() < 16 {
-                bail!(
-                    "--token-file {}: the token must be at least 16 characters",
-                    path.display()
-                );
-            }
-            Some(token)
-        }
+        Some(path) => Some(
+            ecam_serve::read_token(path)
+                .with_context(|| format!("--token-file {}", path.display()))?,
+        ),
         None => None,
     };
     let timing = Timing {
@@ -192,6 +188,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             modbus: modbus_listener.local_addr()?,
             http: http_listener.local_addr()?,
             state_dir: args.state.clone(),
+            limits: ecam_serve::Limits::new(
+                args.max_connections as usize,
+                Duration::from_secs(u64::from(args.idle_timeout)),
+                Duration::from_secs(u64::from(args.design_timeout)),
+            ),
         };
         {
             let mut stdout = std::io::stdout().lock();
@@ -233,18 +234,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
             None => None,
         };
-        let access = http::Access::new(shared.info.http, &args.http_names, token.clone());
-        let idle = Duration::from_secs(u64::from(args.idle_timeout));
-        let limits = || {
-            ConnectionLimits::new(
-                args.max_connections as usize,
-                idle,
-                idle.min(Duration::from_secs(10)),
-            )
-        };
+        let access = ecam_serve::Access::new(shared.info.http, &args.http_names, token.clone());
+        let router = http::router(Arc::clone(&shared), access);
         let served: anyhow::Result<()> = tokio::select! {
-            () = modbus::serve(modbus_listener, Arc::clone(&shared), limits()) => Ok(()),
-            () = http::serve(http_listener, http::router(Arc::clone(&shared), access), limits()) => Ok(()),
+            () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),
+            () = http::serve(http_listener, router, Arc::clone(&shared)) => Ok(()),
             () = crate::signals::shutdown_signal() => Ok(()),
         };
         stop.store(true, Ordering::Relaxed);
@@ -264,7 +258,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             // The scan loop has stopped: this image is the PLC's last state.
             match shared.save_latched(&mut LatchedImage::new()) {
                 Ok(saved) => tracing::info!(target: LOG, "stopped; {saved} latched values saved"),
-                Err(err) => tracing::error!(target: LOG, "stopped; cannot save latched values: {err}"),
+                Err(err) => {
+                    tracing::error!(target: LOG, "stopped; cannot save latched values: {err}")
+                }
             }
         }
         served
@@ -297,6 +293,7 @@ fn report(event: Event) {
         Event::LatchedSavesResumed => {
             tracing::info!(target: "ecam::journal", "latched values saved again")
         }
+        Event::ProgramStopped(text) => tracing::error!(target: "ecam::plc", "{text}"),
     }
 }
 

@@ -76,7 +76,7 @@ pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> anyhow::Res
         crate::cmd::ethercat::transport(emulated, config.interface.as_deref(), path)?;
     let transport_name = transport.describe();
     let timing = config.timing();
-    let segment = Segment::bring_up(transport, timing.segment())?;
+    let segment = Segment::bring_up_with(transport, timing.segment(), config.setups())?;
     let line = FollowLine::new(segment, followers, timing.max_lost_cycles(), timing.stop())
         .context(file)?;
     tracing::info!(

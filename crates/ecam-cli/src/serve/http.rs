@@ -35,27 +35,33 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use axum::Router;
-use axum::body::Bytes;
+use axum::body::{Body, Bytes};
 use axum::extract::Request;
 use axum::extract::{Path, Query, State};
-use axum::http::{StatusCode, header};
+use axum::http::{HeaderValue, StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
-use ecam_serve::{BusCommand, Shared, devices_to_json, parse_device_names, parse_device_sets};
+use ecam_core::budget::Budget;
+use ecam_serve::{
+    Access, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
+    parse_bus_command, parse_device_names, parse_device_sets, parse_json_body,
+};
 use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tower::Service as _;
 
 use super::assets::{ASSETS, Asset, INDEX};
-use super::limits::ConnectionLimits;
+use super::conn::Conn;
+use super::reply::{error, json_text, json_value};
 
-/// Serves `router` on `listener` for ever, within `limits`: at most so many
-/// connections (the newest refused at the cap), request headers complete
-/// within `limits.partial`, an idle connection closed after `limits.idle`.
-/// (`axum::serve` offers neither a cap nor a header deadline.)
-pub async fn serve(listener: TcpListener, router: Router, limits: ConnectionLimits) {
+/// Serves `router` on `listener` for ever, within the server's limits: at
+/// the HTTP cap the idlest connection makes room, request headers must be
+/// complete within `partial` (so an idle keep-alive connection closes
+/// then), bodies within `body` ([`body_within`]). (`axum::serve` offers
+/// neither a cap nor these deadlines.)
+pub async fn serve(listener: TcpListener, router: Router, shared: Arc<Shared>) {
     loop {
         let stream = match listener.accept().await {
             Ok((stream, _)) => stream,
@@ -66,125 +72,98 @@ pub async fn serve(listener: TcpListener, router: Router, limits: ConnectionLimi
                 continue;
             }
         };
-        let Some(slot) = limits.admit() else {
-            drop(stream);
-            continue;
-        };
+        let conn = Conn::admit(&shared, Kind::Http);
         let router = router.clone();
-        let limits = limits.clone();
+        let partial = shared.info.limits.partial;
         tokio::spawn(async move {
+            let requests = conn.clone();
             let service = hyper::service::service_fn(
-                move |request: hyper::Request<hyper::body::Incoming>| {
-                    router.clone().call(request.map(axum::body::Body::new))
+                move |mut request: hyper::Request<hyper::body::Incoming>| {
+                    requests.touch();
+                    // For the body deadline and the live view's upgrade.
+                    request.extensions_mut().insert(requests.clone());
+                    router.clone().call(request.map(Body::new))
                 },
             );
             let connection = hyper::server::conn::http1::Builder::new()
                 .timer(TokioTimer::new())
-                .header_read_timeout(limits.partial)
+                .header_read_timeout(partial)
                 .serve_connection(TokioIo::new(stream), service)
                 // The live view's WebSocket (`/api/live`).
                 .with_upgrades();
             // Errors only mean the client went away (or was sent away).
-            let _ = connection.await;
-            drop(slot);
+            tokio::select! {
+                _ = connection => {}
+                () = conn.closed() => {}
+            }
         });
     }
 }
 
-/// Who may talk to the HTTP face: the threat model is a page in the
-/// operator's browser (or a rebinding DNS name) sending requests to a
-/// server on the operator's machine (docs/modbus.md, "Web safety").
-#[derive(Clone, Debug)]
-pub struct Access {
-    /// `Host` header values accepted (`name` or `name:port`).
-    hosts: Vec<String>,
-    /// A token writes must present as `Authorization: Bearer TOKEN`.
-    token: Option<String>,
+/// Reads a request's body within the body deadline and size limit (408 or
+/// 413, and the connection closed, otherwise), then lets the route work on
+/// it with the connection marked busy (it goes last when room is made).
+async fn body_within(State(shared): State<Arc<Shared>>, request: Request, next: Next) -> Response {
+    let deadline = shared.info.limits.body;
+    let (parts, body) = request.into_parts();
+    let declared = parts
+        .headers
+        .get(header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok()?.parse::<u64>().ok());
+    let too_large = || {
+        let message = format!("the request body is over {MAX_BODY_BYTES} bytes (or was cut short)");
+        closing(error(StatusCode::PAYLOAD_TOO_LARGE, &message))
+    };
+    if declared.is_some_and(|n| n > MAX_BODY_BYTES as u64) {
+        return too_large();
+    }
+    let bytes =
+        match tokio::time::timeout(deadline, axum::body::to_bytes(body, MAX_BODY_BYTES)).await {
+            Ok(Ok(bytes)) => bytes,
+            Ok(Err(_)) => return too_large(),
+            Err(_) => {
+                let message = format!(
+                    "the request body did not arrive within {} s of its headers",
+                    deadline.as_secs_f64()
+                );
+                return closing(error(StatusCode::REQUEST_TIMEOUT, &message));
+            }
+        };
+    let _busy = parts
+        .extensions
+        .get::<Conn>()
+        .map(|conn| conn.registration.activity().busy());
+    next.run(Request::from_parts(parts, Body::from(bytes)))
+        .await
 }
 
-impl Access {
-    /// Accepts the bound address, `localhost` and `127.0.0.1` at its port,
-    /// and `names` (as given, or with the port); writes need `token` when
-    /// one is given.
-    pub fn new(bound: std::net::SocketAddr, names: &[String], token: Option<String>) -> Self {
-        let port = bound.port();
-        let mut hosts = vec![
-            bound.to_string(),
-            format!("localhost:{port}"),
-            format!("127.0.0.1:{port}"),
-            format!("[::1]:{port}"),
-        ];
-        for name in names {
-            hosts.push(name.clone());
-            hosts.push(format!("{name}:{port}"));
-        }
-        Self { hosts, token }
-    }
-
-    fn host_allowed(&self, host: &str) -> bool {
-        self.hosts.iter().any(|h| h.eq_ignore_ascii_case(host))
-    }
+/// `response`, after which the connection is closed (its request body was
+/// not read to the end).
+fn closing(mut response: Response) -> Response {
+    let headers = response.headers_mut();
+    headers.insert(header::CONNECTION, HeaderValue::from_static("close"));
+    response
 }
 
-/// Refuses requests for another host (DNS rebinding), from a foreign page
-/// (`Origin`), writes that are not JSON (a cross-site form or `text/plain`
-/// post), and writes without the token when one is set.
+/// Refuses what [`Access::check`] refuses (foreign hosts and pages,
+/// writes that are not JSON or lack the token; docs/modbus.md, "Web
+/// safety").
 async fn guard(State(access): State<Arc<Access>>, request: Request, next: Next) -> Response {
     let headers = request.headers();
-    let host = headers
-        .get(header::HOST)
-        .and_then(|h| h.to_str().ok())
-        .unwrap_or("");
-    if !access.host_allowed(host) {
-        return error(
-            StatusCode::MISDIRECTED_REQUEST,
-            &format!("Host `{host}` is not this server; name it with --http-name"),
-        );
-    }
-    if let Some(origin) = headers.get(header::ORIGIN) {
-        let origin = origin.to_str().unwrap_or("");
-        let own = origin
-            .strip_prefix("http://")
-            .or_else(|| origin.strip_prefix("https://"))
-            .is_some_and(|o| access.host_allowed(o));
-        if !own {
-            return error(
-                StatusCode::FORBIDDEN,
-                &format!("requests from pages of `{origin}` are refused"),
-            );
-        }
-    }
-    let reads = matches!(
-        *request.method(),
-        axum::http::Method::GET | axum::http::Method::HEAD
-    );
-    if !reads {
-        let json = headers
-            .get(header::CONTENT_TYPE)
-            .and_then(|c| c.to_str().ok())
-            .is_some_and(|c| {
-                c.trim()
-                    .to_ascii_lowercase()
-                    .starts_with("application/json")
-            });
-        if !json {
-            return error(
-                StatusCode::UNSUPPORTED_MEDIA_TYPE,
-                "writes need Content-Type: application/json",
-            );
-        }
-        if let Some(token) = &access.token {
-            let given = headers
-                .get(header::AUTHORIZATION)
-                .and_then(|a| a.to_str().ok())
-                .and_then(|a| a.strip_prefix("Bearer "));
-            if given != Some(token.as_str()) {
-                return error(
-                    StatusCode::UNAUTHORIZED,
-                    "writes need the token: Authorization: Bearer TOKEN (see --token-file)",
-                );
-            }
-        }
+    let text = |name| headers.get(name).map(|v| v.to_str().unwrap_or(""));
+    let facts = RequestFacts {
+        read: matches!(
+            *request.method(),
+            axum::http::Method::GET | axum::http::Method::HEAD
+        ),
+        host: text(header::HOST).unwrap_or(""),
+        origin: text(header::ORIGIN),
+        content_type: text(header::CONTENT_TYPE),
+        authorization: text(header::AUTHORIZATION),
+    };
+    if let Err(refusal) = access.check(&facts) {
+        let status = StatusCode::from_u16(refusal.status).unwrap_or(StatusCode::FORBIDDEN);
+        return error(status, &refusal.message);
     }
     next.run(request).await
 }
@@ -209,25 +188,25 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         )
         .route("/api/table/gen", post(table_gen))
         .route("/api/keypoints", post(key_points))
-        .route(
-            "/api/segments/continuous",
-            post(|b: Bytes| design(b, ecam_design::segments_continuous_json)),
-        )
-        .route(
-            "/api/drive/check",
-            post(|b: Bytes| design(b, ecam_design::drive_check_json)),
-        )
+        .route("/api/segments/continuous", post(segments_continuous))
+        .route("/api/drive/check", post(drive_check))
         .route(
             "/api/table/check",
-            post(|b: Bytes| design(b, ecam_design::table_check_json)),
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_check_json)
+            }),
         )
         .route(
             "/api/table/read",
-            post(|b: Bytes| design(b, ecam_design::table_read_json)),
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_read_json)
+            }),
         )
         .route(
             "/api/table/convert",
-            post(|b: Bytes| design(b, ecam_design::table_convert_json)),
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_convert_json)
+            }),
         )
         .route(
             "/api/limits",
@@ -239,25 +218,16 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/ethercat", get(ethercat_status))
         .route("/api/ethercat/{command}", post(ethercat_command))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such route; see GET /api/status") })
+        .layer(middleware::from_fn_with_state(
+            Arc::clone(&shared),
+            body_within,
+        ))
         .with_state(shared)
         .layer(middleware::from_fn_with_state(Arc::new(access), guard))
 }
 
 fn asset(file: Asset) -> Response {
     ([(header::CONTENT_TYPE, file.content_type)], file.body).into_response()
-}
-
-fn json_text(status: StatusCode, body: String) -> Response {
-    (status, [(header::CONTENT_TYPE, "application/json")], body).into_response()
-}
-
-fn json_value(status: StatusCode, value: &Value) -> Response {
-    json_text(status, value.to_string())
-}
-
-/// `{"error": message}` with `status`.
-pub(super) fn error(status: StatusCode, message: &str) -> Response {
-    json_value(status, &json!({ "error": message }))
 }
 
 async fn status(State(shared): State<Arc<Shared>>) -> Response {
@@ -289,47 +259,14 @@ async fn ethercat_command(
     let Some(bus) = shared.bus.get() else {
         return no_bus();
     };
-    let body: Value = match serde_json::from_slice(&body) {
+    let body = match parse_json_body(&body) {
         Ok(value) => value,
-        Err(e) => {
-            return error(
-                StatusCode::BAD_REQUEST,
-                &format!("the body is not JSON: {e}"),
-            );
-        }
+        Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
-    let command = match command.as_str() {
-        "enable" => BusCommand::Enable,
-        "disable" => BusCommand::Disable,
-        "reset" => BusCommand::Reset,
-        "fault" => {
-            if !bus.snapshot().transport.starts_with("emulated") {
-                return error(
-                    StatusCode::CONFLICT,
-                    "faults can only be injected into emulated drives (--emulated N)",
-                );
-            }
-            let drive = body.get("drive").and_then(Value::as_u64);
-            let code = body.get("code").and_then(Value::as_u64).unwrap_or(0x7500);
-            match (
-                drive.and_then(|d| usize::try_from(d).ok()),
-                u16::try_from(code),
-            ) {
-                (Some(drive), Ok(code)) => BusCommand::EmulateFault { drive, code },
-                _ => {
-                    return error(
-                        StatusCode::BAD_REQUEST,
-                        "give {\"drive\": N} and optionally {\"code\": 0..65535}",
-                    );
-                }
-            }
-        }
-        other => {
-            return error(
-                StatusCode::NOT_FOUND,
-                &format!("no command `{other}`: enable, disable, reset or fault"),
-            );
-        }
+    let transport = bus.snapshot().transport;
+    let command = match parse_bus_command(&command, &body, &transport) {
+        Ok(command) => command,
+        Err(e) => return refused(e.http_status(), &e.to_string(), None),
     };
     match bus.command(command) {
         Ok(()) => json_value(StatusCode::ACCEPTED, &json!({ "queued": command })),
@@ -381,15 +318,19 @@ fn refused(status: u16, message: &str, code: Option<u16>) -> Response {
     json_value(status, &body)
 }
 
-async fn law(Path(name): Path<String>, Query(query): Query<HashMap<String, String>>) -> Response {
+async fn law(
+    State(shared): State<Arc<Shared>>,
+    Path(name): Path<String>,
+    Query(query): Query<HashMap<String, String>>,
+) -> Response {
     let points = match query.get("points") {
         None => Ok(ecam_design::DEFAULT_LAW_POINTS),
-        Some(text) => text
-            .trim()
-            .parse::<usize>()
-            .map_err(|_| format!("points must be a whole number, not `{text}`")),
+        Some(text) => text.trim().parse::<usize>().map_err(|_| {
+            let text = ecam_core::excerpt::excerpt(text);
+            format!("points must be a whole number, not `{text}`")
+        }),
     };
-    off_the_network_threads(move || {
+    design(&shared, move |_| {
         match points.and_then(|points| ecam_design::law_curves_json(&name, points)) {
             Ok(value) => json_value(StatusCode::OK, &value),
             Err(message) => error(StatusCode::BAD_REQUEST, &message),
@@ -416,17 +357,44 @@ async fn table_load(State(shared): State<Arc<Shared>>, body: Bytes) -> Response 
     }
 }
 
-async fn table_gen(body: Bytes) -> Response {
-    off_the_network_threads(move || json_call(&body, ecam_design::generate_json)).await
+async fn table_gen(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    design(&shared, move |budget| {
+        json_call(&body, |value| {
+            ecam_design::generate_json_within(value, budget)
+        })
+    })
+    .await
 }
 
-async fn key_points(body: Bytes) -> Response {
-    design(body, ecam_design::key_points_json).await
+async fn key_points(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    design(&shared, move |_| {
+        json_call(&body, ecam_design::key_points_json)
+    })
+    .await
 }
 
-/// A design endpoint: `answer(body)` off the network threads.
-async fn design(body: Bytes, answer: fn(&Value) -> Result<Value, String>) -> Response {
-    off_the_network_threads(move || json_call(&body, answer)).await
+async fn segments_continuous(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    design(&shared, move |_| {
+        json_call(&body, ecam_design::segments_continuous_json)
+    })
+    .await
+}
+
+async fn drive_check(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    design(&shared, move |_| {
+        json_call(&body, ecam_design::drive_check_json)
+    })
+    .await
+}
+
+/// The designer's table facts (check, read, convert): in the design pool
+/// like every design request.
+async fn table_fact(
+    State(shared): State<Arc<Shared>>,
+    body: Bytes,
+    answer: fn(&Value) -> Result<Value, String>,
+) -> Response {
+    design(&shared, move |_| json_call(&body, answer)).await
 }
 
 async fn block(Query(query): Query<HashMap<String, String>>) -> Response {
@@ -437,30 +405,51 @@ async fn block(Query(query): Query<HashMap<String, String>>) -> Response {
     }
 }
 
-/// Longest a design request may compute before it is answered with 503.
-const DESIGN_DEADLINE: std::time::Duration = std::time::Duration::from_secs(30);
-
-/// Runs CPU-bound work on the blocking pool, so that the async workers
-/// (Modbus clients, other HTTP requests) are never held up by it; gives up
-/// waiting after [`DESIGN_DEADLINE`] (the work itself is bounded by
-/// `ecam_core::limits`).
-async fn off_the_network_threads(work: impl FnOnce() -> Response + Send + 'static) -> Response {
-    match tokio::time::timeout(DESIGN_DEADLINE, tokio::task::spawn_blocking(work)).await {
-        Ok(Ok(response)) => response,
-        Ok(Err(_)) => error(StatusCode::INTERNAL_SERVER_ERROR, "the request failed"),
+/// Every design request goes through here: computed in the server's design
+/// pool ([`ecam_serve::DesignPool`]: bounded, at the lowest CPU priority,
+/// never on the threads that answer Modbus), answered 503 at once when the
+/// pool is full or when the design deadline passes, and its work stopped
+/// then, or as soon as the client leaves (this future is dropped, and the
+/// ticket with it).
+async fn design(
+    shared: &Shared,
+    work: impl FnOnce(&mut Budget) -> Response + Send + 'static,
+) -> Response {
+    let Some(pool) = shared.design() else {
+        return error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "the designer's workers could not start",
+        );
+    };
+    let (tx, rx) = tokio::sync::oneshot::channel();
+    let ticket = match pool.submit(work, move |outcome| {
+        let _ = tx.send(outcome);
+    }) {
+        Ok(ticket) => ticket,
+        Err(busy) => return error(StatusCode::SERVICE_UNAVAILABLE, &busy.to_string()),
+    };
+    let deadline = shared.info.limits.design_deadline;
+    let response = match tokio::time::timeout(deadline, rx).await {
+        Ok(Ok(Outcome::Done(response))) => response,
+        Ok(_) => error(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            "the request was given up",
+        ),
         Err(_) => error(
             StatusCode::SERVICE_UNAVAILABLE,
-            "the request took too long; ask for fewer points",
+            &format!(
+                "not computed within the design deadline of {} s: ask for fewer points or a simpler expression",
+                deadline.as_secs_f64()
+            ),
         ),
-    }
+    };
+    drop(ticket);
+    response
 }
 
 /// Answers `answer(body)`, or 400 with its error.
-fn json_call(body: &[u8], answer: fn(&Value) -> Result<Value, String>) -> Response {
-    let result = serde_json::from_slice::<Value>(body)
-        .map_err(|e| format!("the body is not JSON: {e}"))
-        .and_then(|value| answer(&value));
-    match result {
+fn json_call(body: &[u8], answer: impl FnOnce(&Value) -> Result<Value, String>) -> Response {
+    match parse_json_body(body).and_then(|value| answer(&value)) {
         Ok(value) => json_value(StatusCode::OK, &value),
         Err(message) => error(StatusCode::BAD_REQUEST, &message),
     }

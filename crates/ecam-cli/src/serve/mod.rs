@@ -8,11 +8,14 @@
 //! - [`ethercat`]: the fieldbus cycle of `--ethercat` (the PLC's pulse
 //!   outputs on CiA 402 drives),
 //! - [`live`]: the live view's WebSocket,
-//! - [`limits`]: connection caps and timeouts both listeners keep.
+//! - [`conn`]: an accepted connection in `ecam_serve`'s registry (caps,
+//!   who makes room),
+//! - [`reply`]: the HTTP face's JSON answers.
 
 pub mod assets;
+pub mod conn;
 pub mod ethercat;
 pub mod http;
-pub mod limits;
 pub mod live;
 pub mod modbus;
+pub mod reply;

@@ -11,36 +11,39 @@ use std::io;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
-use ecam_serve::{Exception, MbapHeader, Shared, answer_request, encode_response, parse_request};
+use ecam_serve::{
+    Exception, Kind, MbapHeader, Shared, answer_request, encode_response, parse_request,
+};
 use tokio::io::{AsyncReadExt as _, AsyncWriteExt as _};
 use tokio::net::{TcpListener, TcpStream};
 use tokio::time::timeout;
 
-use super::limits::ConnectionLimits;
+use super::conn::Conn;
 
 /// The tracing target of the request/response log.
 pub const TRAFFIC: &str = "ecam::modbus::traffic";
 
-/// Accepts clients on `listener` for ever, within `limits`.
-pub async fn serve(listener: TcpListener, shared: Arc<Shared>, limits: ConnectionLimits) {
+/// Accepts clients on `listener` for ever, within the server's limits: at
+/// the cap, the idlest client makes room for the newcomer.
+pub async fn serve(listener: TcpListener, shared: Arc<Shared>) {
     loop {
         match listener.accept().await {
             Ok((stream, peer)) => {
-                let Some(slot) = limits.admit() else {
-                    // At the cap: the newest goes, the served ones stay.
-                    drop(stream);
-                    continue;
-                };
+                let conn = Conn::admit(&shared, Kind::Modbus);
                 shared
                     .stats
                     .modbus_connections
                     .fetch_add(1, Ordering::Relaxed);
-                let (shared, limits) = (Arc::clone(&shared), limits.clone());
+                let shared = Arc::clone(&shared);
                 tracing::debug!(target: "ecam::modbus", "client {peer} connected");
                 tokio::spawn(async move {
-                    connection(stream, &shared, &limits).await;
+                    tokio::select! {
+                        () = connection(stream, &shared, &conn) => {}
+                        () = conn.closed() => {
+                            tracing::debug!(target: "ecam::modbus", "client {peer} closed to make room");
+                        }
+                    }
                     tracing::debug!(target: "ecam::modbus", "client {peer} gone");
-                    drop(slot);
                 });
             }
             Err(err) => {
@@ -54,17 +57,14 @@ pub async fn serve(listener: TcpListener, shared: Arc<Shared>, limits: Connectio
 
 /// Serves one client until it disconnects, idles past the limit, sends half
 /// a frame and stops, or sends something that is not Modbus.
-async fn connection(mut stream: TcpStream, shared: &Arc<Shared>, limits: &ConnectionLimits) {
+async fn connection(mut stream: TcpStream, shared: &Arc<Shared>, conn: &Conn) {
     let _ = stream.set_nodelay(true);
     // Errors only mean the client went away (or was sent away).
-    let _ = requests(&mut stream, shared, limits).await;
+    let _ = requests(&mut stream, shared, conn).await;
 }
 
-async fn requests(
-    stream: &mut TcpStream,
-    shared: &Arc<Shared>,
-    limits: &ConnectionLimits,
-) -> io::Result<()> {
+async fn requests(stream: &mut TcpStream, shared: &Arc<Shared>, conn: &Conn) -> io::Result<()> {
+    let limits = shared.info.limits;
     let mut header = [0u8; MbapHeader::LEN];
     loop {
         // Idle between requests: up to `idle`; once a frame has begun, the
@@ -84,6 +84,8 @@ async fn requests(
         timeout(limits.partial, stream.read_exact(&mut request_pdu))
             .await
             .map_err(|_| io::ErrorKind::TimedOut)??;
+        // A whole request: this client is not idle.
+        conn.touch();
         let function = request_pdu.first().copied().unwrap_or(0);
         let parsed = parse_request(&request_pdu);
         let peer = stream.peer_addr().ok();

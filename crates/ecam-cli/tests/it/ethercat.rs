@@ -88,6 +88,41 @@ fn configuration_errors_are_clear() {
         err.contains("drive 1 does not exist (the segment has 1)"),
         "{err}"
     );
+    // [[drive]]: an identity the drive does not have, a start-up SDO
+    // value outside its type.
+    let text = std::fs::read_to_string(example()).unwrap();
+    let wrong = dir.join("wrong-drive.toml");
+    std::fs::write(
+        &wrong,
+        format!("{text}\n[[drive]]\ndrive = 1\nproduct_code = 0x1234\n"),
+    )
+    .unwrap();
+    let err = fails(ecam(&[
+        "ethercat",
+        "run",
+        wrong.to_str().unwrap(),
+        "--emulated",
+        "2",
+    ]));
+    assert!(
+        err.contains("drive 1 (ecam emulated CSP drive) reports product_code 0x4543414d"),
+        "{err}"
+    );
+    std::fs::write(
+        &wrong,
+        format!(
+            "{text}\n[[drive]]\ndrive = 0\nsdo = [{{ index = 0x6065, type = \"u8\", value = 300 }}]\n"
+        ),
+    )
+    .unwrap();
+    let err = fails(ecam(&[
+        "ethercat",
+        "run",
+        wrong.to_str().unwrap(),
+        "--emulated",
+        "2",
+    ]));
+    assert!(err.contains("value 300 does not fit type \"u8\""), "{err}");
 }
 
 #[cfg(unix)]

@@ -56,7 +56,7 @@ fn huge_runs_are_refused() {
             "--ms",
             "18446744073709551615",
         ],
-        "limit is 100000000",
+        "the limit is 100000000",
     );
     let script = dir.join("s.pmd");
     std::fs::write(&script, "Tick 9223372036854775807\n").unwrap();
@@ -92,5 +92,85 @@ fn huge_table_files_are_refused_before_they_are_read() {
     refused(
         &["table", "show", path.to_str().unwrap()],
         "limited to 67108864 bytes",
+    );
+}
+
+/// Runs `ecam ARGS` and waits at most `deadline` (killing it then, and
+/// failing): the run is bounded however long it asks for.
+fn finishes_within(args: &[&str], deadline: Duration) -> std::process::Output {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ecam"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{args:?} still runs after {deadline:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn one_work_budget_per_run_bounds_what_a_short_input_asks_for() {
+    let dir = scratch_dir("limits-budget");
+    // A 3-line loop: the watchdog stops it in its first scan; the rest of
+    // the run is hardware ticks.
+    let endless = dir.join("endless.il");
+    std::fs::write(&endless, "P0\nLD M8000\nCJ P0\n").unwrap();
+    let out = finishes_within(
+        &[
+            "plc",
+            "run",
+            endless.to_str().unwrap(),
+            "--ms",
+            "100000",
+            "--dump",
+            "D8061",
+        ],
+        Duration::from_secs(120),
+    );
+    assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        r#"{"D8061": 6105}"#
+    );
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("endless.il:3: watchdog timer error 6105")
+    );
+    // A script's Ticks add up: refused before any runs.
+    let mc = dir.join("ticks.mc");
+    std::fs::write(&mc, "Tick 60000000\nTick 60000000\n").unwrap();
+    refused(
+        &["mc", "run", mc.to_str().unwrap()],
+        "add up to more than the 100000000",
+    );
+    // A function table whose evaluations cannot fit: refused before any.
+    let expr = vec!["sin(x/1000)"; 300].join("+");
+    refused(
+        &[
+            "table",
+            "gen",
+            "function",
+            "--expr",
+            &expr,
+            "--points",
+            "1000000",
+            "--to",
+            "100000000",
+        ],
+        "more work than one run may do",
+    );
+    // A run whose ticks fill the budget has none left for its program.
+    let small = dir.join("small.il");
+    std::fs::write(&small, "LD M8000\nOUT Y0\n").unwrap();
+    refused(
+        &["plc", "run", small.to_str().unwrap(), "--ms", "10000000"],
+        "more work than one run may do",
     );
 }

@@ -145,3 +145,40 @@ fn an_unknown_function_is_named_not_a_parser_internal() {
     assert!(err.contains("unknown function `sinn`"), "{err}");
     assert!(!err.contains("wlog") && !err.contains("right:"), "{err}");
 }
+
+#[test]
+fn errors_quote_a_short_excerpt_of_a_huge_input() {
+    let dir = scratch_dir("messages-excerpt");
+    // A 10 MB field in a CSV table, a 3 MB value in a parameter file.
+    let csv = dir.join("huge.csv");
+    std::fs::write(
+        &csv,
+        format!("master,slave\n0,0\n10,{}.5\n", "9".repeat(10_000_000)),
+    )
+    .unwrap();
+    let err = fails(ecam(&["table", "show", csv.to_str().unwrap()]));
+    assert!(err.len() < 300, "{} bytes", err.len());
+    assert!(err.contains("(10000002 bytes)"), "{err}");
+    assert!(err.contains("line 3"), "the position: {err}");
+    let params = dir.join("huge.toml");
+    std::fs::write(&params, format!("pulses = \"{}\"\n", "x".repeat(3_000_000))).unwrap();
+    let err = fails(ecam(&[
+        "table",
+        "gen",
+        "s-curve",
+        "--params",
+        params.to_str().unwrap(),
+    ]));
+    assert!(err.len() < 1000, "{} bytes", err.len());
+    assert!(err.contains("line 1, column 10"), "the position: {err}");
+    // An IL token.
+    let il = dir.join("huge.il");
+    std::fs::write(
+        &il,
+        format!("LD M8000\nMOV K{} D0\n", "1".repeat(1_000_000)),
+    )
+    .unwrap();
+    let err = fails(ecam(&["plc", "run", il.to_str().unwrap(), "--scans", "1"]));
+    assert!(err.len() < 300, "{} bytes: {err}", err.len());
+    assert!(err.contains("huge.il:2"), "the position: {err}");
+}

@@ -39,7 +39,7 @@ impl Server {
     }
 
     /// Starts with stderr going to the file `log` (truncated first).
-    fn start_logged(state: &Path, extra: &[&str], log: &Path) -> Self {
+    pub(crate) fn start_logged(state: &Path, extra: &[&str], log: &Path) -> Self {
         let file = std::fs::File::create(log).unwrap();
         Self::start_with_stderr(Some(state), extra, Stdio::from(file))
     }
@@ -90,6 +90,11 @@ impl Server {
         server
     }
 
+    /// The server's process id.
+    pub(crate) fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// `kill -9` and wait for it to be gone.
     pub(crate) fn kill_9(mut self) {
         self.child.kill().unwrap();
@@ -124,7 +129,7 @@ impl Server {
         http(self.http, method, path, body)
     }
 
-    fn get_json(&self, path: &str) -> Value {
+    pub(crate) fn get_json(&self, path: &str) -> Value {
         let (status, body) = self.http("GET", path, None);
         assert_eq!(status, 200, "GET {path}: {body}");
         serde_json::from_str(&body).unwrap()
@@ -145,7 +150,7 @@ fn state_dir(name: &str) -> PathBuf {
     dir
 }
 
-fn program(name: &str, source: &str) -> PathBuf {
+pub(crate) fn program(name: &str, source: &str) -> PathBuf {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::write(&path, source).unwrap();
     path
@@ -723,7 +728,8 @@ async fn writes_to_special_devices_act_live_but_are_not_restored() {
     );
     assert_eq!(
         server.get_json("/api/devices?names=D100,D300,M10,M600,D7999,D8000"),
-        json!({"D100": 42, "D300": 77, "M10": 1, "M600": 1, "D7999": 5, "D8000": 0})
+        // D8000 is the watchdog time the PLC sets at power-on (200 ms).
+        json!({"D100": 42, "D300": 77, "M10": 1, "M600": 1, "D7999": 5, "D8000": 200})
     );
     cam_moves(&mut ctx).await;
     assert!(!stderr.contains("skipped"), "{stderr}");
@@ -980,6 +986,39 @@ async fn a_damaged_journal_stops_the_start_and_recover_state_drops_what_follows(
     assert_eq!(
         server.get_json("/api/devices?names=D100,D101"),
         json!({"D100": 1, "D101": 0})
+    );
+}
+
+#[tokio::test]
+async fn a_zeroed_journal_stops_the_start_and_recover_state_keeps_it_aside() {
+    let dir = state_dir("zeroed");
+    let server = Server::start(&dir, &[]);
+    {
+        let mut ctx = server.client().await;
+        for (register, value) in [(100, 1), (101, 2)] {
+            ctx.write_single_register(register, value)
+                .await
+                .unwrap()
+                .unwrap();
+        }
+    }
+    server.kill_9();
+    // The file system kept the journal's length but lost its blocks.
+    let journal = dir.join("journal.log");
+    let length = std::fs::metadata(&journal).unwrap().len() as usize;
+    assert!(length > 0);
+    std::fs::write(&journal, vec![0u8; length]).unwrap();
+    let stderr = refused_start(&dir);
+    assert!(stderr.contains("journal.log:1: "), "{stderr}");
+    assert!(stderr.contains("zeroed or overwritten"), "{stderr}");
+    let log = dir.with_extension("log");
+    let server = Server::start_logged(&dir, &["--recover-state"], &log);
+    let said = log_line(&log, "--recover-state: ");
+    assert!(said.contains("whatever it held is lost"), "{said}");
+    assert!(dir.join("journal.log.damaged").exists());
+    assert_eq!(
+        server.get_json("/api/devices?names=D100:2"),
+        json!({"D100": 0, "D101": 0})
     );
 }
 

@@ -1,5 +1,6 @@
 //! `ecam serve` holds up to careless and hostile clients: a cap on
-//! connections (the newest refused), idle and half-sent requests closed, and
+//! connections (the idlest making room, `serve_limits.rs`), idle and
+//! half-sent requests closed, and
 //! a web face that refuses foreign hosts, foreign pages, non-JSON writes and
 //! writes without the token. Loopback only; every wait is bounded.
 
@@ -39,18 +40,12 @@ fn closed_within(s: &mut TcpStream) -> Duration {
 }
 
 #[test]
-fn modbus_connections_are_capped_and_idle_ones_closed() {
+fn idle_and_half_sent_modbus_requests_are_closed() {
     let server = Server::start_stateless(&["--max-connections", "3", "--idle-timeout", "1"]);
     let mut served: Vec<TcpStream> = (0..3).map(|_| connect(server.modbus)).collect();
     for s in &mut served {
         assert!(modbus_answers(s));
     }
-    let mut newest = connect(server.modbus);
-    assert!(
-        !modbus_answers(&mut newest),
-        "the newest is refused at the cap"
-    );
-    assert!(modbus_answers(&mut served[1]), "the others go on");
     drop(served.remove(0));
     std::thread::sleep(Duration::from_millis(200));
     let mut again = connect(server.modbus);
@@ -67,13 +62,14 @@ fn modbus_connections_are_capped_and_idle_ones_closed() {
 }
 
 fn http_raw(addr: SocketAddr, request: &str) -> (u16, String) {
-    http_raw_within(addr, request, Duration::from_secs(5))
+    http_raw_within(addr, request, STEP)
 }
 
 /// As [`http_raw`], waiting up to `patience` for the answer (design work
 /// in a debug build on a loaded host takes its time).
 fn http_raw_within(addr: SocketAddr, request: &str, patience: Duration) -> (u16, String) {
     let mut s = connect(addr);
+    // Design work runs at the lowest priority: on a busy machine it waits.
     s.set_read_timeout(Some(patience)).unwrap();
     s.write_all(request.as_bytes()).unwrap();
     let mut response = String::new();

@@ -140,7 +140,7 @@ impl TableFile {
         };
         let quoted = |line: u64| {
             let at = usize::try_from(line.saturating_sub(1)).unwrap_or(usize::MAX);
-            super::excerpt(text.lines().nth(at).unwrap_or_default().trim())
+            crate::excerpt::excerpt(text.lines().nth(at).unwrap_or_default().trim()).to_string()
         };
         for record in reader.records() {
             let record = record.map_err(|e| {
@@ -157,7 +157,7 @@ impl TableFile {
                 parse_position(raw(i)).ok_or_else(|| FormatError::NotAnInteger {
                     line,
                     column,
-                    text: super::excerpt(raw(i)),
+                    text: crate::excerpt::excerpt(raw(i)).to_string(),
                 })
             };
             let point = CamPoint::new(position(mi, "master")?, position(si, "slave")?);
@@ -170,7 +170,7 @@ impl TableFile {
                         .ok_or_else(|| FormatError::NotANumber {
                             line,
                             column,
-                            text: super::excerpt(raw(i)),
+                            text: crate::excerpt::excerpt(raw(i)).to_string(),
                         })
                 };
                 kinematics.push(Kinematics {

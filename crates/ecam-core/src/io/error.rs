@@ -5,6 +5,7 @@
 //! source, `: `-separated), so each names what to fix.
 
 use std::fmt;
+use std::format;
 use std::path::PathBuf;
 use std::string::{String, ToString};
 
@@ -181,37 +182,31 @@ impl std::error::Error for FileError {
     }
 }
 
-/// Most characters of a user's text a message quotes.
-const EXCERPT_CHARS: usize = 40;
-
-/// `text` as a message quotes it: whole when short, else its first
-/// characters and `…` (a message names the place; it does not repeat a
-/// long line).
-///
-/// ```
-/// use ecam_core::io::excerpt;
-///
-/// assert_eq!(excerpt("10,x"), "10,x");
-/// assert_eq!(excerpt(&"9".repeat(100)).chars().count(), 41);
-/// ```
-pub fn excerpt(text: &str) -> String {
-    match text.char_indices().nth(EXCERPT_CHARS) {
-        Some((cut, _)) => std::format!("{}…", &text[..cut]),
-        None => text.to_string(),
-    }
-}
-
 /// A serde_json error in the words of the file's author: Rust type names
 /// (`i64`, `f64`, `u16`…) become what they mean.
 pub(crate) fn plain_json_message(e: &serde_json::Error) -> String {
     plain_serde_message(&e.to_string())
 }
 
+/// Why `text` is not JSON, in the words of its author rather than the
+/// parser's: where it stops being JSON (line and column) and whether it
+/// ended too early. For HTTP request bodies and other JSON a user types.
+pub fn json_syntax_message(e: &serde_json::Error) -> String {
+    let at = format!("line {}, column {}", e.line(), e.column());
+    match e.classify() {
+        serde_json::error::Category::Eof => format!("it ends before the JSON is complete ({at})"),
+        serde_json::error::Category::Syntax => format!("it stops being JSON at {at}"),
+        serde_json::error::Category::Io => format!("it cannot be read ({at})"),
+        serde_json::error::Category::Data => plain_json_message(e),
+    }
+}
+
 /// A serde message (JSON, TOML, parameter maps) in the words of the input's
 /// author: `expected i64` becomes `expected a whole number`, and so on for
 /// the other Rust number types.
 pub fn plain_serde_message(message: &str) -> String {
-    let mut text = message.to_string();
+    // serde and TOML quote the input (a value, a whole line): cut it.
+    let mut text = crate::excerpt::cut_quotes(message);
     for (rust, plain) in [
         ("expected i64", "expected a whole number"),
         ("expected i32", "expected a whole number"),

@@ -16,7 +16,7 @@ mod json;
 mod table_file;
 
 pub use csv_format::{curve_to_csv, from_csv, to_csv};
-pub use error::{FileError, FormatError, excerpt, plain_serde_message};
+pub use error::{FileError, FormatError, json_syntax_message, plain_serde_message};
 pub use files::{FileFormat, extension, read, write};
 pub use json::{from_json, to_json};
 pub use table_file::{AnyTable, Columns, TableFile};

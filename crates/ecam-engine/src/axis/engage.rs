@@ -5,7 +5,7 @@ use core::num::NonZeroU64;
 
 use ecam_core::CamCurve;
 
-use crate::coupling::{Engagement, Place};
+use crate::coupling::{Engagement, Place, exact_f64};
 use crate::ramp::Ramp;
 use crate::ramp_in::{RampDirection, RampInLimits};
 use crate::{EngineError, RampIn};
@@ -16,7 +16,9 @@ use super::phase::{Engaged, Phase};
 impl<C: CamCurve> CamAxis<C> {
     /// Engages the cam at master `at` from the slave where it stands.
     pub(super) fn engage(&mut self, at: i64) -> Result<(), EngineError> {
-        let mut engagement = Engagement::new(
+        // The place of `at` comes with it (the table input there is the
+        // one the engagement fixed).
+        let (mut engagement, place) = Engagement::placed(
             &self.geometry,
             &self.config,
             &self.curve,
@@ -24,9 +26,6 @@ impl<C: CamCurve> CamAxis<C> {
             at,
             self.commanded,
         )?;
-        let place = self
-            .geometry
-            .locate(engagement.table_input(&self.geometry, at));
         let ramp_in = match self.ramp_limits {
             Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
             None => self.config.ramp_in,
@@ -43,6 +42,8 @@ impl<C: CamCurve> CamAxis<C> {
             scaling: None,
             followed: i128::from(at) << 32,
             steady: None,
+            lane: None,
+            plan: None,
         });
         Ok(())
     }
@@ -70,7 +71,7 @@ impl<C: CamCurve> CamAxis<C> {
             if stroke == 0.0 {
                 return Err(EngineError::RampDirection);
             }
-            let gap = (i128::from(cam.slave) - hold) as f64;
+            let gap = exact_f64(i128::from(cam.slave) - hold);
             let strokes = libm::ceil(libm::fabs(gap / stroke));
             let toward = match limits.direction {
                 RampDirection::Negative => -1.0,
@@ -85,7 +86,7 @@ impl<C: CamCurve> CamAxis<C> {
                 cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
             }
         }
-        let gap = (i128::from(cam.slave) - hold) as f64;
+        let gap = exact_f64(i128::from(cam.slave) - hold);
         let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
         let configured = self.config.ramp_in.map(|r| r.distance.get());
         Ok(match (needed, configured) {

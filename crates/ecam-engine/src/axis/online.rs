@@ -53,6 +53,17 @@ impl<C: CamCurve> CamAxis<C> {
     /// # Errors
     /// As [`CamAxis::queue_curve`].
     pub fn queue_curve_then(&mut self, curve: C, then: AfterPass) -> Result<(), EngineError> {
+        self.queue(curve, then, None)
+    }
+
+    /// [`CamAxis::queue_curve_then`] with the blend of the seam switch;
+    /// a running cam's switch is prepared here (`plan.rs`).
+    fn queue(
+        &mut self,
+        curve: C,
+        then: AfterPass,
+        blend: Option<NonZeroU64>,
+    ) -> Result<(), EngineError> {
         let geometry = Geometry::new(&curve, &self.config)?;
         match &mut self.phase {
             Phase::Running(engaged) | Phase::Stopping(engaged, _) => {
@@ -60,9 +71,10 @@ impl<C: CamCurve> CamAxis<C> {
                     return Err(EngineError::NoSeam);
                 }
                 engaged.pending = None;
-                engaged.seam_blend = None;
+                engaged.seam_blend = blend;
                 engaged.queued = Some((curve, then));
                 engaged.steady = None;
+                self.plan_waiting();
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.geometry = geometry;
@@ -94,13 +106,7 @@ impl<C: CamCurve> CamAxis<C> {
     /// left untouched.
     pub fn switch_curve(&mut self, curve: C, at: SwitchAt) -> Result<(), EngineError> {
         let (trigger, blend) = match at {
-            SwitchAt::NextSeam { blend } => {
-                self.queue_curve(curve)?;
-                if let Phase::Running(engaged) | Phase::Stopping(engaged, _) = &mut self.phase {
-                    engaged.seam_blend = blend;
-                }
-                return Ok(());
-            }
+            SwitchAt::NextSeam { blend } => return self.queue(curve, AfterPass::Repeat, blend),
             SwitchAt::MasterPosition { position, blend } => (Trigger::Position(position), blend),
             SwitchAt::Now { blend } => (Trigger::Now, blend),
         };
@@ -113,6 +119,7 @@ impl<C: CamCurve> CamAxis<C> {
                 engaged.queued = None;
                 engaged.pending = Some(Pending::new(Takeover::Table(curve), trigger, blend));
                 engaged.steady = None;
+                self.plan_waiting();
                 Ok(())
             }
             Phase::Stopping(..) => Err(EngineError::Busy),
@@ -181,6 +188,11 @@ impl<C: CamCurve> CamAxis<C> {
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 engaged.scaling = Some(ScalingRamp::new(target, from, distance));
                 engaged.steady = None;
+                // The lane's constants on the new scaling, taken here
+                // rather than in the cycle.
+                if let Some(lane) = engaged.lane.as_mut() {
+                    lane.target = engaged.engagement.steady(&target);
+                }
                 self.config.slave_zoom = zoom;
                 Ok(())
             }
@@ -222,6 +234,7 @@ impl<C: CamCurve> CamAxis<C> {
                     blend,
                 ));
                 engaged.steady = None;
+                self.plan_waiting();
                 Ok(())
             }
             _ => Err(EngineError::NotRunning),

@@ -15,6 +15,8 @@ use crate::switch::Pending;
 use crate::{AxisState, EngineError, MasterPosition};
 
 use super::AfterPass;
+use super::lane::LaneConstants;
+use super::plan::Plan;
 
 /// The life of an axis; each phase holds what only it has, so a stopping
 /// axis without a cycle end, or a running one without an engagement,
@@ -76,6 +78,14 @@ pub(super) struct Engaged<C> {
     /// never outlive what they were taken from and the steady tick needs
     /// no other check.
     pub(super) steady: Option<Steady>,
+    /// The fast lane's 64-bit constants of `engagement` on the axis'
+    /// geometry (and on a slave-scaling ramp's target), whatever is under
+    /// way (`lane.rs`): taken by the lane or at a request, kept up to date
+    /// by the lane, dropped by the general tick, which may change either.
+    pub(super) lane: Option<LaneConstants>,
+    /// The switch waiting in `pending` or the table in `queued`, prepared
+    /// when it was asked for (`plan.rs`).
+    pub(super) plan: Option<Plan>,
 }
 
 impl<C> Engaged<C> {

@@ -8,6 +8,7 @@ use core::num::NonZeroU64;
 
 use ecam_core::PointTable;
 use proptest::prelude::*;
+use std::vec;
 use std::vec::Vec;
 
 use crate::{
@@ -58,6 +59,14 @@ enum Move {
     CamOut,
     /// A table switched in at once with a blend (slaves scaled by this factor).
     Switch(i64),
+    /// A table switched in at a master position this far ahead (or
+    /// behind), with a blend or without (slaves scaled by the factor).
+    SwitchAt(i64, i64, bool),
+    /// A table queued for the next seam with a blend (slaves scaled).
+    SeamSwitch(i64),
+    /// Master scaling changed on the fly to this signed numerator / 3,
+    /// with a blend or without.
+    MasterScaling(i32, bool),
 }
 
 fn moves() -> impl Strategy<Value = Vec<Move>> {
@@ -73,6 +82,11 @@ fn moves() -> impl Strategy<Value = Vec<Move>> {
             1 => prop_oneof![(-12i32..-1), (1i32..12)].prop_map(Move::SlaveScaling),
             1 => Just(Move::CamOut),
             1 => (-3i64..4).prop_map(Move::Switch),
+            1 => ((-3i64..4), (-400i64..400), any::<bool>())
+                .prop_map(|(f, d, b)| Move::SwitchAt(f, d, b)),
+            1 => (-3i64..4).prop_map(Move::SeamSwitch),
+            1 => (prop_oneof![(-9i32..-1), (1i32..9)], any::<bool>())
+                .prop_map(|(n, b)| Move::MasterScaling(n, b)),
         ],
         1..300,
     )
@@ -98,6 +112,7 @@ proptest! {
         szoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
         start in -100_000i64..100_000,
         ramp_in in proptest::option::of(1u64..3000),
+        turn in proptest::option::of(0i64..5000),
         moves in moves(),
     ) {
         let config = AxisConfig {
@@ -112,6 +127,10 @@ proptest! {
                 SyncWindow::new(-5, 5),
             ],
             ramp_in: ramp_in.and_then(NonZeroU64::new).map(|distance| RampIn { distance }),
+            // A single-turn master: the table within the turn.
+            single_turn: turn.and_then(|extra| {
+                NonZeroU64::new((slaves.len() as u64 - 1) * step as u64 + extra as u64)
+            }),
             ..AxisConfig::default()
         };
         // Signed scalings are refused where they make no sense (a one-shot
@@ -169,6 +188,33 @@ proptest! {
                     prop_assert_eq!(
                         fast.switch_curve(table(&scaled, step), at),
                         general.switch_curve(table(&scaled, step), at)
+                    );
+                }
+                Move::SwitchAt(factor, ahead, blended) => {
+                    let scaled: Vec<i64> = slaves.iter().map(|s| s * factor).collect();
+                    let at = SwitchAt::MasterPosition {
+                        position: master + ahead,
+                        blend: NonZeroU64::new(600).filter(|_| blended),
+                    };
+                    prop_assert_eq!(
+                        fast.switch_curve(table(&scaled, step), at),
+                        general.switch_curve(table(&scaled, step), at)
+                    );
+                }
+                Move::SeamSwitch(factor) => {
+                    let scaled: Vec<i64> = slaves.iter().map(|s| s * factor).collect();
+                    let at = SwitchAt::NextSeam { blend: NonZeroU64::new(700) };
+                    prop_assert_eq!(
+                        fast.switch_curve(table(&scaled, step), at),
+                        general.switch_curve(table(&scaled, step), at)
+                    );
+                }
+                Move::MasterScaling(num, blended) => {
+                    let zoom = Zoom::signed(num, 3).unwrap();
+                    let blend = NonZeroU64::new(500).filter(|_| blended);
+                    prop_assert_eq!(
+                        fast.change_master_scaling(zoom, blend),
+                        general.change_master_scaling(zoom, blend)
                     );
                 }
             }

@@ -28,6 +28,13 @@ pub struct DriveBehaviour {
     /// Cycles the fault-reset bit must stay high after its rising edge
     /// before the drive leaves "fault" (0: the edge alone).
     pub reset_hold_cycles: u32,
+    /// The drive offers CSP (mode 8). Without it, it takes 0x6060 = 8
+    /// but stays in the mode it had: 0x6061 shows the mode it runs.
+    pub csp: bool,
+    /// The drive's PDO mapping is fixed (0x1600/0x1A00/0x1C12/0x1C13
+    /// refuse writes) and its TxPDO carries the CSP inputs in another
+    /// order: statusword, error code, position, following error.
+    pub fixed_mapping: bool,
 }
 
 impl Default for DriveBehaviour {
@@ -36,6 +43,8 @@ impl Default for DriveBehaviour {
             lag_cycles: 2,
             following_error_window: 1_000_000,
             reset_hold_cycles: 0,
+            csp: true,
+            fixed_mapping: false,
         }
     }
 }
@@ -48,7 +57,10 @@ pub struct DriveModel {
     previous_controlword: u16,
     target: i32,
     actual: i32,
+    /// The mode the drive runs (0x6061).
     mode: i8,
+    /// The mode last asked for (0x6060).
+    requested_mode: i8,
     delay_line: VecDeque<i32>,
     error_code: u16,
     pending_fault: Option<u16>,
@@ -58,6 +70,9 @@ pub struct DriveModel {
     switch_on_delay: u32,
     /// Cycles bit 7 has been high since its edge (in "fault").
     reset_held: Option<u32>,
+    /// An emergency to send: the error code that appeared (or 0 when a
+    /// fault was reset), not yet taken by the ESC.
+    emergency: Option<u16>,
 }
 
 impl DriveModel {
@@ -70,6 +85,7 @@ impl DriveModel {
             target: position,
             actual: position,
             mode: 0,
+            requested_mode: 0,
             // Sized once, so running the drive never allocates.
             delay_line: VecDeque::with_capacity(behaviour.lag_cycles + 1),
             error_code: 0,
@@ -78,7 +94,49 @@ impl DriveModel {
             cycles: 0,
             switch_on_delay: 0,
             reset_held: None,
+            emergency: None,
         }
+    }
+
+    /// The behaviour the drive was built with (the following-error
+    /// window as last set).
+    pub fn behaviour(&self) -> DriveBehaviour {
+        self.behaviour
+    }
+
+    /// Sets the following-error window (object 0x6065).
+    pub fn set_following_error_window(&mut self, window: u32) {
+        self.behaviour.following_error_window = window;
+    }
+
+    /// Asks for a mode of operation (object 0x6060, or the RxPDO). A
+    /// drive without CSP keeps the mode it runs when CSP is asked for.
+    pub fn set_mode(&mut self, mode: i8) {
+        self.requested_mode = mode;
+        if mode != MODE_CSP || self.behaviour.csp {
+            self.mode = mode;
+        }
+    }
+
+    /// The mode asked for (0x6060).
+    pub fn requested_mode(&self) -> i8 {
+        self.requested_mode
+    }
+
+    /// The mode the drive runs (0x6061).
+    pub fn mode_display(&self) -> i8 {
+        self.mode
+    }
+
+    /// The controlword last received (0x6040).
+    pub fn controlword(&self) -> u16 {
+        self.previous_controlword
+    }
+
+    /// The error code that appeared since the last call (0 when a fault
+    /// was reset), for an emergency message.
+    pub fn take_emergency(&mut self) -> Option<u16> {
+        self.emergency.take()
     }
 
     /// Keeps the drive in "switch on disabled" for `cycles` more cycles
@@ -100,6 +158,7 @@ impl DriveModel {
         ) {
             self.state = DriveState::Fault;
             self.error_code = ERROR_WATCHDOG;
+            self.emergency = Some(ERROR_WATCHDOG);
             self.delay_line.clear();
         }
     }
@@ -161,9 +220,10 @@ impl DriveModel {
         if before == DriveState::Fault && self.state != DriveState::Fault {
             self.error_code = 0;
             self.window_exceeded = false;
+            self.emergency = Some(0);
         }
         self.previous_controlword = controlword;
-        self.mode = outputs.mode;
+        self.set_mode(outputs.mode);
         self.target = outputs.target_position;
         if self.state.follows_target() && self.mode == MODE_CSP {
             self.delay_line.push_back(outputs.target_position);
@@ -181,6 +241,11 @@ impl DriveModel {
         } else {
             // Not following: the motor holds where it is.
             self.delay_line.clear();
+        }
+        let faulted =
+            |s: DriveState| matches!(s, DriveState::FaultReactionActive | DriveState::Fault);
+        if faulted(self.state) && !faulted(before) {
+            self.emergency = Some(self.error_code);
         }
     }
 

@@ -1,11 +1,16 @@
 //! One emulated EtherCAT slave controller (ESC): register memory, the
 //! datagram commands, the AL state machine, the SII EEPROM interface,
-//! FMMUs for process data and the distributed-clock registers. Register
-//! addresses follow the ESC datasheets' map (ETG1000.4 section 6).
+//! the mailbox sync managers, FMMUs for process data and the
+//! distributed-clock registers. Register addresses follow the ESC
+//! datasheets' map (ETG1000.4 section 6).
 
+use super::coe_server::Server;
 use super::drive::{DriveBehaviour, DriveModel};
+use super::mailbox::{MAILBOX_IN_START, MAILBOX_OUT_START, MAILBOX_SIZE, Outbox};
+use super::objects::{Dictionary, Live};
 use super::sii::{self, SM2_START, SM3_START};
-use crate::pdo::{CspInputs, CspOutputs, INPUTS_LEN, OUTPUTS_LEN};
+use crate::coe::{Emergency, SdoAbort};
+use crate::pdo::CspOutputs;
 
 /// Size of the emulated ESC memory (registers and process RAM).
 const MEMORY: usize = 0x2000;
@@ -41,8 +46,12 @@ const SII_WRITE: u16 = 1 << 9;
 /// SII control: command error (bit 13).
 const SII_COMMAND_ERROR: u16 = 1 << 13;
 
+/// SM status: the mailbox is full (bit 3).
+const SM_MAILBOX_FULL: u8 = 0x08;
+
 /// AL status codes the emulated drive reports (ETG1000.6 table 11).
 const AL_INVALID_STATE_CHANGE: u16 = 0x0011;
+const AL_INVALID_MAILBOX_CONFIG: u16 = 0x0016;
 const AL_INVALID_OUTPUT_CONFIG: u16 = 0x001D;
 const AL_INVALID_INPUT_CONFIG: u16 = 0x001E;
 const AL_INVALID_DC_SYNC: u16 = 0x0030;
@@ -119,6 +128,9 @@ pub struct Esc {
     drive: DriveModel,
     /// When outputs last arrived in OP (`None`: not since entering OP).
     last_outputs_ns: Option<u64>,
+    dictionary: Dictionary,
+    /// Messages waiting for SM1.
+    outbox: Outbox,
 }
 
 impl Esc {
@@ -135,9 +147,30 @@ impl Esc {
         put(&mut memory, REG_SII_CONTROL, &SII_READ_8.to_le_bytes());
         Self {
             memory,
-            eeprom: sii::drive_eeprom(serial),
+            eeprom: sii::drive_eeprom(serial, behaviour.fixed_mapping),
             drive: DriveModel::new(behaviour, 0),
             last_outputs_ns: None,
+            dictionary: Dictionary::new(serial, behaviour.fixed_mapping),
+            outbox: Outbox::new(),
+        }
+    }
+
+    /// Reads an object of the drive's dictionary as an SDO upload would
+    /// (to check what a master configured).
+    ///
+    /// # Errors
+    /// The abort the drive would answer.
+    pub fn sdo_read(&self, index: u16, sub_index: u8) -> Result<Vec<u8>, SdoAbort> {
+        let value = self.dictionary.read(index, sub_index, self.live())?;
+        let mut out = vec![0; value.len()];
+        value.write_to(&mut out);
+        Ok(out)
+    }
+
+    fn live(&self) -> Live<'_> {
+        Live {
+            drive: &self.drive,
+            sync0_cycle_ns: self.sync0_cycle_ns(),
         }
     }
 
@@ -154,6 +187,7 @@ impl Esc {
             );
             self.last_outputs_ns = None;
             self.drive.communication_lost();
+            self.post_emergencies();
             self.publish_inputs();
         }
     }
@@ -273,6 +307,12 @@ impl Esc {
             Cmd::Apwr | Cmd::Fpwr | Cmd::Bwr => (false, true),
             _ => (true, true),
         };
+        // The read mailbox (SM1) answers only while it holds a message;
+        // a read that reaches its last byte empties it.
+        let mailbox_in = self.mailbox_area(1).filter(|&(s, e)| start < e && s < end);
+        if read && mailbox_in.is_some() && !self.sm1_full() {
+            return;
+        }
         if read {
             self.refresh_clock(hop.now_ns);
             if cmd == Cmd::Brd {
@@ -284,6 +324,12 @@ impl Esc {
                 data.copy_from_slice(&self.memory[start..end]);
             }
             *wkc = wkc.wrapping_add(1);
+            if let Some((_, area_end)) = mailbox_in {
+                if end >= area_end {
+                    self.set_sm1_full(false);
+                    self.refill_mailbox();
+                }
+            }
         }
         if write {
             for (offset, byte) in data.iter_mut().enumerate() {
@@ -348,7 +394,8 @@ impl Esc {
                 // A buffered sync manager hands the outputs over when its
                 // last byte is written (the master may split them over
                 // two frames).
-                let last = usize::from(SM2_START) + OUTPUTS_LEN - 1;
+                let outputs = self.dictionary.rx.bytes().max(1);
+                let last = usize::from(SM2_START) + outputs - 1;
                 outputs_complete |= (in_mem..in_mem + n).contains(&last);
             }
         }
@@ -368,19 +415,133 @@ impl Esc {
         }
     }
 
+    /// Takes the outputs the RxPDO mapping carries (objects it does not
+    /// map keep their last value) and runs the drive one cycle.
     fn run_drive(&mut self) {
-        let start = usize::from(SM2_START);
-        if let Ok(outputs) = CspOutputs::unpack(&self.memory[start..start + OUTPUTS_LEN]) {
-            self.drive.cycle(outputs);
+        let mut outputs = CspOutputs {
+            controlword: self.drive.controlword(),
+            target_position: self.drive.target(),
+            mode: self.drive.requested_mode(),
+        };
+        let mut at = usize::from(SM2_START);
+        let mapping = self.dictionary.rx;
+        for &m in mapping.active() {
+            let n = (m & 0xFF) as usize / 8;
+            let mut raw = [0u8; 4];
+            raw[..n.min(4)].copy_from_slice(&self.memory[at..at + n.min(4)]);
+            let v = u32::from_le_bytes(raw);
+            match m >> 16 {
+                0x6040 => outputs.controlword = v as u16,
+                0x607A => outputs.target_position = v as i32,
+                0x6060 => outputs.mode = v as u8 as i8,
+                _ => {}
+            }
+            at += n;
         }
+        self.drive.cycle(outputs);
+        self.post_emergencies();
         self.publish_inputs();
     }
 
+    /// Writes the objects the TxPDO mapping carries, in its order.
     fn publish_inputs(&mut self) {
-        let start = usize::from(SM3_START);
-        let inputs: CspInputs = self.drive.inputs();
-        // The slice has exactly the mapping's length, so this cannot fail.
-        let _ = inputs.pack(&mut self.memory[start..start + INPUTS_LEN]);
+        let mut at = usize::from(SM3_START);
+        let mapping = self.dictionary.tx;
+        let live = Live {
+            drive: &self.drive,
+            sync0_cycle_ns: 0,
+        };
+        for &m in mapping.active() {
+            let n = (m & 0xFF) as usize / 8;
+            if let Ok(value) = self.dictionary.read((m >> 16) as u16, (m >> 8) as u8, live) {
+                value.write_to(&mut self.memory[at..at + n]);
+            }
+            at += n;
+        }
+    }
+
+    /// Queues an emergency for each error the drive reported (and for
+    /// each reset), while the mailbox runs.
+    fn post_emergencies(&mut self) {
+        while let Some(code) = self.drive.take_emergency() {
+            if self.mailbox_area(1).is_some() && self.al_state() >= 2 {
+                if let Some(slot) = self.outbox.push() {
+                    Emergency::for_code(code).write_mailbox(slot);
+                }
+            }
+        }
+        self.refill_mailbox();
+    }
+
+    /// Where mailbox `sm` (0: from the master, 1: to it) lies, while its
+    /// sync manager is enabled in mailbox mode.
+    fn mailbox_area(&self, sm: usize) -> Option<(usize, usize)> {
+        let base = REG_SM + sm * 8;
+        let start = usize::from(u16::from_le_bytes([
+            self.memory[base],
+            self.memory[base + 1],
+        ]));
+        let len = usize::from(u16::from_le_bytes([
+            self.memory[base + 2],
+            self.memory[base + 3],
+        ]));
+        let mailbox_mode = self.memory[base + 4] & 0x03 == 0x02;
+        let enabled = self.memory[base + 6] & 1 != 0;
+        (mailbox_mode && enabled && len > 0 && start + len <= MEMORY)
+            .then_some((start, start + len))
+    }
+
+    fn sm1_full(&self) -> bool {
+        self.memory[REG_SM + 8 + 5] & SM_MAILBOX_FULL != 0
+    }
+
+    fn set_sm1_full(&mut self, full: bool) {
+        let status = &mut self.memory[REG_SM + 8 + 5];
+        if full {
+            *status |= SM_MAILBOX_FULL;
+        } else {
+            *status &= !SM_MAILBOX_FULL;
+        }
+    }
+
+    /// Moves the next waiting message into SM1 when it is empty.
+    fn refill_mailbox(&mut self) {
+        let Some((start, end)) = self.mailbox_area(1) else {
+            return;
+        };
+        if !self.sm1_full() && self.outbox.pop_into(&mut self.memory[start..end]) {
+            self.set_sm1_full(true);
+        }
+    }
+
+    /// The master wrote the last byte of SM0: the drive answers the
+    /// request (in PRE-OP, SAFE-OP and OP).
+    fn mailbox_request(&mut self) {
+        let Some((start, end)) = self.mailbox_area(0) else {
+            return;
+        };
+        let al = self.al_state();
+        if !matches!(al, 2 | 4 | 8) {
+            return;
+        }
+        let mut request = [0u8; MAILBOX_SIZE];
+        let n = (end - start).min(MAILBOX_SIZE);
+        request[..n].copy_from_slice(&self.memory[start..start + n]);
+        let sync0_cycle_ns = self.sync0_cycle_ns();
+        Server {
+            dictionary: &mut self.dictionary,
+            drive: &mut self.drive,
+            al,
+            sync0_cycle_ns,
+        }
+        .answer(&request[..n], &mut self.outbox);
+        self.post_emergencies();
+    }
+
+    /// Drops the mailbox's content (INIT, or SM1 switched off).
+    fn reset_mailbox(&mut self) {
+        self.outbox.clear();
+        self.set_sm1_full(false);
     }
 
     fn refresh_clock(&mut self, now_ns: u64) {
@@ -396,6 +557,14 @@ impl Esc {
         let touches = |register: usize, len: usize| start < register + len && register < end;
         if touches(REG_AL_CONTROL, 2) {
             self.al_control();
+        }
+        if touches(REG_SM + 8, 8) && self.mailbox_area(1).is_none() {
+            self.reset_mailbox();
+        }
+        if let Some((_, area_end)) = self.mailbox_area(0) {
+            if start < area_end && area_end <= end {
+                self.mailbox_request();
+            }
         }
         if touches(REG_SII_CONTROL, 2) {
             self.sii_command();
@@ -467,7 +636,8 @@ impl Esc {
         let current = self.al_state();
         let result = match (current, requested) {
             (_, 1) => Ok(1u8),
-            (1 | 2, 2) | (4 | 8, 2) => Ok(2),
+            (1, 2) => self.check_mailbox().map(|()| 2),
+            (2, 2) | (4 | 8, 2) => Ok(2),
             (2 | 4 | 8, 4) => self.check_process_data().map(|()| 4),
             (4 | 8, 8) => self.check_dc().map(|()| 8),
             _ => Err(AL_INVALID_STATE_CHANGE),
@@ -478,12 +648,35 @@ impl Esc {
         };
         put(&mut self.memory, REG_AL_STATUS, &status.to_le_bytes());
         put(&mut self.memory, REG_AL_STATUS_CODE, &code.to_le_bytes());
+        if status & 0x0F != 8 {
+            // The watchdog starts again with the first outputs in OP.
+            self.last_outputs_ns = None;
+        }
+        if status & 0x0F == 1 {
+            self.reset_mailbox();
+        }
         if status & 0x0F == 4 {
             self.publish_inputs();
         }
     }
 
-    /// SAFE-OP needs SM2/SM3 configured for exactly the CSP mapping.
+    /// PRE-OP needs SM0/SM1 set up as the SII's mailboxes.
+    fn check_mailbox(&self) -> Result<(), u16> {
+        let expected = [(MAILBOX_OUT_START, 0x06u8), (MAILBOX_IN_START, 0x02u8)];
+        for (sm, (start, mode)) in expected.into_iter().enumerate() {
+            let base = REG_SM + sm * 8;
+            let area = self.mailbox_area(sm);
+            let control = self.memory[base + 4] & 0x0F;
+            if area != Some((usize::from(start), usize::from(start) + MAILBOX_SIZE))
+                || control != mode
+            {
+                return Err(AL_INVALID_MAILBOX_CONFIG);
+            }
+        }
+        Ok(())
+    }
+
+    /// SAFE-OP needs SM2/SM3 configured for the mapped process data.
     fn check_process_data(&self) -> Result<(), u16> {
         let sm = |n: usize| {
             let base = REG_SM + n * 8;
@@ -495,10 +688,24 @@ impl Esc {
             let enabled = self.memory[base + 6] & 1 != 0;
             (start, len, enabled)
         };
-        if sm(2) != (SM2_START, OUTPUTS_LEN, true) {
+        let outputs = self
+            .dictionary
+            .rx_mapping()
+            .iter()
+            .map(|&m| (m & 0xFF) as usize)
+            .sum::<usize>()
+            / 8;
+        let inputs = self
+            .dictionary
+            .tx_mapping()
+            .iter()
+            .map(|&m| (m & 0xFF) as usize)
+            .sum::<usize>()
+            / 8;
+        if sm(2) != (SM2_START, outputs, outputs > 0) {
             return Err(AL_INVALID_OUTPUT_CONFIG);
         }
-        if sm(3) != (SM3_START, INPUTS_LEN, true) {
+        if sm(3) != (SM3_START, inputs, inputs > 0) {
             return Err(AL_INVALID_INPUT_CONFIG);
         }
         Ok(())
@@ -514,14 +721,17 @@ impl Esc {
     }
 }
 
-/// Registers the master cannot write (identity, status, latched times).
+/// Registers the master cannot write (identity, status, the sync
+/// managers' status bytes, latched times).
 fn writable(address: usize) -> bool {
-    !matches!(address,
-        0x0000..=0x000F
-        | 0x0110..=0x0111
-        | 0x0130..=0x0135
-        | 0x0900..=0x091F
-        | 0x092C..=0x092F)
+    let sm_status = (REG_SM..REG_SM + 8 * 8).contains(&address) && (address - REG_SM) % 8 == 5;
+    !sm_status
+        && !matches!(address,
+            0x0000..=0x000F
+            | 0x0110..=0x0111
+            | 0x0130..=0x0135
+            | 0x0900..=0x091F
+            | 0x092C..=0x092F)
 }
 
 fn put(memory: &mut [u8], at: usize, bytes: &[u8]) {
@@ -578,6 +788,9 @@ mod tests {
         );
         assert_eq!(read(&mut esc, 0x0134, 2), vec![0x11, 0]);
         write(&mut esc, 0x0120, &[2, 0]);
+        assert_eq!(read(&mut esc, 0x0134, 2), vec![0x16, 0], "no mailbox");
+        mailboxes(&mut esc);
+        write(&mut esc, 0x0120, &[2, 0]);
         assert_eq!(esc.al_state(), 2);
         write(&mut esc, 0x0120, &[4, 0]);
         assert_eq!(
@@ -596,6 +809,54 @@ mod tests {
         write(&mut esc, 0x0981, &[3]);
         write(&mut esc, 0x0120, &[8, 0]);
         assert_eq!(esc.al_state(), 8);
+    }
+
+    /// SM0 at 0x1000 and SM1 at 0x1080, 128 bytes each, enabled.
+    fn mailboxes(esc: &mut Esc) {
+        write(esc, 0x0800, &[0x00, 0x10, 128, 0, 0x26, 0, 1, 0]);
+        write(esc, 0x0808, &[0x80, 0x10, 128, 0, 0x22, 0, 1, 0]);
+    }
+
+    /// Sends a CoE message through SM0 and reads SM1 once it is full.
+    fn coe(esc: &mut Esc, body: &[u8]) -> Vec<u8> {
+        let mut request = vec![0u8; 128];
+        request[0] = u8::try_from(body.len()).unwrap();
+        request[5] = 0x13; // CoE, counter 1
+        request[6..6 + body.len()].copy_from_slice(body);
+        write(esc, 0x1000, &request);
+        assert_eq!(read(esc, 0x080D, 1)[0] & 0x08, 0x08, "SM1 full");
+        let reply = read(esc, 0x1080, 128);
+        assert_eq!(read(esc, 0x080D, 1)[0] & 0x08, 0, "read empties SM1");
+        reply
+    }
+
+    #[test]
+    fn sdo_through_the_mailbox_and_an_emergency_on_a_fault() {
+        let mut esc = Esc::new(5, DriveBehaviour::default());
+        mailboxes(&mut esc);
+        write(&mut esc, 0x0120, &[2, 0]);
+        assert_eq!(esc.al_state(), 2);
+        // Upload 0x1018:04, the serial number.
+        let reply = coe(&mut esc, &[0x00, 0x20, 0x40, 0x18, 0x10, 0x04, 0, 0, 0, 0]);
+        assert_eq!(reply[8], 0x43);
+        assert_eq!(&reply[12..16], &5u32.to_le_bytes());
+        // SM1 empty: a read is refused (no working counter).
+        let mut data = vec![0; 128];
+        let (mut wkc, mut adp) = (0, 0);
+        esc.datagram(Cmd::Aprd, &mut adp, 0x1080, &mut data, &mut wkc, HOP);
+        assert_eq!(wkc, 0);
+        // A fault posts an emergency unasked.
+        esc.drive_mut().inject_fault(0x2310);
+        esc.run_drive();
+        assert_eq!(read(&mut esc, 0x080D, 1)[0] & 0x08, 0x08);
+        let message = read(&mut esc, 0x1080, 128);
+        let emergency = Emergency::from_mailbox(&message).unwrap();
+        assert_eq!(emergency.code, 0x2310);
+        // INIT drops what waits.
+        esc.drive_mut().inject_fault(0x3210);
+        esc.run_drive();
+        write(&mut esc, 0x0120, &[1, 0]);
+        assert_eq!(read(&mut esc, 0x080D, 1)[0] & 0x08, 0);
     }
 
     #[test]

@@ -8,13 +8,17 @@
 //! FMMUs) and counts the working counter. What is emulated, and what is
 //! not, is listed in docs/ethercat.md.
 
+mod coe_server;
 mod drive;
 mod esc;
+mod mailbox;
+mod objects;
 mod sii;
 mod wire;
 
 pub use drive::{DriveBehaviour, DriveModel, ERROR_FOLLOWING, ERROR_WATCHDOG};
 pub use esc::Esc;
+pub use mailbox::MAILBOX_SIZE;
 pub use sii::{EMULATED_NAME, EMULATED_PRODUCT_CODE, EMULATED_VENDOR_ID};
 pub use wire::WireEmulation;
 

@@ -1,6 +1,8 @@
 //! The SII EEPROM content of the emulated drive (ETG2010 layout): identity
-//! words, then categories (strings, general, FMMU, sync managers, PDOs).
+//! and mailbox words, then categories (strings, general, FMMU, sync
+//! managers, PDOs).
 
+use super::mailbox::{MAILBOX_IN_START, MAILBOX_OUT_START, MAILBOX_SIZE};
 use crate::pdo::{PdoEntry, RX_PDO_ENTRIES, TX_PDO_ENTRIES};
 
 /// Vendor id the emulated drive reports (0 is the "unassigned" id, so it
@@ -24,13 +26,30 @@ const CATEGORY_TX_PDO: u16 = 50;
 const CATEGORY_RX_PDO: u16 = 51;
 const CATEGORY_END: u16 = 0xFFFF;
 
-/// Builds the EEPROM image (bytes, little-endian words) for drive `serial`.
-pub fn drive_eeprom(serial: u32) -> Vec<u8> {
+/// Mailbox protocols word: CoE only (ETG2010 table 2).
+const PROTOCOL_COE: u16 = 0x0004;
+/// CoE details of the general category: SDO, SDO information, PDO
+/// assignment, PDO configuration (no complete access).
+const COE_DETAILS: u8 = 0x0F;
+
+/// Builds the EEPROM image (bytes, little-endian words) for drive
+/// `serial`; with `fixed_mapping` its TxPDO lists the inputs in the order
+/// [`super::DriveBehaviour::fixed_mapping`] gives them, and PDO
+/// configuration is not offered.
+pub fn drive_eeprom(serial: u32, fixed_mapping: bool) -> Vec<u8> {
     let mut words = vec![0u8; 0x40 * 2];
     put_u32(&mut words, 0x08, EMULATED_VENDOR_ID);
     put_u32(&mut words, 0x0A, EMULATED_PRODUCT_CODE);
     put_u32(&mut words, 0x0C, 1);
     put_u32(&mut words, 0x0E, serial);
+    // Standard mailbox: receive (master → drive) offset and size, send
+    // offset and size, then the protocols.
+    let size = MAILBOX_SIZE as u16;
+    put_u16(&mut words, 0x18, MAILBOX_OUT_START);
+    put_u16(&mut words, 0x19, size);
+    put_u16(&mut words, 0x1A, MAILBOX_IN_START);
+    put_u16(&mut words, 0x1B, size);
+    put_u16(&mut words, 0x1C, PROTOCOL_COE);
     // Word 0x3E: EEPROM size in kbit minus one; 0x3F: version.
     put_u16(&mut words, 0x3E, 1);
     put_u16(&mut words, 0x3F, 1);
@@ -47,21 +66,32 @@ pub fn drive_eeprom(serial: u32) -> Vec<u8> {
     let mut general = vec![0u8; 32];
     general[2] = 1; // order index
     general[3] = 1; // name index
+    general[5] = if fixed_mapping {
+        COE_DETAILS & !0x08
+    } else {
+        COE_DETAILS
+    };
     category(&mut words, CATEGORY_GENERAL, &general);
 
     // FMMU usage, listed per sync manager so FMMU n serves SM n.
     category(&mut words, CATEGORY_FMMU, &[0xFF, 0xFF, 0x01, 0x02]);
 
     let mut sms = Vec::new();
-    // SM0/SM1: mailbox areas, disabled (the drive has no mailbox).
-    sms.extend_from_slice(&sync_manager(0x1000, 0x80, 0x26, false, 1));
-    sms.extend_from_slice(&sync_manager(0x1080, 0x80, 0x22, false, 2));
+    // SM0/SM1: the mailboxes (master writes SM0, reads SM1).
+    sms.extend_from_slice(&sync_manager(MAILBOX_OUT_START, size, 0x26, true, 1));
+    sms.extend_from_slice(&sync_manager(MAILBOX_IN_START, size, 0x22, true, 2));
     // SM2: outputs, buffered, master writes; SM3: inputs, buffered.
     sms.extend_from_slice(&sync_manager(SM2_START, 0, 0x64, true, 3));
     sms.extend_from_slice(&sync_manager(SM3_START, 0, 0x20, true, 4));
     category(&mut words, CATEGORY_SYNC_MANAGER, &sms);
 
-    category(&mut words, CATEGORY_TX_PDO, &pdo(0x1A00, 3, TX_PDO_ENTRIES));
+    let mut tx = TX_PDO_ENTRIES.to_vec();
+    if fixed_mapping {
+        // Statusword, error code, position, following error.
+        tx.swap(1, 3);
+        tx.swap(2, 3);
+    }
+    category(&mut words, CATEGORY_TX_PDO, &pdo(0x1A00, 3, &tx));
     category(&mut words, CATEGORY_RX_PDO, &pdo(0x1600, 2, RX_PDO_ENTRIES));
     words.extend_from_slice(&CATEGORY_END.to_le_bytes());
     words.extend_from_slice(&[0u8; 16]);

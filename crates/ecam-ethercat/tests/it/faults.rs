@@ -21,7 +21,8 @@ type Line = CamLine<ecam_core::PointTable>;
 type Emulation = std::sync::Arc<std::sync::Mutex<EmulatedSegment>>;
 
 pub(crate) fn running_line(drives: usize, behaviour: DriveBehaviour) -> (Line, Emulation) {
-    let (segment, emulation) = emulated(drives, behaviour);
+    // The fault tests lose replies on purpose: each waits 250 ms, not 5 s.
+    let (segment, emulation) = crate::emulated_with(drives, behaviour, crate::test_config());
     let axes = (0..drives)
         .map(|drive| CamDrive {
             axis: knife_axis(),
@@ -93,16 +94,24 @@ fn injected_fault_stops_reports_and_recovers() {
     let faults = seen.expect("fault not reported");
     assert_eq!(
         faults,
-        vec![LineFault {
-            drive: Some(1),
-            cause: FaultCause::Drive { code: 0x2310 }
-        }]
+        vec![LineFault::new(Some(1), FaultCause::Drive { code: 0x2310 })]
     );
     assert_eq!(
         faults[0].to_string(),
         "drive 1: drive fault, error code 0x2310 (continuous over-current)"
     );
     assert_eq!(line.state(), LineState::Faulted);
+    // The drive's emergency is read from its mailbox between cycles and
+    // added to the fault in words.
+    for _ in 0..5 {
+        line.cycle().unwrap();
+        line.acyclic_step(Duration::from_millis(50));
+    }
+    assert_eq!(
+        line.faults()[0].to_string(),
+        "drive 1: drive fault, error code 0x2310 (continuous over-current); \
+         emergency 0x2310 (continuous over-current), error register 0x03 (generic, current)"
+    );
     let held: Vec<i64> = emulation
         .lock()
         .unwrap()
@@ -297,13 +306,13 @@ fn a_drive_out_of_op_faults_the_line_and_a_reset_brings_it_back() {
         faults.extend_from_slice(line.new_faults());
     }
     assert!(
-        faults.contains(&LineFault {
-            drive: Some(1),
-            cause: FaultCause::LeftOp {
+        faults.contains(&LineFault::new(
+            Some(1),
+            FaultCause::LeftOp {
                 state: AlState::SafeOp,
                 code: None
             }
-        }),
+        )),
         "{faults:?}"
     );
     // The diagnosis reads the AL status code between cycles.
@@ -315,6 +324,11 @@ fn a_drive_out_of_op_faults_the_line_and_a_reset_brings_it_back() {
     assert!(
         text.iter()
             .any(|t| t.contains("AL status code 0x001b") && t.contains("atchdog")),
+        "{text:?}"
+    );
+    // Its power stage was on: it faulted too, and said so by emergency.
+    assert!(
+        text.iter().any(|t| t.contains("emergency 0x8130")),
         "{text:?}"
     );
     recover(&mut line);
@@ -492,9 +506,12 @@ fn after_a_lost_cycle_the_shaft_goes_on() {
     for _ in 0..50 {
         line.cycle().unwrap();
     }
+    // Held far beyond the 5 ms timeout: a reply held only a little longer
+    // than the timeout was taken when a loaded host woke the cycle late
+    // (a reply that has arrived is used, however late the look).
     emulation.lock().unwrap().impair(Impairment {
         hold_count: 1,
-        hold: Duration::from_millis(8),
+        hold: Duration::from_millis(500),
         ..Impairment::default()
     });
     let mut lost = false;

@@ -117,10 +117,7 @@ fn fault_stops_and_reset_then_enable_back_to_back_recovers_without_a_jump() {
     }
     assert_eq!(
         faults,
-        vec![LineFault {
-            drive: Some(1),
-            cause: FaultCause::Drive { code: 0x7500 }
-        }]
+        vec![LineFault::new(Some(1), FaultCause::Drive { code: 0x7500 })]
     );
     assert_eq!(line.state(), LineState::Faulted);
     assert!(matches!(

@@ -4,6 +4,7 @@
 
 mod bring_up;
 mod bus_master;
+mod coe;
 mod faults;
 mod follow;
 mod rotary_knife;
@@ -18,7 +19,8 @@ use ecam_ethercat::{Segment, SegmentConfig, Transport};
 /// Lost cycles in a row a test line allows before it faults.
 const LOST: u32 = 5;
 
-/// Timing for tests that call `cycle` back to back (no real-time clock).
+/// Timing for tests that call `cycle` back to back (no real-time clock)
+/// and lose replies on purpose (each lost one is waited for).
 fn test_config() -> SegmentConfig {
     SegmentConfig {
         // Generous: a loaded CI host must not turn a slow reply into a
@@ -30,10 +32,21 @@ fn test_config() -> SegmentConfig {
     }
 }
 
-/// A segment of `drives` emulated drives brought to OP, and the handle
-/// to the emulation.
+/// Timing for the tests that require every cycle answered (exactness over
+/// thousands of cycles): a reply waited for 5 s, so that only a dead link,
+/// not a busy shared host that stalls the test thread for a few hundred
+/// milliseconds, loses a cycle. A reply that comes back is not held up.
+fn exact_config() -> SegmentConfig {
+    SegmentConfig {
+        reply_timeout: Duration::from_secs(5),
+        ..test_config()
+    }
+}
+
+/// A segment of `drives` emulated drives brought to OP that answers every
+/// cycle (the [`exact_config`] timing), and the handle to the emulation.
 fn emulated(drives: usize, behaviour: DriveBehaviour) -> (Segment, Arc<Mutex<EmulatedSegment>>) {
-    emulated_with(drives, behaviour, test_config())
+    emulated_with(drives, behaviour, exact_config())
 }
 
 /// As [`emulated`], with this timing. The ESCs' watchdog is off: these

@@ -9,8 +9,6 @@ use ecam_engine::{AxisConfig, CamAxis, Coupling, SlaveAlign, TickInput};
 use ecam_ethercat::emulation::DriveBehaviour;
 use ecam_ethercat::line::{CamDrive, CamLine, LineState, Master};
 
-use crate::emulated;
-
 pub(crate) fn knife_axis() -> CamAxis<PointTable> {
     let table = generate(&Params::default()).unwrap().table;
     let config = AxisConfig {
@@ -28,7 +26,7 @@ fn ten_thousand_cycles_on_eight_drives_are_exact() {
         lag_cycles: LAG,
         ..DriveBehaviour::default()
     };
-    let (segment, emulation) = emulated(8, behaviour);
+    let (segment, emulation) = crate::emulated(8, behaviour);
     let axes = (0..8)
         .map(|drive| CamDrive {
             axis: knife_axis(),
@@ -113,7 +111,7 @@ fn sixty_four_drives_over_two_frames_stay_exact() {
         lag_cycles: 1,
         ..DriveBehaviour::default()
     };
-    let (segment, emulation) = emulated(64, behaviour);
+    let (segment, emulation) = crate::emulated(64, behaviour);
     let axes = (0..64)
         .map(|drive| CamDrive {
             axis: knife_axis(),

@@ -100,7 +100,7 @@ fn cam_runs_over_a_veth_pair_in_a_namespace() {
         Arc::clone(&emulation),
     )
     .expect("emulation on the veth end");
-    let config = crate::test_config();
+    let config = crate::exact_config();
     let segment = Segment::bring_up(Transport::Interface(pair.master_end.clone()), config)
         .expect("bring-up over veth");
     assert_eq!(segment.len(), 3);

@@ -5,6 +5,7 @@ use core::fmt;
 use std::path::PathBuf;
 
 use ecam_core::TableError;
+use ecam_core::excerpt::excerpt;
 
 use crate::McError;
 
@@ -156,30 +157,52 @@ pub enum LineError {
         /// The names defined so far.
         known: Vec<String>,
     },
+    /// A `Tick` that takes the script's `Tick`s past the cycles one run
+    /// may take ([`ecam_core::budget`]).
+    TicksOverBudget {
+        /// The `Tick`'s cycles.
+        ticks: u64,
+        /// The cycles one run may take.
+        limit: i64,
+    },
 }
 
 impl fmt::Display for LineError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let plural = |n: usize| if n == 1 { "" } else { "s" };
         match self {
-            Self::UnknownCommand { cmd } => write!(f, "unknown command '{cmd}'"),
+            Self::UnknownCommand { cmd } => {
+                write!(f, "unknown command '{cmd}'", cmd = excerpt(cmd))
+            }
             Self::ArgumentCount { cmd, usage, got } => {
                 let shape = if usage.is_empty() {
                     "no arguments".to_owned()
                 } else {
                     usage.join(" ")
                 };
-                write!(f, "{cmd} takes {shape}, got {got} argument{}", plural(*got))
+                write!(
+                    f,
+                    "{cmd} takes {shape}, got {got} argument{}",
+                    plural(*got),
+                    cmd = excerpt(cmd)
+                )
             }
             Self::AxesNotFirst => f.write_str(
                 "Axes must be the script's first command: it creates the axes the others use",
             ),
             Self::NumberOutOfRange { cmd, what, word } => write!(
                 f,
-                "{cmd}: {what} {word} is out of range (a signed 64-bit number)"
+                "{cmd}: {what} {word} is out of range (a signed 64-bit number)",
+                cmd = excerpt(cmd),
+                word = excerpt(word)
             ),
             Self::NotWhole { cmd, what, word } => {
-                write!(f, "{cmd}: {what} '{word}' is not a whole number")
+                write!(
+                    f,
+                    "{cmd}: {what} '{word}' is not a whole number",
+                    cmd = excerpt(cmd),
+                    word = excerpt(word)
+                )
             }
             Self::OutOfRange {
                 cmd,
@@ -187,48 +210,73 @@ impl fmt::Display for LineError {
                 value,
                 min,
                 max,
-            } => write!(f, "{cmd}: {what} {value} is out of range: {min} to {max}"),
+            } => write!(
+                f,
+                "{cmd}: {what} {value} is out of range: {min} to {max}",
+                cmd = excerpt(cmd)
+            ),
             Self::CountOrOff { cmd, what, value } => {
-                write!(f, "{cmd}: {what} must be at least 1 (or Off), got {value}")
+                write!(
+                    f,
+                    "{cmd}: {what} must be at least 1 (or Off), got {value}",
+                    cmd = excerpt(cmd)
+                )
             }
             Self::NoSuchAxis { cmd, axis, count } => write!(
                 f,
                 "{cmd}: no axis {axis}: axes are numbered 0 to {} (`Axes N` as the first command sets how many)",
-                count.saturating_sub(1)
+                count.saturating_sub(1),
+                cmd = excerpt(cmd)
             ),
-            Self::Refused { cmd, error } => write!(f, "{cmd}: {error}"),
+            Self::Refused { cmd, error } => write!(f, "{cmd}: {error}", cmd = excerpt(cmd)),
             Self::UserUnit { cmd, pulses } => {
                 write!(
                     f,
-                    "{cmd}: a user unit must be at least 1 pulse, got {pulses}"
+                    "{cmd}: a user unit must be at least 1 pulse, got {pulses}",
+                    cmd = excerpt(cmd)
                 )
             }
             Self::TableName { cmd, name } => write!(
                 f,
-                "{cmd}: '{name}' is not a table name (letters, digits, _ and -, starting with a letter or _)"
+                "{cmd}: '{name}' is not a table name (letters, digits, _ and -, starting with a letter or _)",
+                cmd = excerpt(cmd),
+                name = excerpt(name)
             ),
             Self::Pairs { cmd, got } => write!(
                 f,
                 "{cmd}: give the points as MASTER SLAVE pairs after the name, got {got} number{}",
-                plural(*got)
+                plural(*got),
+                cmd = excerpt(cmd)
             ),
-            Self::Table { cmd, error } => write!(f, "{cmd}: {error}"),
-            Self::TableFileArgs { cmd } => write!(f, "{cmd} takes NAME PATH"),
-            Self::TableFile { cmd, reason } => write!(f, "{cmd}: {reason}"),
+            Self::Table { cmd, error } => write!(f, "{cmd}: {error}", cmd = excerpt(cmd)),
+            Self::TableFileArgs { cmd } => write!(f, "{cmd} takes NAME PATH", cmd = excerpt(cmd)),
+            Self::TableFile { cmd, reason } => write!(f, "{cmd}: {reason}", cmd = excerpt(cmd)),
             Self::NotPoints { cmd, path, kind } => write!(
                 f,
                 "{cmd}: {} holds a {kind} table; an E-CAM table is (master, slave) points: CSV, or JSON of kind points",
-                path.display()
+                path.display(),
+                cmd = excerpt(cmd)
             ),
             Self::OwnMaster { cmd, axis } => {
-                write!(f, "{cmd}: axis {axis} cannot be its own master")
+                write!(
+                    f,
+                    "{cmd}: axis {axis} cannot be its own master",
+                    cmd = excerpt(cmd)
+                )
             }
             Self::CamType { cmd, word } => write!(
                 f,
-                "{cmd}: unknown E-CAM type '{word}': use Normal, Periodic or Repeat"
+                "{cmd}: unknown E-CAM type '{word}': use Normal, Periodic or Repeat",
+                cmd = excerpt(cmd),
+                word = excerpt(word)
             ),
             Self::NoSuchTable { cmd, name, known } => {
-                write!(f, "{cmd}: no E-CAM table named '{name}' (")?;
+                write!(
+                    f,
+                    "{cmd}: no E-CAM table named '{name}' (",
+                    cmd = excerpt(cmd),
+                    name = excerpt(name)
+                )?;
                 if known.is_empty() {
                     f.write_str("no table is defined yet: define one with ECAMTable or ECAMTableFile above this line")?;
                 } else {
@@ -236,6 +284,10 @@ impl fmt::Display for LineError {
                 }
                 f.write_str(")")
             }
+            Self::TicksOverBudget { ticks, limit } => write!(
+                f,
+                "Tick {ticks}: the script's Ticks add up to more than the {limit} cycles one run may take"
+            ),
         }
     }
 }

@@ -64,6 +64,7 @@ impl Script {
             base_dir: path.parent().unwrap_or(Path::new("")),
             axis_count: DEFAULT_AXES,
             tables: BTreeMap::new(),
+            budget: ecam_core::budget::Budget::per_run(),
         };
         let mut lines: Vec<Line> = Vec::new();
         for (index, text) in text.lines().enumerate() {
@@ -103,6 +104,8 @@ struct Parser<'a> {
     base_dir: &'a Path,
     axis_count: usize,
     tables: BTreeMap<String, PointTable>,
+    /// The cycles of the script's `Tick`s in all: one run's budget.
+    budget: ecam_core::budget::Budget,
 }
 
 /// One line's command word and arguments.
@@ -411,7 +414,11 @@ impl Parser<'_> {
                 a.expect(&["N"])?;
                 let limit = ecam_core::limits::MAX_SIMULATED_TICKS as i64;
                 let n = a.bounded(0, "the cycle count", 0, limit)?;
-                Command::Tick(u64::try_from(n).unwrap_or_default())
+                let n = u64::try_from(n).unwrap_or_default();
+                self.budget
+                    .cycles(n)
+                    .map_err(|_| LineError::TicksOverBudget { ticks: n, limit })?;
+                Command::Tick(n)
             }
             "getcommandposition" => {
                 a.expect(&["AXIS"])?;
@@ -473,6 +480,18 @@ mod tests {
 
     fn error(text: &str) -> String {
         parse(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn messages_quote_a_short_excerpt_of_a_huge_line() {
+        let huge = "Q".repeat(100_000);
+        let e = error(&format!("{huge} 1"));
+        assert!(e.len() < 120, "{} bytes: {e}", e.len());
+        assert!(e.starts_with("t.mc:1: unknown command 'QQ"), "{e}");
+        assert!(e.contains("(100000 bytes)"), "{e}");
+        let e = error(&format!("Axes 2\nECAMTable 9{huge} 0 0 10 10"));
+        assert!(e.len() < 250, "{} bytes: {e}", e.len());
+        assert!(e.starts_with("t.mc:2: ECAMTable:"), "{e}");
     }
 
     #[test]

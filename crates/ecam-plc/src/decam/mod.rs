@@ -111,6 +111,12 @@ enum Phase {
     Done,
 }
 
+/// Checks the table words of the block at `D{block}` as `devices` hold
+/// them, as [`Decam::check_table`] does for its own block.
+pub(crate) fn check_table_at(devices: &Devices, block: u16) -> Result<(), BlockError> {
+    Block::new(devices, block).table_check()
+}
+
 /// One DECAM instruction of a program.
 pub struct Decam {
     operands: DecamOperands,
@@ -215,7 +221,7 @@ impl Decam {
     /// The [`BlockError`] the block would show (6781 for offset 31, 6782,
     /// 6783).
     pub fn check_table(&self, devices: &Devices) -> Result<(), BlockError> {
-        Block::new(devices, self.operands.block).table_check()
+        check_table_at(devices, self.operands.block)
     }
 
     /// The instruction at its place in the scan; `enabled` is its power flow.

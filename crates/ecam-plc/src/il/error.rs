@@ -4,6 +4,8 @@
 
 use core::fmt;
 
+use ecam_core::excerpt::excerpt;
+
 use crate::operation_error::OperationError;
 
 /// A program that cannot be loaded: `file:line: problem`.
@@ -124,84 +126,127 @@ impl fmt::Display for TokenError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::IndexRegisterRange(t) => {
-                write!(f, "index register `{t}` is out of range (V0-V7, Z0-Z7)")
+                write!(
+                    f,
+                    "index register `{t}` is out of range (V0-V7, Z0-Z7)",
+                    t = excerpt(t)
+                )
             }
             Self::BitOfIndexed(t) => write!(
                 f,
-                "`{t}`: a bit of an index-modified register is not allowed (the FX refuses Dn.b with V/Z); use D(n+offset).b or a word group"
+                "`{t}`: a bit of an index-modified register is not allowed (the FX refuses Dn.b with V/Z); use D(n+offset).b or a word group",
+                t = excerpt(t)
             ),
             Self::ModifierRange { token, by } => write!(
                 f,
-                "`{token}`: index register `{by}` is out of range (V0-V7, Z0-Z7)"
+                "`{token}`: index register `{by}` is out of range (V0-V7, Z0-Z7)",
+                token = excerpt(token),
+                by = excerpt(by)
             ),
             Self::NotModifier(t) => write!(
                 f,
-                "`{t}`: the modifier must be an index register V0-V7 or Z0-Z7"
+                "`{t}`: the modifier must be an index register V0-V7 or Z0-Z7",
+                t = excerpt(t)
             ),
             Self::TwoModifiers { token, base } => write!(
                 f,
-                "`{token}`: an operand takes one index modifier; an index register cannot modify {base}"
+                "`{token}`: an operand takes one index modifier; an index register cannot modify {base}",
+                token = excerpt(token),
+                base = excerpt(base)
             ),
             Self::FloatModified(t) => write!(
                 f,
-                "`{t}`: an E constant cannot be index-modified (K and H constants can)"
+                "`{t}`: an E constant cannot be index-modified (K and H constants can)",
+                t = excerpt(t)
             ),
             Self::CannotModify { token, base } => write!(
                 f,
-                "`{token}`: an index register cannot modify {base} (the FX modifies D, C, T, X, Y, M, word groups and K/H constants)"
+                "`{token}`: an index register cannot modify {base} (the FX modifies D, C, T, X, Y, M, word groups and K/H constants)",
+                token = excerpt(token),
+                base = excerpt(base)
             ),
             Self::IndexRegisterModified(t) => {
-                write!(f, "`{t}`: an index register cannot be index-modified")
+                write!(
+                    f,
+                    "`{t}`: an index register cannot be index-modified",
+                    t = excerpt(t)
+                )
             }
             Self::NotK(t) => write!(
                 f,
-                "`{t}` is not a K constant (expected K and a decimal integer, e.g. K100)"
+                "`{t}` is not a K constant (expected K and a decimal integer, e.g. K100)",
+                t = excerpt(t)
             ),
             Self::NotH(t) => write!(
                 f,
-                "`{t}` is not an H constant (expected H and hex digits, e.g. H1F)"
+                "`{t}` is not an H constant (expected H and hex digits, e.g. H1F)",
+                t = excerpt(t)
             ),
-            Self::TimerRange(t) => write!(f, "device `{t}` is out of range (timers T0-T255)"),
+            Self::TimerRange(t) => write!(
+                f,
+                "device `{t}` is out of range (timers T0-T255)",
+                t = excerpt(t)
+            ),
             Self::NotE(t) => write!(
                 f,
-                "`{t}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)"
+                "`{t}` is not an E constant (expected E and a finite decimal number, e.g. E1.6667)",
+                t = excerpt(t)
             ),
             Self::DeviceRange(t) => write!(
                 f,
-                "device `{t}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)"
+                "device `{t}` is out of range (D0-D8511, M0-M8511, X0-X377 and Y0-Y377 octal, C0-C255)",
+                t = excerpt(t)
             ),
             Self::UnknownDevice(t) => write!(
                 f,
-                "unknown device `{t}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)"
+                "unknown device `{t}` (expected D, M, X, Y, C, T and a number, X/Y in octal, or a K/H/E constant)",
+                t = excerpt(t)
             ),
             Self::BitOfNonRegister(t) => write!(
                 f,
-                "`{t}`: only data registers D have addressable bits (Dn.b, b = 0-F)"
+                "`{t}`: only data registers D have addressable bits (Dn.b, b = 0-F)",
+                t = excerpt(t)
             ),
-            Self::WordBitRange(t) => write!(f, "device `{t}` is out of range (D0-D8511)"),
+            Self::WordBitRange(t) => {
+                write!(f, "device `{t}` is out of range (D0-D8511)", t = excerpt(t))
+            }
             Self::NotWordBit(t) => write!(
                 f,
-                "`{t}` is not a bit of a word (expected Dn.b with b = 0-F, e.g. D2001.0)"
+                "`{t}` is not a bit of a word (expected Dn.b with b = 0-F, e.g. D2001.0)",
+                t = excerpt(t)
             ),
             Self::BitNumber(t) => write!(
                 f,
-                "`{t}`: the bit number must be one hex digit 0-F (e.g. D2001.F)"
+                "`{t}`: the bit number must be one hex digit 0-F (e.g. D2001.F)",
+                t = excerpt(t)
             ),
             Self::GroupDigits(t) => {
-                write!(f, "`{t}`: a word group has 1 to 8 digits (K1M0 to K8M0)")
+                write!(
+                    f,
+                    "`{t}`: a word group has 1 to 8 digits (K1M0 to K8M0)",
+                    t = excerpt(t)
+                )
             }
             Self::NotGroup(t) => write!(
                 f,
-                "`{t}` is not a word group (expected Kn and an X, Y or M device, e.g. K4M0)"
+                "`{t}` is not a word group (expected Kn and an X, Y or M device, e.g. K4M0)",
+                t = excerpt(t)
             ),
             Self::GroupPastEnd { token, kind } => {
-                write!(f, "word group `{token}` runs past the last {kind} device")
+                write!(
+                    f,
+                    "word group `{token}` runs past the last {kind} device",
+                    token = excerpt(token)
+                )
             }
-            Self::PointerSyntax(t) => write!(f, "expected a pointer P0–P127, found `{t}`"),
+            Self::PointerSyntax(t) => {
+                write!(f, "expected a pointer P0–P127, found `{t}`", t = excerpt(t))
+            }
             Self::PointerRange(p) => write!(
                 f,
                 "pointer {p} out of range: the LX3V has P0–P{}",
-                super::limits::POINTER_COUNT - 1
+                super::limits::POINTER_COUNT - 1,
+                p = excerpt(p)
             ),
         }
     }
@@ -479,7 +524,11 @@ impl fmt::Display for StatementError {
                 mnemonic,
                 position,
                 problem,
-            } => write!(f, "{mnemonic} operand {position}: {problem}"),
+            } => write!(
+                f,
+                "{mnemonic} operand {position}: {problem}",
+                mnemonic = excerpt(mnemonic)
+            ),
             Self::Arity {
                 mnemonic,
                 names,
@@ -490,13 +539,26 @@ impl fmt::Display for StatementError {
                 names.len(),
                 if names.len() == 1 { "" } else { "s" },
                 names.join(" "),
+                mnemonic = excerpt(mnemonic)
             ),
-            Self::NoOperands { mnemonic } => write!(f, "{mnemonic} takes no operands"),
+            Self::NoOperands { mnemonic } => write!(
+                f,
+                "{mnemonic} takes no operands",
+                mnemonic = excerpt(mnemonic)
+            ),
             Self::FlowArity { mnemonic, found } => {
-                write!(f, "{mnemonic} expects 1 operand (Pn), found {found}")
+                write!(
+                    f,
+                    "{mnemonic} expects 1 operand (Pn), found {found}",
+                    mnemonic = excerpt(mnemonic)
+                )
             }
             Self::LabelNotAlone { label } => {
-                write!(f, "a pointer label {label} stands alone on its line")
+                write!(
+                    f,
+                    "a pointer label {label} stands alone on its line",
+                    label = excerpt(label)
+                )
             }
             Self::BadLabel(e) => write!(f, "{e}"),
             Self::EndPointerLabel => f.write_str(
@@ -504,19 +566,26 @@ impl fmt::Display for StatementError {
             ),
             Self::CallEndPointer { mnemonic } => write!(
                 f,
-                "{mnemonic} P63: P63 is the END pointer, only CJ may use it"
+                "{mnemonic} P63: P63 is the END pointer, only CJ may use it",
+                mnemonic = excerpt(mnemonic)
             ),
             Self::Unknown { mnemonic, hint } => {
-                write!(f, "unknown instruction `{mnemonic}`")?;
+                write!(
+                    f,
+                    "unknown instruction `{mnemonic}`",
+                    mnemonic = excerpt(mnemonic)
+                )?;
                 match hint {
                     UnknownHint::NotListed => {
                         f.write_str(" (see docs/plc-instructions.md for the supported list)")
                     }
                     UnknownHint::Comparison => Ok(()),
                     UnknownHint::NoDoubleForm(base) => {
-                        write!(f, " ({base} has no 32-bit D form)")
+                        write!(f, " ({base} has no 32-bit D form)", base = excerpt(base))
                     }
-                    UnknownHint::NoPulseForm(base) => write!(f, " ({base} has no P form)"),
+                    UnknownHint::NoPulseForm(base) => {
+                        write!(f, " ({base} has no P form)", base = excerpt(base))
+                    }
                     UnknownHint::FloatMove => f.write_str(" (the float move is DEMOV)"),
                     UnknownHint::Ecam => f.write_str(" (the E-cam instruction is DECAM)"),
                 }
@@ -539,7 +608,8 @@ impl fmt::Display for StatementError {
                 length,
             } => write!(
                 f,
-                "{mnemonic}: n2 = {places} is more than n1 = {length} (the shift cannot be longer than the block)"
+                "{mnemonic}: n2 = {places} is more than n1 = {length} (the shift cannot be longer than the block)",
+                mnemonic = excerpt(mnemonic)
             ),
             Self::ZoneKinds {
                 mnemonic,
@@ -547,11 +617,13 @@ impl fmt::Display for StatementError {
                 second,
             } => write!(
                 f,
-                "{mnemonic} expects two devices of the same kind (M, Y, D or C), found {first} {second}"
+                "{mnemonic} expects two devices of the same kind (M, Y, D or C), found {first} {second}",
+                mnemonic = excerpt(mnemonic)
             ),
             Self::ZoneOrder { mnemonic } => write!(
                 f,
-                "{mnemonic}: the first device must not come after the last"
+                "{mnemonic}: the first device must not come after the last",
+                mnemonic = excerpt(mnemonic)
             ),
         }
     }
@@ -667,7 +739,8 @@ impl fmt::Display for FlowError {
             ),
             Self::NoLabel { mnemonic, pointer } => write!(
                 f,
-                "{mnemonic} P{pointer}: no label P{pointer} in the program"
+                "{mnemonic} P{pointer}: no label P{pointer} in the program",
+                mnemonic = excerpt(mnemonic)
             ),
             Self::JumpAcrossEnd(pointer) => write!(
                 f,

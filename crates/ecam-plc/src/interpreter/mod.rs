@@ -32,7 +32,7 @@ pub(crate) use self::machine::Machine;
 use self::machine::Memory;
 use self::power_flow::PowerFlow;
 use crate::il::{Instruction, Program, is_output};
-use crate::operation_error::{CODE_SCAN_LIMIT, OperationError};
+use crate::operation_error::OperationError;
 
 /// An operation error and the source line of the instruction that raised it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -54,10 +54,18 @@ pub struct Interpreter {
     decam_of: Vec<Option<usize>>,
 }
 
-/// Most instructions one scan may execute: a backward CJ whose condition
-/// never changes within the scan would otherwise loop for ever (the FX stops
-/// on its watchdog timer). The scan ends with an operation error instead.
-pub const MAX_STEPS_PER_SCAN: usize = 1_000_000;
+/// What one scan did: its operation errors, how many instructions it
+/// executed, and whether the watchdog stopped it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ScanOutcome {
+    /// Operation errors, with their lines.
+    pub errors: Vec<LineError>,
+    /// Instructions executed.
+    pub steps: u64,
+    /// The scan ran past the watchdog time: the line of the last jump
+    /// taken (a loop that never ends), or of the instruction reached.
+    pub overrun_at: Option<usize>,
+}
 
 /// Where the scan goes after an instruction.
 enum Next {
@@ -91,32 +99,32 @@ impl Interpreter {
     }
 
     /// Runs every statement once. An instruction that fails does not stop the
-    /// scan (as on the PLC); its error is returned with its line.
-    pub fn scan(&mut self, program: &Program, machine: &mut Machine<'_>) -> Vec<LineError> {
+    /// scan (as on the PLC); its error is returned with its line. Every
+    /// [`crate::watchdog::CHECK_EVERY`] instructions `over_time(steps)` is
+    /// asked whether the scan has run past the watchdog time; when it has,
+    /// the scan ends there (a backward CJ whose condition never changes
+    /// would otherwise loop for ever).
+    pub fn scan(
+        &mut self,
+        program: &Program,
+        machine: &mut Machine<'_>,
+        over_time: &mut dyn FnMut(u64) -> bool,
+    ) -> ScanOutcome {
         let mut errors = Vec::new();
+        let mut overrun_at = None;
         self.power_flow.clear();
         let mut after_output = true;
         let mut calls = Calls::default();
         let mut next = 0usize;
-        let mut steps = 0usize;
+        let mut steps = 0u64;
         // The line of the last jump taken: the loop an over-long scan names.
         let mut last_jump: Option<usize> = None;
         while let Some(statement) = program.statements.get(next) {
             let index = next;
             next += 1;
             steps += 1;
-            if steps > MAX_STEPS_PER_SCAN {
-                let error = OperationError::new(
-                    CODE_SCAN_LIMIT,
-                    format!(
-                        "the scan executed more than {MAX_STEPS_PER_SCAN} instructions (a CJ loop that never ends?): scan stopped"
-                    ),
-                );
-                report(machine, &error);
-                errors.push(LineError {
-                    line: last_jump.unwrap_or(statement.line),
-                    error,
-                });
+            if steps.is_multiple_of(crate::watchdog::CHECK_EVERY) && over_time(steps) {
+                overrun_at = Some(last_jump.unwrap_or(statement.line));
                 break;
             }
             let Some(memory) = self.memory.get_mut(index) else {
@@ -171,7 +179,11 @@ impl Interpreter {
                 after_output = is_output(instruction);
             }
         }
-        errors
+        ScanOutcome {
+            errors,
+            steps,
+            overrun_at,
+        }
     }
 }
 

@@ -4,7 +4,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use ecam_plc::Program;
-use ecam_plc::{CODE_CALL_NESTING, CODE_SCAN_LIMIT, Device, Plc};
+use ecam_plc::watchdog::CODE_WATCHDOG;
+use ecam_plc::{CODE_CALL_NESTING, Device, Plc};
 
 fn plc(src: &str) -> Plc {
     Plc::new(Program::parse(src, "t.il").unwrap()).unwrap()
@@ -104,16 +105,62 @@ fn call_inside_an_mps_branch_restores_the_branch() {
 }
 
 #[test]
-fn endless_backward_jump_is_an_operation_error_not_a_hang() {
-    let mut plc = plc("P0\nLD M8000\nINC D0\nLD M8000\nCJ P0\nEND\n");
-    let errors = plc.scan();
-    assert_eq!(errors.len(), 1, "{errors:?}");
-    assert_eq!(errors[0].error.code, CODE_SCAN_LIMIT);
-    assert_eq!(errors[0].line, 5, "the line of the CJ that loops");
-    assert!(bit(&plc, Device::M(8067)));
-    assert_eq!(word(&plc, 8067), CODE_SCAN_LIMIT as i16);
-    // The next scan starts again from the top.
-    assert_eq!(plc.scan().len(), 1);
+fn endless_backward_jump_stops_the_program_on_the_watchdog() {
+    let mut plc = plc(
+        "LD M8000\nOUT Y7\nDPLSY K10000 K0 Y1\nLDI X0\nCJ P1\nP0\nLD M8000\nINC D0\nLD M8000\nCJ P0\nP1\nEND\n",
+    );
+    plc.scan();
+    plc.hardware_tick(1000);
+    assert!(plc.fault().is_none());
+    assert_eq!(plc.devices().dword(8142), Ok(10), "Y1 pulses at 10 kHz");
+    set(&mut plc, Device::X(0), true);
+    assert!(
+        plc.scan().is_empty(),
+        "the watchdog is not an operation error"
+    );
+    let fault = plc.fault().expect("stopped by the watchdog");
+    assert_eq!(fault.code(), CODE_WATCHDOG);
+    assert_eq!(fault.line(), 10, "the line of the CJ that loops");
+    assert!(fault.to_string().contains("D8000 = 200 ms"), "{fault}");
+    // The FX's error stop: M8061/D8061, M8004/D8004, outputs off, M8000 off.
+    assert!(bit(&plc, Device::M(8061)));
+    assert_eq!(word(&plc, 8061), 6105);
+    assert!(bit(&plc, Device::M(8004)));
+    assert_eq!(word(&plc, 8004), 8061);
+    assert!(!bit(&plc, Device::Y(7)));
+    assert!(!bit(&plc, Device::M(8000)) && bit(&plc, Device::M(8001)));
+    assert!(!bit(&plc, Device::M(8067)), "no operation error");
+    // 0.2 µs per instruction: the scan stopped just after 10⁶ of them.
+    assert_eq!(word(&plc, 8010), 2000, "200.0 ms in D8010 (0.1 ms)");
+    plc.hardware_tick(1000);
+    assert_eq!(plc.devices().dword(8142), Ok(10), "Y1's pulses stopped");
+    // Stopped: the program no longer runs.
+    let d0 = word(&plc, 0);
+    assert!(plc.scan().is_empty());
+    assert_eq!(word(&plc, 0), d0);
+    assert!(!bit(&plc, Device::M(8000)));
+}
+
+#[test]
+fn the_watchdog_time_is_d8000_as_the_program_sets_it() {
+    // About 150 000 instructions a scan: 30 ms of modeled time.
+    let source =
+        "LD M8000\nMOV K20 D8000\nMOV K0 D0\nP0\nLD M8000\nINC D0\nLD< D0 K30000\nCJ P0\nEND\n";
+    let mut plc = plc(source);
+    assert_eq!(word(&plc, 8000), 200, "200 ms at power-on");
+    // The first scan began with 200 ms: it finishes.
+    plc.scan();
+    assert!(plc.fault().is_none());
+    assert_eq!((word(&plc, 8000), word(&plc, 0)), (20, 30000));
+    let first = word(&plc, 8010);
+    assert!((290..=310).contains(&first), "D8010 = {first} (0.1 ms)");
+    // The next one is timed against 20 ms.
+    plc.scan();
+    let fault = plc.fault().expect("30 ms is over D8000 = 20 ms");
+    assert!(fault.to_string().contains("D8000 = 20 ms"), "{fault}");
+    assert!(word(&plc, 0) < 30000, "stopped inside the loop");
+    assert_eq!(word(&plc, 8012), first, "the longest scan");
+    assert!(word(&plc, 8011) <= word(&plc, 8010));
 }
 
 #[test]
