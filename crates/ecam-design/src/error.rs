@@ -39,15 +39,6 @@ pub enum ExprError {
         /// Whether the master `x` was allowed.
         master_allowed: bool,
     },
-    /// A call of a function the parser does not have (`sinn(x)`).
-    UnknownFunction {
-        /// The name called.
-        name: String,
-        /// The expression.
-        text: String,
-        /// The functions there are.
-        functions: &'static [&'static str],
-    },
     /// A number literal past the 64-bit float range.
     TooLarge {
         /// The literal.
@@ -112,15 +103,6 @@ impl fmt::Display for ExprError {
                     excerpt(text)
                 )
             }
-            Self::UnknownFunction {
-                name,
-                text,
-                functions,
-            } => write!(
-                f,
-                "unknown function `{name}` in {text:?}; the functions are {}",
-                functions.join(", ")
-            ),
             Self::TooLarge { literal, text } => write!(
                 f,
                 "the number {} in {:?} is too large for a 64-bit float",

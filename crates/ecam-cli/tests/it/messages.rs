@@ -142,7 +142,7 @@ fn an_unknown_function_is_named_not_a_parser_internal() {
         "--expr",
         "1000*sinn(x)",
     ]));
-    assert!(err.contains("unknown function `sinn`"), "{err}");
+    assert!(err.contains("`sinn` is not a function"), "{err}");
     assert!(!err.contains("wlog") && !err.contains("right:"), "{err}");
 }
 
