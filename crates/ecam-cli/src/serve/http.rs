@@ -16,6 +16,11 @@
 //! | `POST /api/segments/continuous` `{"start": {...}, "segment": [...]}` | a segment cam's free boundary values filled in from the neighbours |
 //! | `POST /api/drive/check` `{"generator", "params", "drive", "master_speed"}` | the design checked against a drive (docs/design.md) |
 //! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block the program names (or one clear of them, below D8000), one durable write (409 while its cam runs, unless `at-seam`) |
+//! | `POST /api/table/check` `{"points": [[0, 0], ...]}` | a point table checked, with its section velocities, impulses and summary |
+//! | `POST /api/table/read` `{"name": "t.csv", "text": "..."}` | an uploaded table file read as `ecam table show` reads it |
+//! | `POST /api/table/convert` `{"format": "csv", "points": [...], ...}` | a table as `ecam table gen -o` writes it, `{"text": ...}` |
+//! | `GET /api/limits` | table and key-point limits, key-point curve names |
+//! | `GET /api/block?name=D2000` | where a DECAM block starts, or why it cannot |
 //! | `GET /api/live?block=2000&rate=20` (WebSocket) | the cam's master, slave, speeds and sync output, [`super::live`] |
 //! | `GET /api/ethercat` | `--ethercat`: the line and every drive (state, positions, faults, lateness) |
 //! | `POST /api/ethercat/enable`, `/disable`, `/reset` `{}` | `--ethercat`: enable or disable the drives, clear the faults (202: done at the next cycle) |
@@ -185,6 +190,29 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/keypoints", post(key_points))
         .route("/api/segments/continuous", post(segments_continuous))
         .route("/api/drive/check", post(drive_check))
+        .route(
+            "/api/table/check",
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_check_json)
+            }),
+        )
+        .route(
+            "/api/table/read",
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_read_json)
+            }),
+        )
+        .route(
+            "/api/table/convert",
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_convert_json)
+            }),
+        )
+        .route(
+            "/api/limits",
+            get(|| async { json_value(StatusCode::OK, &ecam_design::limits_json()) }),
+        )
+        .route("/api/block", get(block))
         .route("/api/table/load", post(table_load))
         .route("/api/live", get(super::live::live))
         .route("/api/ethercat", get(ethercat_status))
@@ -357,6 +385,24 @@ async fn drive_check(State(shared): State<Arc<Shared>>, body: Bytes) -> Response
         json_call(&body, ecam_design::drive_check_json)
     })
     .await
+}
+
+/// The designer's table facts (check, read, convert): in the design pool
+/// like every design request.
+async fn table_fact(
+    State(shared): State<Arc<Shared>>,
+    body: Bytes,
+    answer: fn(&Value) -> Result<Value, String>,
+) -> Response {
+    design(&shared, move |_| json_call(&body, answer)).await
+}
+
+async fn block(Query(query): Query<HashMap<String, String>>) -> Response {
+    let name = query.get("name").map_or("", String::as_str);
+    match ecam_plc::decam::block_at(name) {
+        Ok(block) => json_value(StatusCode::OK, &json!({ "block": block })),
+        Err(e) => error(StatusCode::BAD_REQUEST, &e.to_string()),
+    }
 }
 
 /// Every design request goes through here: computed in the server's design

@@ -11,6 +11,7 @@
 mod accel_curve;
 mod cut_params;
 mod design_curve;
+mod exact;
 pub mod flying_saw;
 pub mod function;
 pub mod key_points;
@@ -26,5 +27,6 @@ mod sync_zone;
 pub use accel_curve::AccelCurve;
 pub use cut_params::CutParams;
 pub use design_curve::DesignCurve;
+pub use exact::ExactCurve;
 pub use placement::CamPlacement;
 pub use schema::{Field, FieldKind, Generator};
