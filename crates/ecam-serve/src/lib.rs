@@ -76,6 +76,8 @@ mod limits;
 mod live;
 mod map;
 mod mbap;
+#[cfg(feature = "net")]
+pub mod net;
 mod pdu;
 mod retain;
 mod scan_time;

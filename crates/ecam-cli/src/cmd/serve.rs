@@ -20,7 +20,8 @@ use ecam_serve::{
 };
 use tokio::net::TcpListener;
 
-use crate::serve::{ethercat, http, modbus};
+use crate::serve::{assets, ethercat};
+use ecam_serve::net::{http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
 pub const DEFAULT_MODBUS: &str = "127.0.0.1:5020";
@@ -235,7 +236,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             None => None,
         };
         let access = ecam_serve::Access::new(shared.info.http, &args.http_names, token.clone());
-        let router = http::router(Arc::clone(&shared), access);
+        let router = http::router(Arc::clone(&shared), access, assets::PAGE);
         let served: anyhow::Result<()> = tokio::select! {
             () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),
             () = http::serve(http_listener, router, Arc::clone(&shared)) => Ok(()),
