@@ -68,6 +68,8 @@ mod clock;
 mod connections;
 mod design_pool;
 mod device_json;
+#[cfg(feature = "ethercat")]
+pub mod ethercat;
 #[doc(hidden)]
 pub mod fuzz;
 mod image;

@@ -20,7 +20,8 @@ use ecam_serve::{
 };
 use tokio::net::TcpListener;
 
-use crate::serve::{assets, ethercat};
+use crate::serve::assets;
+use ecam_serve::ethercat;
 use ecam_serve::net::{http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).

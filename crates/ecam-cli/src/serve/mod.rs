@@ -1,9 +1,5 @@
-//! `ecam serve`'s pieces that stay in the binary; the listeners are
-//! [`ecam_serve::net`]'s.
-//!
-//! - [`assets`]: the designer page's files, compiled in,
-//! - [`ethercat`]: the fieldbus cycle of `--ethercat` (the PLC's pulse
-//!   outputs on CiA 402 drives).
+//! `ecam serve`'s piece that stays in the binary: the designer page's files,
+//! compiled in ([`assets`]). The listeners are [`ecam_serve::net`]'s, the
+//! fieldbus cycle of `--ethercat` is [`ecam_serve::ethercat`]'s.
 
 pub mod assets;
-pub mod ethercat;
