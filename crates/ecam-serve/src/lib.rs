@@ -19,9 +19,13 @@
 //! ([`Limits`]), who makes room at a full cap ([`Connections`]), and where
 //! design requests run ([`DesignPool`]).
 //!
-//! It has no async runtime and prints nothing: the binary owns the
-//! sockets, the async tasks and stderr, and hears what the operator should
-//! through [`Event`]. The scan loop and the latched-value saver block the
+//! Without features it has no async runtime and prints nothing: the
+//! binary owns stderr and hears what the operator should through
+//! [`Event`]. The feature `net` adds the sockets and async tasks (`net`:
+//! the Modbus TCP listener, the HTTP router and the live view on tokio and
+//! axum); the feature `ethercat` adds `serve --ethercat`'s fieldbus adapter
+//! (`ethercat`: the PLC's pulse outputs on CiA 402 drives over
+//! ecam-ethercat's cycle driver). The scan loop and the latched-value saver block the
 //! thread they run on; the design pool runs its own worker threads. Use it to serve the PLC over another transport, or
 //! to test what a client sees without a network; to run PLC programs in
 //! simulated time, use `ecam_plc::sim` directly. `docs/modbus.md` describes
