@@ -89,6 +89,7 @@ mod retain;
 mod scan_time;
 mod state;
 mod state_file;
+mod state_report;
 mod sync;
 mod table_load;
 mod web_guard;
@@ -131,6 +132,7 @@ pub use retain::{
 pub use scan_time::ThreadCpuTime;
 pub use state::{Closer, Event, ServeInfo, Shared, Stats, WriteError};
 pub use state_file::{Damage, Dropped, SNAPSHOT_HEADER};
+pub use state_report::{Notice, NoticeLevel, open_notices, restore_notices};
 pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use web_guard::{Access, MIN_TOKEN_LEN, Refusal, RequestFacts, TokenError, read_token};
 pub use write::{LineError, Slot, WriteBatch};
