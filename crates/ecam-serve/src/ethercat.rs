@@ -89,8 +89,13 @@ pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> Result<Bus,
         relay(&file, config.running_relay.as_deref(), "running_relay")?,
     ];
     let followers = config.followers().map_err(config_error)?;
-    let (transport, emulation) = Transport::choose(emulated, config.interface.as_deref())
-        .ok_or_else(|| BusError::NoInterface { file: file.clone() })?;
+    let (transport, emulation) =
+        Transport::chosen(emulated, config.interface.as_deref()).map_err(|error| {
+            BusError::NoInterface {
+                file: file.clone(),
+                error,
+            }
+        })?;
     let transport_name = transport.describe();
     let timing = config.timing();
     let segment = Segment::bring_up_with(transport, timing.segment(), config.setups())?;

@@ -6,6 +6,7 @@ use std::fmt;
 use ecam_ethercat::EthercatError;
 use ecam_ethercat::config::ConfigError;
 use ecam_ethercat::follow::FollowError;
+use ecam_ethercat::link::NoTransport;
 
 /// A failed bring-up of the server's fieldbus.
 #[derive(Debug)]
@@ -46,6 +47,8 @@ pub enum BusError {
     NoInterface {
         /// The file.
         file: String,
+        /// The transport's own words.
+        error: NoTransport,
     },
     /// The segment did not come up.
     Segment(EthercatError),
@@ -83,10 +86,7 @@ impl fmt::Display for BusError {
                 f,
                 "{file}: {key} = \"{name}\": name an M relay below M8000 (e.g. \"M100\")"
             ),
-            Self::NoInterface { file } => write!(
-                f,
-                "{file}: no interface; set interface = \"...\" or pass --emulated N"
-            ),
+            Self::NoInterface { file, error } => write!(f, "{file}: {error}"),
             Self::Segment(error) => write!(f, "{error}"),
             Self::Follow { file, error } => write!(f, "{file}: {error}"),
             Self::Thread { what, error } => write!(f, "cannot start {what}: {error}"),
