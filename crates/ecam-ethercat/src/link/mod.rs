@@ -124,6 +124,9 @@ impl std::fmt::Display for NoTransport {
 
 impl std::error::Error for NoTransport {}
 
+/// A chosen transport and, when emulated, the segment (to inject faults).
+pub type Chosen = (Transport, Option<Arc<Mutex<EmulatedSegment>>>);
+
 /// The way to the drives a link opens.
 #[derive(Clone, Debug)]
 pub enum Transport {
@@ -158,10 +161,7 @@ impl Transport {
     ///
     /// # Errors
     /// [`NoTransport`]: neither `emulated` nor `interface` is given.
-    pub fn chosen(
-        emulated: Option<u16>,
-        interface: Option<&str>,
-    ) -> Result<(Self, Option<Arc<Mutex<EmulatedSegment>>>), NoTransport> {
+    pub fn chosen(emulated: Option<u16>, interface: Option<&str>) -> Result<Chosen, NoTransport> {
         Self::choose(emulated, interface).ok_or(NoTransport)
     }
 
