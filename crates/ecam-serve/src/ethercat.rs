@@ -4,7 +4,7 @@
 //! exactly one cycle time of scans (ecam-serve's `scan_on_bus_ticks`) and
 //! publishes the pulse totals the drives follow next. The cycle shares no
 //! lock with the PLC, Modbus or HTTP: its status goes out through the
-//! driver's published image, which [`source::Source`] turns into this
+//! driver's published image, which the adapter in `source.rs` turns into this
 //! crate's [`crate::BusSnapshot`] when a client asks.
 //!
 //! The dependency points from the server to the fieldbus: ecam-ethercat
