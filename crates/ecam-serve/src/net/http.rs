@@ -54,7 +54,7 @@ use super::reply::{error, json_text, json_value};
 /// Serves `router` on `listener` for ever, within the server's limits: at
 /// the HTTP cap the idlest connection makes room, request headers must be
 /// complete within `partial` (so an idle keep-alive connection closes
-/// then), bodies within `body` ([`body_within`]). (`axum::serve` offers
+/// then), bodies within `body` (`body_within`). (`axum::serve` offers
 /// neither a cap nor these deadlines.)
 pub async fn serve(listener: TcpListener, router: Router, shared: Arc<Shared>) {
     loop {
