@@ -94,18 +94,32 @@ impl fmt::Display for BusError {
     }
 }
 
-impl std::error::Error for BusError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            Self::Read { error, .. } | Self::Thread { error, .. } => Some(error),
-            Self::Segment(error) => Some(error),
-            _ => None,
-        }
-    }
-}
+// The message already carries the cause's words (as the binary printed
+// them before), so no `source`: a chain would say them twice.
+impl std::error::Error for BusError {}
 
 impl From<EthercatError> for BusError {
     fn from(error: EthercatError) -> Self {
         Self::Segment(error)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    #[test]
+    fn a_missing_file_is_named_with_its_cause_once() {
+        let Some(error) =
+            super::super::bring_up(Path::new("/nonexistent/line.toml"), Some(1), 1000).err()
+        else {
+            panic!("a missing file brought a bus up");
+        };
+        let text = error.to_string();
+        assert!(
+            text.starts_with("cannot read /nonexistent/line.toml: "),
+            "{text}"
+        );
+        assert!(std::error::Error::source(&error).is_none());
     }
 }
