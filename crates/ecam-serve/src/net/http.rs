@@ -1,10 +1,10 @@
 //! The HTTP face: device memory and status as JSON, the designer's JSON
 //! endpoints, the live view's WebSocket, and the designer page itself
-//! (`crates/ecam-cli/web/`, compiled into the binary by [`super::assets`]).
+//! (`crates/ecam-cli/web/`, compiled into the binary, handed over as a [`Page`]).
 //!
 //! | route | what |
 //! |---|---|
-//! | `GET /`, `/app.js`, … | the designer page ([`super::assets::ASSETS`]) |
+//! | `GET /`, `/app.js`, … | the designer page ([`Page::files`]) |
 //! | `GET /api/status` | scan count, PLC time, lag, Modbus counters, state dir |
 //! | `GET /api/devices?names=D2000,M0,DD2019,D100:4` | values, as `ecam plc run --dump` prints them |
 //! | `POST /api/devices` `{"D100": 3183, "M0": 1}` | set (durably, like a Modbus write); answers the new values |
@@ -34,6 +34,10 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use crate::{
+    Access, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
+    parse_bus_command, parse_device_names, parse_device_sets, parse_json_body,
+};
 use axum::Router;
 use axum::body::{Body, Bytes};
 use axum::extract::Request;
@@ -43,23 +47,19 @@ use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use ecam_core::budget::Budget;
-use ecam_serve::{
-    Access, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
-    parse_bus_command, parse_device_names, parse_device_sets, parse_json_body,
-};
 use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tower::Service as _;
 
-use super::assets::{ASSETS, Asset, INDEX};
 use super::conn::Conn;
+use super::page::{Asset, Page};
 use super::reply::{error, json_text, json_value};
 
 /// Serves `router` on `listener` for ever, within the server's limits: at
 /// the HTTP cap the idlest connection makes room, request headers must be
 /// complete within `partial` (so an idle keep-alive connection closes
-/// then), bodies within `body` ([`body_within`]). (`axum::serve` offers
+/// then), bodies within `body` (`body_within`). (`axum::serve` offers
 /// neither a cap nor these deadlines.)
 pub async fn serve(listener: TcpListener, router: Router, shared: Arc<Shared>) {
     loop {
@@ -169,9 +169,10 @@ async fn guard(State(access): State<Arc<Access>>, request: Request, next: Next) 
 }
 
 /// The router of `ecam serve`'s HTTP face, behind [`Access`].
-pub fn router(shared: Arc<Shared>, access: Access) -> Router {
-    let mut router = Router::new().route("/", get(|| async { asset(INDEX) }));
-    for &file in ASSETS {
+pub fn router(shared: Arc<Shared>, access: Access, page: Page) -> Router {
+    let index = page.index;
+    let mut router = Router::new().route("/", get(move || async move { asset(index) }));
+    for &file in page.files {
         router = router.route(file.path, get(move || async move { asset(file) }));
     }
     router
@@ -340,7 +341,7 @@ async fn law(
 }
 
 async fn table_load(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
-    let load = match ecam_serve::parse_table_load(&body) {
+    let load = match crate::parse_table_load(&body) {
         Ok(load) => load,
         Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
@@ -406,7 +407,7 @@ async fn block(Query(query): Query<HashMap<String, String>>) -> Response {
 }
 
 /// Every design request goes through here: computed in the server's design
-/// pool ([`ecam_serve::DesignPool`]: bounded, at the lowest CPU priority,
+/// pool ([`crate::DesignPool`]: bounded, at the lowest CPU priority,
 /// never on the threads that answer Modbus), answered 503 at once when the
 /// pool is full or when the design deadline passes, and its work stopped
 /// then, or as soon as the client leaves (this future is dropped, and the
