@@ -19,14 +19,15 @@ use ecam_design::{
 };
 use serde_json::Value;
 
-/// Output options shared by every generator.
+// The output options every generator shares. (A plain comment: a doc
+// comment here would become every generator's about text.)
 #[derive(clap::Args, Debug, Clone, Default)]
 pub struct Output {
     /// Write the table here (CSV or JSON by extension); CSV on stdout when absent.
-    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json", value_parser = crate::paths::table)]
+    #[arg(short = 'o', long = "output", value_name = "FILE.csv|json", value_parser = crate::paths::table, value_hint = clap::ValueHint::FilePath)]
     pub output: Option<PathBuf>,
     /// Also plot the table (SVG or PNG by extension).
-    #[arg(long, value_name = "FILE.svg|png", value_parser = crate::paths::picture)]
+    #[arg(long, value_name = "FILE.svg|png", value_parser = crate::paths::picture, value_hint = clap::ValueHint::FilePath)]
     pub plot: Option<PathBuf>,
     /// Write only the `master,slave` columns.
     #[arg(long)]
@@ -109,6 +110,7 @@ fn subcommand(g: &'static Schema) -> clap::Command {
         Arg::new(PARAMS_ID)
             .long(PARAMS_ID)
             .value_name("FILE.toml")
+            .value_hint(clap::ValueHint::FilePath)
             .value_parser(clap::value_parser!(PathBuf))
             .help(format!(
                 "Read parameters from a TOML file ({})",
@@ -128,9 +130,6 @@ fn flag(field: &'static Field, default: Option<&Value>) -> Arg {
         if min > i64::from(i32::MIN) && max < i64::from(i32::MAX) {
             help.push_str(&format!(", {min}–{max}"));
         }
-    }
-    if let FieldKind::Choice(names) = field.kind {
-        help.push_str(&format!(": {}", names.join(", ")));
     }
     let shown = match (field.shown_default, default) {
         (Some(text), _) if field.kind != FieldKind::Text => Some(text.to_string()),
@@ -161,18 +160,10 @@ fn flag(field: &'static Field, default: Option<&Value>) -> Arg {
             .value_name(field.key.to_uppercase())
             .value_parser(parse_number),
         // Checked here, so a wrong choice is a usage error (exit 2) like
-        // any other bad flag value.
-        FieldKind::Choice(names) => {
-            arg.value_name(field.key.to_uppercase())
-                .value_parser(move |text: &str| {
-                    field
-                        .choice(text.trim())
-                        .map(str::to_string)
-                        .ok_or_else(|| {
-                            format!("unknown {} {text:?}; use {}", field.name, names.join(", "))
-                        })
-                })
-        }
+        // any other bad flag value; completions offer the names.
+        FieldKind::Choice(_) => arg
+            .value_name(field.key.to_uppercase())
+            .value_parser(Choice(field)),
         FieldKind::Text => arg.value_name(field.key.to_uppercase()),
         FieldKind::Switch => arg.action(ArgAction::SetTrue),
         FieldKind::KeyPoints => arg
@@ -188,6 +179,57 @@ fn flag(field: &'static Field, default: Option<&Value>) -> Arg {
             .allow_hyphen_values(true)
             .action(ArgAction::Append)
             .value_parser(parse_segment_flag),
+    }
+}
+
+/// A choice field's flag value: a name (or code, or alias) the field
+/// accepts, as its name; completions and `--help` list the names.
+#[derive(Clone, Copy)]
+struct Choice(&'static Field);
+
+impl clap::builder::TypedValueParser for Choice {
+    type Value = String;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&Arg>,
+        value: &std::ffi::OsStr,
+    ) -> Result<String, clap::Error> {
+        let text = value.to_string_lossy();
+        self.0
+            .choice(text.trim())
+            .map(str::to_string)
+            .ok_or_else(|| {
+                let mut err = clap::Error::new(clap::error::ErrorKind::InvalidValue).with_cmd(cmd);
+                use clap::error::{ContextKind, ContextValue};
+                if let Some(arg) = arg {
+                    err.insert(
+                        ContextKind::InvalidArg,
+                        ContextValue::String(arg.to_string()),
+                    );
+                }
+                err.insert(
+                    ContextKind::InvalidValue,
+                    ContextValue::String(text.into_owned()),
+                );
+                if let FieldKind::Choice(names) = self.0.kind {
+                    let names = names.iter().map(|n| n.to_string()).collect();
+                    err.insert(ContextKind::ValidValue, ContextValue::Strings(names));
+                }
+                err
+            })
+    }
+
+    fn possible_values(
+        &self,
+    ) -> Option<Box<dyn Iterator<Item = clap::builder::PossibleValue> + '_>> {
+        match self.0.kind {
+            FieldKind::Choice(names) => Some(Box::new(
+                names.iter().map(|n| clap::builder::PossibleValue::new(*n)),
+            )),
+            _ => None,
+        }
     }
 }
 

@@ -8,11 +8,10 @@ mod cmd;
 mod generate;
 mod logging;
 mod paths;
-mod plot;
 mod progress;
 mod serve;
 mod signals;
-mod trace;
+mod values;
 
 use clap::{ArgAction, Parser, Subcommand};
 
@@ -65,7 +64,9 @@ fn main() -> std::process::ExitCode {
         Command::Serve(args) if args.trace_modbus => &["ecam::modbus::traffic=trace"],
         _ => &[],
     };
-    logging::init(cli.verbose, cli.quiet, extra);
+    // A server's log is read later, with times; a command's messages now.
+    let timed = matches!(cli.command, Command::Serve(_) | Command::Ethercat(_));
+    logging::init(cli.verbose, cli.quiet, extra, timed);
     let result = match cli.command {
         Command::Law(args) => cmd::law::run(args),
         Command::Table(command) => cmd::table::run(command),
@@ -78,8 +79,24 @@ fn main() -> std::process::ExitCode {
         Command::Man(args) => cmd::install::man(&args),
         Command::Ethercat(command) => cmd::ethercat::run(command),
     };
+    exit_code(result)
+}
+
+/// The exit-code scheme (docs/cli.md): 0 done, 1 failed, 2 a usage mistake
+/// (clap exits with 2 itself, before anything runs). A reader that closed
+/// the pipe (`ecam law cycloid | head`) is not a failure: the command
+/// stops quietly, as Unix tools do.
+fn exit_code(result: anyhow::Result<()>) -> std::process::ExitCode {
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(err)
+            if err.chain().any(|e| {
+                e.downcast_ref::<std::io::Error>()
+                    .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+            }) =>
+        {
+            std::process::ExitCode::SUCCESS
+        }
         Err(err) => {
             eprintln!("ecam: {err:#}");
             std::process::ExitCode::FAILURE

@@ -1,51 +1,70 @@
-//! A progress bar for long simulations, shown only to a person watching.
-//!
-//! Scripts and tests read stdout and stderr; a bar there would be noise, so
-//! it appears only when stderr is a terminal and the run is long.
+//! A progress bar for runs that take a while, shown only to a person
+//! watching: it appears on stderr once a run has taken more than
+//! [`SHOW_AFTER`] and only when stderr is a terminal (scripts and tests,
+//! reading pipes and files, never see it).
 
+use std::cell::{Cell, OnceCell};
 use std::io::IsTerminal;
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// Runs shorter than this many ticks finish before a bar would be useful.
-const MIN_TICKS: u64 = 200_000;
+/// Runs shorter than this finish before a bar would help.
+const SHOW_AFTER: Duration = Duration::from_secs(1);
+/// Calls between two looks at the clock (reading it is not free).
+const CHECK_EVERY: u32 = 1024;
 
-/// Advances a bar, if one is shown, in coarse steps (drawing is not free).
+/// A bar over `total` steps of some run, drawn once the run is slow.
 pub struct Progress {
-    bar: Option<ProgressBar>,
-    step: u64,
+    what: &'static str,
+    total: u64,
+    watched: bool,
+    started: Instant,
+    calls: Cell<u32>,
+    bar: OnceCell<ProgressBar>,
 }
 
 impl Progress {
-    /// A bar over `total` ticks when stderr is a terminal and the run is long.
-    pub fn new(total: u64) -> Self {
-        let bar = (total >= MIN_TICKS && std::io::stderr().is_terminal()).then(|| {
-            let bar = ProgressBar::new(total);
-            if let Ok(style) = ProgressStyle::with_template(
-                "{spinner} simulating [{bar:40}] {percent}% {pos}/{len} ticks, eta {eta}",
-            ) {
+    /// A bar named `what` (`simulating`) over `total` steps.
+    pub fn new(what: &'static str, total: u64) -> Self {
+        Self {
+            what,
+            total,
+            watched: std::io::stderr().is_terminal(),
+            started: Instant::now(),
+            calls: Cell::new(0),
+            bar: OnceCell::new(),
+        }
+    }
+
+    /// Reports that `done` steps have run.
+    pub fn at(&self, done: u64) {
+        if !self.watched {
+            return;
+        }
+        let calls = self.calls.get().wrapping_add(1);
+        self.calls.set(calls);
+        if !calls.is_multiple_of(CHECK_EVERY) {
+            return;
+        }
+        if self.bar.get().is_none() && self.started.elapsed() >= SHOW_AFTER {
+            let bar = ProgressBar::new(self.total);
+            if let Ok(style) = ProgressStyle::with_template(&format!(
+                "{{spinner}} {} [{{bar:40}}] {{percent}}%, eta {{eta}}",
+                self.what
+            )) {
                 bar.set_style(style.progress_chars("=> "));
             }
-            bar
-        });
-        Self {
-            bar,
-            step: (total / 1000).max(1),
+            let _ = self.bar.set(bar);
+        }
+        if let Some(bar) = self.bar.get() {
+            bar.set_position(done);
         }
     }
 
-    /// Reports that tick `done` has run.
-    pub fn tick(&self, done: u64) {
-        if let Some(bar) = &self.bar {
-            if done.is_multiple_of(self.step) {
-                bar.set_position(done);
-            }
-        }
-    }
-
-    /// Removes the bar.
+    /// Removes the bar, if one was drawn.
     pub fn finish(&self) {
-        if let Some(bar) = &self.bar {
+        if let Some(bar) = self.bar.get() {
             bar.finish_and_clear();
         }
     }

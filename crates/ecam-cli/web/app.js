@@ -1,8 +1,11 @@
 // ecam designer page. Talks to `ecam serve` (docs/designer.md):
-//   GET /api/laws, /api/law/NAME, /api/generators, /api/status,
-//   POST /api/keypoints, /api/table/gen, /api/table/load,
+//   GET /api/laws, /api/law/NAME, /api/generators, /api/status, /api/limits,
+//   /api/block?name=, POST /api/keypoints, /api/table/gen, /api/table/check,
+//   /api/table/read, /api/table/convert, /api/table/load,
 //   (segments.js: POST /api/segments/continuous, /api/drive/check),
 //   WebSocket /api/live.
+// The page keeps no copy of the Rust facts: file formats, table checks,
+// impulses, the rounding note, limits and option names come from the server.
 // The whole design lives in `state`; the address (#design=…) mirrors it, so
 // a link or a reload restores the design. Every edit redraws (debounced);
 // an answer to an older edit is dropped, so the plots never show a design
@@ -12,16 +15,15 @@
 const $ = (id) => document.getElementById(id);
 const fmt = Plots.fmt;
 
-// The key-point curves (ECAMTBX K2) and how the grid's narrow column shows them.
-const KEY_CURVES = [
-  ["constant-acceleration", "const. accel."], ["s-type", "S-type"],
-  ["cycloid", "cycloid"], ["constant-speed", "const. speed"],
-];
-const MAX_TABLE_POINTS = 512;
+// How the grid's narrow column shows the key-point curves the server names
+// (a name without an entry is shown as it is).
+const SHORT_CURVE_NAMES = { "constant-acceleration": "const. accel.", "s-type": "S-type", "constant-speed": "const. speed" };
 const REDRAW_DELAY_MS = 150;
 
 let generators = [];
 let laws = [];
+// GET /api/limits: points of a table, key points, key-point curves.
+let limits = { table_points: { min: 2, max: 2 }, key_points: 2, key_curves: [] };
 let state = null;
 // The table of the design last drawn (what downloads and PLC writes send),
 // or null when there is none (a law, or an error).
@@ -174,7 +176,7 @@ function renderKeysGrid() {
       return el("td", {}, [input]);
     };
     const law = el("select");
-    for (const [c, shown] of KEY_CURVES) law.append(el("option", { value: c, textContent: shown, title: c }));
+    for (const c of limits.key_curves) law.append(el("option", { value: c, textContent: SHORT_CURVE_NAMES[c] || c, title: c }));
     law.value = k.curve;
     law.dataset.row = i;
     law.dataset.field = "curve";
@@ -190,7 +192,7 @@ function renderKeysGrid() {
       el("td", {}, [remove]),
     ]));
   });
-  $("keys-add").disabled = state.keys.length >= 10;
+  $("keys-add").disabled = state.keys.length >= limits.key_points;
 }
 
 function renderPointsGrid() {
@@ -209,7 +211,7 @@ function renderPointsGrid() {
     remove.addEventListener("click", () => { state.points.splice(i, 1); renderPointsGrid(); changed(); });
     body.append(el("tr", {}, [el("td", { className: "num", textContent: String(i + 1) }), cell(0), cell(1), el("td", {}, [remove])]));
   });
-  $("points-add").disabled = state.points.length >= MAX_TABLE_POINTS;
+  $("points-add").disabled = state.points.length >= limits.table_points.max;
 }
 
 // Writes a dragged value into the grid's input without rebuilding it (the
@@ -319,7 +321,7 @@ async function redraw() {
   try {
     let result;
     if (state.source === "law") result = await computeLaw();
-    else if (state.source === "points") result = computePoints();
+    else if (state.source === "points") result = await computePoints();
     else result = await computeTable();
     if (!current()) return;
     table = result.table;
@@ -380,6 +382,7 @@ async function computeTable() {
     sync: t.sync,
     tableX: t.master, tableS: t.slave,
     summary: summaryOf(t),
+    steps: t.steps,
     table: {
       name: t.generator,
       master: t.master, slave: t.slave,
@@ -392,11 +395,11 @@ async function computeTable() {
   };
   if (t.design) {
     Object.assign(result, { x: t.design.master, s: t.design.s, v: t.design.v, a: t.design.a, j: t.design.j, exact: true, design: true });
-    result.note = "Curves: the generator's design before rounding to the table (dots: the table's points).";
+    result.note = "Curves: the generator's exact curve before rounding to the table (dots: the table's points); arrows: its steps as impulses (Δv in acceleration, Δa in jerk).";
   } else {
     Object.assign(result, { x: t.master, s: t.slave, v: t.velocity, a: t.acceleration, j: t.jerk, exact: t.exact_kinematics });
     result.note = t.exact_kinematics
-      ? "Velocity, acceleration and jerk of the exact curve at the table's points (dots; between points the table is straight)."
+      ? "Velocity, acceleration and jerk of the exact curve at the table's points (dots; between points the table is straight); arrows: its steps as impulses."
       : "Velocity, acceleration and jerk are the slopes of the table's straight sections, each held to the next point.";
   }
   if (state.source === "segments") result.keyMarkers = Segments.markers();
@@ -407,30 +410,22 @@ async function computeTable() {
 const UNITS_COUNTS = { x: "master (counts)", s: "slave (pulses)", v: "pulses/count", a: "pulses/count²", j: "pulses/count³" };
 
 // A point table: straight sections, so velocity steps at each point and
-// acceleration is an impulse there (shown as marks, not a curve).
-function computePoints() {
-  const pts = state.points;
-  if (pts.length < 2 || pts.length > MAX_TABLE_POINTS) throw new Error(`a table has 2 to ${MAX_TABLE_POINTS} points, not ${pts.length}`);
-  pts.forEach(([m, s], i) => {
-    if (!Number.isInteger(m) || !Number.isInteger(s)) throw new Error(`point ${i + 1}: master and slave are whole numbers`);
-    if (i > 0 && m <= pts[i - 1][0]) throw new Error(`point ${i + 1}: master ${m} must be above the previous point's ${pts[i - 1][0]}`);
-  });
-  const master = pts.map((p) => p[0]);
-  const slave = pts.map((p) => p[1]);
-  const velocity = master.map((m, i) => (i + 1 < master.length ? (slave[i + 1] - slave[i]) / (master[i + 1] - m) : (slave[i] - slave[i - 1]) / (m - master[i - 1])));
-  const stroke = slave[slave.length - 1] - slave[0];
-  const zeros = master.map(() => 0);
+// acceleration is an impulse there (arrows). The server checks the table
+// and says where its velocity steps.
+async function computePoints() {
+  const t = await post("/api/table/check", { points: state.points });
+  const stroke = t.summary.stroke;
   return {
     kind: "points",
-    title: `Point table — ${pts.length} points`,
+    title: `Point table — ${t.points} points`,
     units: UNITS_COUNTS,
-    x: master, s: slave, v: velocity, a: null, j: null, stepped: true,
-    impulses: master.slice(1, -1).map((m, i) => ({ master: m, step: velocity[i + 1] - velocity[i] })).filter((m) => m.step !== 0),
-    note: "Straight sections: velocity holds from each point to the next; the acceleration is an impulse at each point (arrows: the velocity step).",
-    keyMarkers: pts.map((p) => [p[0], p[1]]),
-    summary: [["points", pts.length], ["master span", master[master.length - 1] - master[0]], ["stroke", stroke],
-      ["peak velocity", fmt(Math.max(...velocity.map(Math.abs)))]],
-    table: { name: "table", master, slave, velocity, acceleration: zeros, jerk: zeros, sync: null },
+    x: t.master, s: t.slave, v: t.velocity, a: null, j: null, stepped: true,
+    steps: t.steps,
+    note: "Straight sections: velocity holds from each point to the next; the acceleration is an impulse at each point (arrows: the velocity step Δv). A point table has no jerk to draw.",
+    keyMarkers: t.master.map((m, i) => [m, t.slave[i]]),
+    summary: [["points", t.points], ["master span", t.summary.master_span], ["stroke", stroke],
+      ["peak velocity", fmt(t.summary.peak_velocity)], ["continuity", t.summary.continuity]],
+    table: { name: "table", master: t.master, slave: t.slave, sync: null },
   };
 }
 
@@ -438,24 +433,17 @@ const SUMMARY_LABELS = {
   sections: "sections", master_span: "master span", stroke: "stroke", slave_min: "slave min",
   slave_max: "slave max", peak_velocity: "peak velocity (table)", peak_acceleration: "peak acceleration (table)",
   design_peak_velocity: "peak velocity (design)", design_peak_acceleration: "peak acceleration (design)",
-  continuity: "continuity", seam: "seam",
+  continuity: "continuity (table)", seam: "seam (table)", design_continuity: "continuity (design)", note: "note",
 };
 
-// Above this ratio the table's acceleration is mostly whole-pulse rounding
-// ripple, and the summary says so rather than letting it pass for the law's.
-const RIPPLE_NOTE_RATIO = 1.5;
-
+// The server's summary, in its order; its `note` (the rounding ripple) last.
 function summaryOf(t) {
   const rows = [["points", t.points]];
   for (const [k, v] of Object.entries(t.summary || {})) {
-    if (v === null || v === undefined) continue;
+    if (v === null || v === undefined || k === "note") continue;
     rows.push([SUMMARY_LABELS[k] || k.replace(/_/g, " "), typeof v === "number" ? fmt(v) : v]);
   }
-  const s = t.summary || {};
-  if (s.design_peak_acceleration > 0 && s.peak_acceleration / s.design_peak_acceleration > RIPPLE_NOTE_RATIO) {
-    rows.push(["note", `the table's acceleration is ${(s.peak_acceleration / s.design_peak_acceleration).toFixed(1)}× the design's: ` +
-      "its points are rounded to whole pulses, a ripple that grows as sections get shorter; the drive follows the table, the motion law asks for the design's value"]);
-  }
+  if (t.summary && t.summary.note) rows.push(["note", t.summary.note]);
   const outputs = Object.entries(t.outputs || {});
   if (t.sync && !outputs.some(([k]) => k === "sync zone")) rows.push(["sync zone", `${t.sync[0]} … ${t.sync[1]}`]);
   for (const [k, v] of outputs) rows.push([k, v]);
@@ -543,23 +531,27 @@ function draw(r) {
   // Section slopes hold from a point to the next (steps); values of the
   // exact curve known only at the points are dots; dense curves are lines.
   const dots = r.kind === "table" && !r.design && r.exact;
-  const steps = r.stepped || (r.kind === "table" && !r.exact);
+  const stepped = r.stepped || (r.kind === "table" && !r.exact);
   const none = r.x.map(() => null);
   const setDerivative = (key, ys, extra) => {
     const chart = charts[key];
-    chart.u.series[1].paths = steps ? uPlot.paths.stepped({ align: 1 }) : uPlot.paths.linear();
+    chart.u.series[1].paths = stepped ? uPlot.paths.stepped({ align: 1 }) : uPlot.paths.linear();
     Plots.set(chart, [r.x, dots ? none : ys, dots ? ys : none], { sync: r.sync, ...extra });
     showSeries(chart, 1, !dots);
     showSeries(chart, 2, dots);
   };
   setDerivative("v", r.v);
   const hasA = r.a !== null;
-  // A point table's acceleration is impulses at its points (arrows).
-  setDerivative("a", hasA ? r.a : r.x.map(() => 0), hasA ? {} : { impulses: r.impulses });
+  // Impulses where the server's steps are: a velocity step is an
+  // acceleration impulse (Δv), an acceleration step a jerk impulse (Δa).
+  const steps = r.steps || { velocity: [], acceleration: [] };
+  setDerivative("a", hasA ? r.a : r.x.map(() => 0), { impulses: { quantity: "Δv", steps: steps.velocity } });
+  // A point table's acceleration is impulses only: it has no jerk to draw.
+  $("show-jerk").disabled = !hasA;
+  $("show-jerk").parentElement.title = hasA ? "" : "a point table's acceleration is impulses only: it has no jerk to draw";
   $("plot-j").hidden = !state.jerk || !hasA;
   if (state.jerk && hasA) {
-    // Where the design's acceleration steps, the jerk is an impulse (arrows).
-    setDerivative("j", r.j, { impulses: r.design ? Plots.impulsesOf(r.x, r.a) : null });
+    setDerivative("j", r.j, { impulses: { quantity: "Δa", steps: steps.acceleration } });
   }
   showSummary(r.summary);
 }
@@ -592,54 +584,24 @@ function download(name, type, text) {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 
-// The same formats as `ecam table gen -o` (docs/cli.md, "File formats").
-function tableCsv(t) {
-  const lines = ["master,slave,velocity,acceleration,jerk"];
-  t.master.forEach((m, i) => lines.push([m, t.slave[i], num(t.velocity[i]), num(t.acceleration[i]), num(t.jerk[i])].join(",")));
-  return lines.join("\n") + "\n";
-}
-
-function num(x) {
-  return x === null || x === undefined || !Number.isFinite(x) ? 0 : x;
-}
-
-function tableJson(t) {
-  const out = {};
-  if (t.name && t.name !== "table") out.generator = t.name;
-  if (t.sync) out.sync = { low: t.sync[0], high: t.sync[1] };
-  if (t.segments) out.segments = t.segments;
-  out.points = t.master.map((m, i) => ({ master: m, slave: t.slave[i], velocity: num(t.velocity[i]), acceleration: num(t.acceleration[i]), jerk: num(t.jerk[i]) }));
-  return JSON.stringify(out, null, 1) + "\n";
+// The same formats as `ecam table gen -o` (docs/cli.md, "File formats"),
+// written by the server.
+async function downloadTable(format) {
+  if (!table) return;
+  const body = { format, points: table.master.map((m, i) => [m, table.slave[i]]), sync: table.sync };
+  if (table.name !== "table") body.generator = table.name;
+  if (table.velocity) Object.assign(body, { velocity: table.velocity, acceleration: table.acceleration, jerk: table.jerk });
+  if (table.segments) body.segments = table.segments;
+  try {
+    const file = await post("/api/table/convert", body);
+    download(fileStem() + "." + format, format === "csv" ? "text/csv" : "application/json", file.text);
+  } catch (err) {
+    showError(err.message);
+  }
 }
 
 function fileStem() {
   return table ? table.name : "table";
-}
-
-// A CSV or JSON table file read as [master, slave] points.
-function readTableFile(name, text) {
-  const trimmed = text.trim();
-  if (name.toLowerCase().endsWith(".json") || trimmed.startsWith("{")) {
-    const doc = JSON.parse(trimmed);
-    if (!Array.isArray(doc.points)) throw new Error(`${name}: no "points" array`);
-    return doc.points.map((p, i) => {
-      const pair = Array.isArray(p) ? p : [p.master, p.slave];
-      if (!pair.every(Number.isFinite)) throw new Error(`${name}: point ${i + 1} needs master and slave numbers`);
-      return pair.map(Math.round);
-    });
-  }
-  const rows = trimmed.split(/\r?\n/).filter((l) => l.trim() !== "" && !l.trim().startsWith("#"));
-  const header = (rows.shift() || "").split(",").map((h) => h.trim().toLowerCase());
-  const mi = header.indexOf("master");
-  const si = header.indexOf("slave");
-  if (mi < 0 || si < 0) throw new Error(`${name}: the header needs master and slave columns`);
-  return rows.map((line, i) => {
-    const cells = line.split(",");
-    const m = Number(cells[mi]);
-    const s = Number(cells[si]);
-    if (!Number.isFinite(m) || !Number.isFinite(s)) throw new Error(`${name}: line ${i + 2}: master and slave must be numbers`);
-    return [Math.round(m), Math.round(s)];
-  });
 }
 
 async function upload(event) {
@@ -647,9 +609,10 @@ async function upload(event) {
   event.target.value = "";
   if (!file) return;
   try {
-    const points = readTableFile(file.name, await file.text());
+    // Read by the server as `ecam table show` reads it.
+    const read = await post("/api/table/read", { name: file.name, text: await file.text() });
     state.source = "points";
-    state.points = points;
+    state.points = read.points;
     showSource();
     changed(true);
   } catch (err) {
@@ -667,11 +630,10 @@ function toPoints() {
 
 // ------------------------------------------------------------ write to the PLC
 
-function blockNumber() {
-  const text = $("plc-block").value.trim().replace(/^[Dd]/, "");
-  const n = Number(text);
-  if (!/^\d+$/.test(text) || n > 8468) throw new Error("the DECAM block is a D register, e.g. D2000");
-  return n;
+// Where the DECAM block starts, as the server reads the typed name (its
+// message names the device's kind when it is not one).
+async function blockNumber() {
+  return (await api("/api/block?name=" + encodeURIComponent($("plc-block").value.trim()))).block;
 }
 
 async function writeToPlc(whileRunning) {
@@ -680,7 +642,7 @@ async function writeToPlc(whileRunning) {
   out.className = "hint";
   if (!table) { out.textContent = "nothing to write: the design has no valid table"; out.className = "error"; return; }
   let block;
-  try { block = blockNumber(); } catch (err) { out.textContent = err.message; out.className = "error"; return; }
+  try { block = await blockNumber(); } catch (err) { out.textContent = err.message; out.className = "error"; return; }
   const body = { block, points: table.master.map((m, i) => [m, table.slave[i]]) };
   if (whileRunning) body.while_running = "at-seam";
   out.textContent = "writing…";
@@ -722,11 +684,12 @@ function makeLiveCharts() {
   });
 }
 
-function liveConnect() {
+async function liveConnect() {
   liveClose();
   if (!$("live-on").checked) { $("live-state").textContent = "off"; return; }
   let block;
-  try { block = blockNumber(); } catch (err) { $("live-state").textContent = err.message; return; }
+  try { block = await blockNumber(); } catch (err) { $("live-state").textContent = err.message; return; }
+  if (live.socket) return; // a later connect finished first
   const scheme = location.protocol === "https:" ? "wss:" : "ws:";
   const socket = new WebSocket(`${scheme}//${location.host}/api/live?block=${block}&rate=20`);
   live = { socket, block, retry: live.retry, t: [], mic: [], slave: [], vm: [], vs: [], zones: [], syncFrom: null };
@@ -810,7 +773,7 @@ async function start() {
   makeDesignCharts();
   makeLiveCharts();
   try {
-    [laws, generators] = await Promise.all([api("/api/laws"), api("/api/generators")]);
+    [laws, generators, limits] = await Promise.all([api("/api/laws"), api("/api/generators"), api("/api/limits")]);
   } catch (err) {
     showError("the server's design API did not answer: " + err.message);
     return;
@@ -849,8 +812,8 @@ async function start() {
   $("gen-cancel").addEventListener("click", () => $("gen-dialog").close());
   $("show-jerk").checked = !!state.jerk;
   $("show-jerk").addEventListener("change", () => { state.jerk = $("show-jerk").checked; changed(true); });
-  $("download-csv").addEventListener("click", () => table && download(fileStem() + ".csv", "text/csv", tableCsv(table)));
-  $("download-json").addEventListener("click", () => table && download(fileStem() + ".json", "application/json", tableJson(table)));
+  $("download-csv").addEventListener("click", () => downloadTable("csv"));
+  $("download-json").addEventListener("click", () => downloadTable("json"));
   $("upload").addEventListener("change", upload);
   $("to-points").addEventListener("click", toPoints);
   $("plc-block").value = state.block;

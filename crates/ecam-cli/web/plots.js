@@ -1,7 +1,7 @@
 // Charts of the designer page on top of uPlot (vendor/uplot, see README.md):
 // one chart per curve, as wide as its box (resized with it), cursors kept
-// together, the synchronised zone shaded, jerk impulses marked where the
-// acceleration steps, and draggable markers on the displacement chart.
+// together, the synchronised zone shaded, impulses marked where the server
+// says the curve steps, and draggable markers on the displacement chart.
 "use strict";
 
 const Plots = (() => {
@@ -43,49 +43,105 @@ const Plots = (() => {
     };
   }
 
-  // Jerk impulses: an arrow at each master where the acceleration steps,
-  // its length in proportion to the step, labelled with its size.
+  // Impulses (`chart.impulses`: {quantity, steps: [{master, size, seam}]},
+  // the server's steps): an arrow at each master, the largest reaching
+  // towards the edge and the others in proportion, labelled with the
+  // quantity that steps and its size. A label goes right of its tip, else
+  // left, else beyond it; one that would overlap another label, cover
+  // another arrow or leave the plot is left out (its arrow stays).
   function impulseMarks(chart) {
     return (u) => {
-      const marks = chart.impulses;
+      const marks = chart.impulses && chart.impulses.steps;
+      // What was drawn, for the browser test: arrows and placed labels.
+      chart.drawn = { arrows: 0, labels: [], box: null };
       if (!marks || marks.length === 0) return;
       const { ctx, bbox } = u;
-      const biggest = Math.max(...marks.map((m) => Math.abs(m.step)));
-      const zero = u.valToPos(0, "y", true);
-      const room = Math.min(bbox.height * 0.45, Math.max(zero - bbox.top, bbox.top + bbox.height - zero) - 4);
       const dpr = window.devicePixelRatio || 1;
+      const biggest = Math.max(...marks.map((m) => Math.abs(m.size)));
+      const zero = u.valToPos(0, "y", true);
+      const room = (up) => (up ? zero - bbox.top : bbox.top + bbox.height - zero) - 18 * dpr;
+      const dense = marks.length * 16 * dpr > bbox.width;
       ctx.save();
       ctx.strokeStyle = COLORS.j;
       ctx.fillStyle = COLORS.j;
-      ctx.lineWidth = 2 * dpr;
+      ctx.lineWidth = (dense ? 1 : 2) * dpr;
       ctx.font = `${11 * dpr}px system-ui, sans-serif`;
-      ctx.textAlign = "center";
+      ctx.textBaseline = "top";
+      ctx.textAlign = "left";
+      const arrows = [];
       for (const m of marks) {
         const x = u.valToPos(m.master, "x", true);
-        if (x < bbox.left || x > bbox.left + bbox.width) continue;
-        const len = Math.max(8 * dpr, (Math.abs(m.step) / biggest) * room);
-        const tip = m.step > 0 ? zero - len : zero + len;
+        if (x < bbox.left - 1 || x > bbox.left + bbox.width + 1) continue;
+        const up = m.size > 0;
+        const len = Math.max(8 * dpr, (Math.abs(m.size) / biggest) * Math.max(room(up), 8 * dpr));
+        const tip = up ? zero - len : zero + len;
         ctx.beginPath();
         ctx.moveTo(x, zero);
         ctx.lineTo(x, tip);
         ctx.stroke();
-        const head = 5 * dpr * Math.sign(m.step || 1);
+        const head = 5 * dpr * (up ? 1 : -1);
         ctx.beginPath();
         ctx.moveTo(x, tip);
         ctx.lineTo(x - 4 * dpr, tip + head);
         ctx.lineTo(x + 4 * dpr, tip + head);
         ctx.closePath();
         ctx.fill();
-        ctx.fillText("Δa " + fmt(m.step), x, m.step > 0 ? tip - 4 * dpr : tip + 12 * dpr);
+        arrows.push({ x, tip, up, text: `${m.seam ? "seam " : ""}${chart.impulses.quantity} ${fmt(m.size)}` });
       }
+      if (!dense) {
+        const h = 12 * dpr;
+        const placed = [];
+        const shafts = arrows.map((a) => ({ x: a.x - 6 * dpr, y: Math.min(a.tip, zero), w: 12 * dpr, h: Math.abs(zero - a.tip) }));
+        const overlaps = (a, b) => a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h;
+        const inside = (r) => r.x >= bbox.left && r.y >= bbox.top && r.x + r.w <= bbox.left + bbox.width && r.y + r.h <= bbox.top + bbox.height;
+        arrows.forEach((a, k) => {
+          const w = ctx.measureText(a.text).width;
+          const y = a.up ? a.tip : a.tip - h;
+          const beyond = a.up ? a.tip - h - 4 * dpr : a.tip + 4 * dpr;
+          const candidates = [
+            { x: a.x + 8 * dpr, y, w, h }, { x: a.x - 8 * dpr - w, y, w, h },
+            { x: a.x - w / 2, y: beyond, w, h }, { x: a.x - w, y: beyond, w, h }, { x: a.x, y: beyond, w, h },
+          ];
+          const spot = candidates.find((r) => inside(r) && placed.every((p) => !overlaps(p, r)) && shafts.every((s, j) => j === k || !overlaps(s, r)));
+          if (spot) {
+            placed.push({ ...spot, text: a.text });
+            ctx.fillText(a.text, spot.x, spot.y);
+          }
+        });
+        chart.drawn.labels = placed;
+      }
+      chart.drawn.arrows = arrows.length;
+      chart.drawn.box = { x: bbox.left, y: bbox.top, w: bbox.width, h: bbox.height };
       ctx.restore();
+    };
+  }
+
+  // The y range of a chart: its data, and room on either side of 0 for
+  // its impulses' arrows; a flat 0 (a design's jerk between impulses) gets
+  // a band around 0 with only 0 labelled (`chart.flat`).
+  function yRange(chart) {
+    return (_u, min, max) => {
+      const steps = (chart.impulses && chart.impulses.steps) || [];
+      let lo = min === null ? 0 : min;
+      let hi = max === null ? 0 : max;
+      if (steps.length) {
+        lo = Math.min(lo, 0);
+        hi = Math.max(hi, 0);
+        if (steps.some((s) => s.size < 0)) lo = Math.min(lo, -0.6 * hi);
+        if (steps.some((s) => s.size > 0)) hi = Math.max(hi, -0.6 * lo);
+      }
+      chart.flat = lo === 0 && hi === 0;
+      if (chart.flat) return [-1, 1];
+      if (lo === hi) return [lo - Math.abs(lo) * 0.05, hi + Math.abs(hi) * 0.05];
+      const pad = (hi - lo) * 0.05;
+      return [lo - pad, hi + pad];
     };
   }
 
   // A chart in `el`: `series` is [{label, color, stepped, points, width}],
   // `axes` {x, y} labels with units.
   function create(el, { title, xLabel, yLabel, series, syncKey, timeX }) {
-    const chart = { el, sync: null, impulses: null, u: null, drag: null };
+    const chart = { el, sync: null, impulses: null, u: null, drag: null, flat: false };
     const opts = {
       title,
       width: Math.max(200, el.clientWidth),
@@ -96,10 +152,10 @@ const Plots = (() => {
         points: { size: 6 },
       },
       legend: { live: true },
-      scales: { x: { time: false } },
+      scales: { x: { time: false }, y: { range: yRange(chart) } },
       axes: [
         { label: xLabel, values: timeX ? undefined : axisValues, labelSize: 20, size: 36 },
-        { label: yLabel, values: axisValues, labelSize: 22, size: 64 },
+        { label: yLabel, values: (u, ticks) => (chart.flat ? ticks.map((t) => (t === 0 ? "0" : "")) : axisValues(u, ticks)), labelSize: 22, size: 64 },
       ],
       series: [
         { label: xLabel, value: (_u, v) => fmt(v) },
@@ -150,20 +206,6 @@ const Plots = (() => {
     chart.sync = sync;
     chart.impulses = impulses;
     chart.u.setData(data, true);
-  }
-
-  // Where the acceleration steps: consecutive design samples at the same
-  // master with different acceleration (a joint of two pieces).
-  function impulsesOf(master, a) {
-    const marks = [];
-    for (let i = 1; i < master.length; i++) {
-      if (master[i] === master[i - 1] && a[i] !== null && a[i - 1] !== null) {
-        const step = a[i] - a[i - 1];
-        const scale = Math.max(Math.abs(a[i]), Math.abs(a[i - 1]), 1e-300);
-        if (Math.abs(step) > 1e-9 * scale) marks.push({ master: master[i], step });
-      }
-    }
-    return marks;
   }
 
   // Makes the markers of series `seriesIndex` draggable: `onDrag(i, x, y)`
@@ -221,5 +263,5 @@ const Plots = (() => {
     over.addEventListener("pointercancel", end);
   }
 
-  return { create, set, join, impulsesOf, draggable, fmt, COLORS };
+  return { create, set, join, draggable, fmt, COLORS };
 })();

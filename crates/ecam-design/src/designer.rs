@@ -12,7 +12,8 @@
 use ecam_core::budget::Budget;
 use ecam_core::generator::key_points::KeyPoint;
 use ecam_core::generator::schema;
-use ecam_core::generator::{DesignCurve, Field, FieldKind};
+use ecam_core::generator::{ExactCurve, Field, FieldKind};
+use ecam_core::table::steps::Steps;
 use ecam_core::table::{Summary, derivatives};
 use ecam_core::{CamCurve, MotionLaw};
 use serde::de::DeserializeSeed;
@@ -146,19 +147,12 @@ pub fn key_points_json(body: &Value) -> Result<Value, String> {
     Ok(json!({ "key": keys }))
 }
 
-/// Samples per piece of a design curve: enough for smooth ramps, and a
-/// step at a joint still shows as a vertical edge.
-const DESIGN_SAMPLES_PER_PIECE: usize = 24;
+/// Samples of an exact curve the page draws, spread over its pieces: enough
+/// for smooth ramps, and a step at a corner still shows as a vertical edge.
+const DESIGN_SAMPLES: usize = 600;
 
-fn design_samples(design: &DesignCurve) -> Value {
-    samples_json(&design.sample_pieces(DESIGN_SAMPLES_PER_PIECE))
-}
-
-/// Samples per segment of a segment cam (polynomials are smooth; both ends
-/// of every segment are drawn, so a step at a point is a vertical edge).
-const SEGMENT_SAMPLES: usize = 48;
-
-fn samples_json(samples: &[(f64, ecam_core::Kinematics)]) -> Value {
+fn design_samples(exact: &ExactCurve) -> Value {
+    let samples = exact.samples(DESIGN_SAMPLES);
     json!({
         "master": samples.iter().map(|(m, _)| *m).collect::<Vec<_>>(),
         "s": samples.iter().map(|(_, k)| k.s).collect::<Vec<_>>(),
@@ -217,13 +211,28 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
         .clone()
         .unwrap_or_else(|| derivatives::of_points(points));
     let summary = Summary::of(&g.table);
-    let design_peaks = g.design.as_ref().map(design_peaks).or_else(|| {
-        g.segments.as_ref().map(|cam| {
-            cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
-                (v.max(p.peak_velocity), a.max(p.peak_acceleration))
-            })
+    let design_peaks = g.exact.as_ref().map(design_peaks);
+    // The one rule for impulses (`ecam_core::table::steps`): the exact
+    // curve's corners, or, for a function's table, its columns.
+    let steps = match &g.exact {
+        Some(exact) => Steps::of(exact),
+        None => Steps::of_columns(points, &kinematics),
+    };
+    // The note `ecam table show` prints when the table's acceleration is
+    // mostly whole-pulse rounding.
+    let shortest = points
+        .windows(2)
+        .filter_map(|w| match w {
+            [a, b] => b.master.checked_sub(a.master),
+            _ => None,
         })
-    });
+        .min();
+    let note = match (design_peaks, shortest) {
+        (Some((_, design_a)), Some(shortest)) => {
+            crate::report::ripple_note(summary.peak_acceleration, design_a, shortest)
+        }
+        _ => None,
+    };
     let outputs: serde_json::Map<String, Value> = g
         .outputs
         .iter()
@@ -244,14 +253,13 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
         // the table, sampled densely: a long section of the table (a dwell)
         // would otherwise draw its end points' accelerations joined by a
         // slope the motion never has.
-        "design": g.design.as_ref().map(design_samples).or_else(|| {
-            g.segments
-                .as_ref()
-                .map(|cam| samples_json(&cam.sample_segments(SEGMENT_SAMPLES)))
-        }),
+        "design": g.exact.as_ref().map(design_samples),
+        // Where velocity steps (acceleration impulses) and acceleration
+        // steps (jerk impulses), the seam's at the last master.
+        "steps": steps,
         // A segment cam: its points with every boundary value it was
         // solved for, the continuity at each point and each segment's peaks.
-        "segments": g.segments.as_ref().map(segments_json),
+        "segments": g.segments.as_ref().map(crate::segments_json),
         "sync": g.sync.map(|(lo, hi)| vec![lo, hi]),
         "outputs": outputs,
         "summary": {
@@ -269,82 +277,16 @@ pub fn generate_json_within(body: &Value, budget: &mut Budget) -> Result<Value, 
             "design_peak_acceleration": design_peaks.map(|(_, a)| a),
             "continuity": summary.continuity.to_string(),
             "seam": summary.seam.to_string(),
+            // The design's smoothness by the steps rule, as `ecam table
+            // show` prints it beside the table's: the plots draw the
+            // design, whose corners are fewer than the straight sections'.
+            "design_continuity": design_peaks.map(|_| {
+                let (inside, seam) = steps.continuity();
+                format!("{inside} (seam {seam})")
+            }),
+            "note": note,
         },
     }))
-}
-
-/// What the designer shows of a segment cam: its points (as solved), the
-/// continuity at every point and each segment's peaks.
-pub fn segments_json(cam: &ecam_core::segments::SegmentCam) -> Value {
-    json!({
-        "start": cam.start(),
-        "segment": cam.segments(),
-        "continuity": cam.continuity(),
-        "peaks": cam.peaks(),
-    })
-}
-
-/// The lines `ecam table show` prints for a segment cam: the continuity at
-/// every point and each segment's law, `Cv`/`Ca`/`Cj` and peaks.
-pub fn segments_text(cam: &ecam_core::segments::SegmentCam) -> String {
-    let report = cam.continuity();
-    let short = |x: Option<f64>| match x {
-        None => "–".to_string(),
-        Some(v) if v.is_infinite() => "∞".to_string(),
-        Some(v) => format!("{v:.4}"),
-    };
-    let mut out = format!(
-        "segment cam:       continuity {} (seam {})\n",
-        report.cam, report.seam
-    );
-    let points: Vec<String> = report
-        .joints
-        .iter()
-        .map(|j| {
-            format!(
-                "{} at {}: {}",
-                if j.seam { "seam" } else { "point" },
-                j.master,
-                j.class
-            )
-        })
-        .collect();
-    out.push_str(&format!("  points:          {}\n", points.join(", ")));
-    for p in cam.peaks() {
-        out.push_str(&format!(
-            "  segment {:<2}      {:<26} master {} .. {}, rise {}: Cv {} Ca {} Cj {}; peaks {} pulses/count, {} pulses/count², {} pulses/count³\n",
-            p.segment,
-            p.law.name(),
-            p.master.0,
-            p.master.1,
-            p.rise,
-            short(p.cv),
-            short(p.ca),
-            short(p.cj),
-            sig(p.peak_velocity),
-            sig(p.peak_acceleration),
-            sig(p.peak_jerk),
-        ));
-    }
-    out
-}
-
-/// Six significant digits, plainly where that reads well.
-fn sig(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return if x.is_infinite() {
-            "∞".into()
-        } else {
-            "0".into()
-        };
-    }
-    if (1e-3..1e6).contains(&x.abs()) {
-        let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
-        let text = format!("{x:.decimals$}");
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        format!("{x:.5e}")
-    }
 }
 
 /// "Make continuous": `{"start": {...}, "segment": [...]}` → the same with
@@ -372,11 +314,17 @@ pub fn segments_continuous_json(body: &Value) -> Result<Value, String> {
     Ok(json!({ "start": start, "segment": segment }))
 }
 
-/// The largest |velocity| and |acceleration| of the design curve, from the
+/// The largest |velocity| and |acceleration| of the exact curve, from the
 /// same dense samples the page draws.
-fn design_peaks(design: &DesignCurve) -> (f64, f64) {
-    design
-        .sample_pieces(DESIGN_SAMPLES_PER_PIECE)
+fn design_peaks(exact: &ExactCurve) -> (f64, f64) {
+    // A segment cam's peaks are exact (closed forms).
+    if let ExactCurve::Segments(cam) = exact {
+        return cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
+            (v.max(p.peak_velocity), a.max(p.peak_acceleration))
+        });
+    }
+    exact
+        .samples(DESIGN_SAMPLES)
         .iter()
         .fold((0.0_f64, 0.0_f64), |(v, a), (_, k)| {
             (v.max(k.v.abs()), a.max(k.a.abs()))
@@ -402,6 +350,11 @@ mod tests {
             design_a > 0.0 && table_a > 2.0 * design_a,
             "{design_a} {table_a}"
         );
+        // Its continuity too, as `ecam table show` gives both: the table's
+        // straight sections step in velocity, the design only in
+        // acceleration.
+        assert_eq!(summary["continuity"], "C0");
+        assert_eq!(summary["design_continuity"], "C1 (seam C1)");
     }
 
     #[test]
@@ -458,11 +411,16 @@ mod tests {
                 assert_eq!(*a, 0.0, "acceleration at master {m}");
             }
         }
+        // Key points are drawn from their laws, the constant-acceleration
+        // turns included (their jerk impulses).
         let kp = generate_json(&json!({"generator": "keypoints", "params": {}})).unwrap();
+        assert!(kp["design"]["master"].as_array().unwrap().len() > 100);
+        let turns = kp["steps"]["acceleration"].as_array().unwrap();
         assert!(
-            kp["design"].is_null(),
-            "key points are drawn from their exact points"
+            turns.iter().any(|s| s["master"] == json!(1800.0)),
+            "{turns:?}"
         );
+        assert!(kp["steps"]["velocity"].as_array().unwrap().is_empty());
     }
 
     #[test]

@@ -106,9 +106,11 @@ pub fn drive_check_json(body: &Value) -> Result<Value, String> {
         let g = crate::generate::from_json(name, params).map_err(|e| e.to_string())?;
         let motion = match &g.segments {
             Some(cam) => motion_of_cam(cam),
-            None => match &g.design {
-                Some(design) => Motion::from_samples(design.sample_pieces(SAMPLES_PER_SEGMENT)),
-                None => motion_of(&AnyTable::Points(ecam_core::io::TableFile {
+            None => match &g.exact {
+                Some(ecam_core::generator::ExactCurve::Design(design)) => {
+                    Motion::from_samples(design.sample_pieces(SAMPLES_PER_SEGMENT))
+                }
+                _ => motion_of(&AnyTable::Points(ecam_core::io::TableFile {
                     table: g.table.clone(),
                     sync: None,
                     generator: None,

@@ -11,8 +11,8 @@ use ecam_core::excerpt::excerpt;
 use ecam_core::generator::key_points::{self, CurveType, KeyPoint, LineError};
 use ecam_core::generator::schema;
 use ecam_core::generator::{
-    CutParams, DesignCurve, Generator as Schema, flying_saw, function, rotary_cut, s_curve,
-    segments,
+    CutParams, DesignCurve, ExactCurve, Generator as Schema, flying_saw, function, rotary_cut,
+    s_curve, segments,
 };
 use ecam_core::segments::SegmentCam;
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
@@ -37,11 +37,12 @@ pub struct Generated {
     /// Exact velocity, acceleration and jerk at each point, from the curve
     /// the table samples (the points themselves are rounded to whole pulses).
     pub kinematics: Option<Vec<Kinematics>>,
-    /// The exact motion the S-curve, rotary-cut and flying-saw generators
-    /// designed before rounding it into the table (what `--plot` draws).
-    pub design: Option<DesignCurve>,
+    /// The exact curve the table samples, where the generator knows one:
+    /// the design of the S-curve, rotary cut and flying saw before rounding,
+    /// the key points' laws (what `--plot` draws, where steps are read).
+    pub exact: Option<ExactCurve>,
     /// The solved segment cam behind a `segments` table (exact; its
-    /// continuity and per-segment peaks).
+    /// continuity and per-segment peaks; a table file keeps it).
     pub segments: Option<SegmentCam>,
 }
 
@@ -212,24 +213,12 @@ fn s_curve_table(params: &s_curve::Params) -> Result<Generated, GenerateError> {
         table: g.table,
         sync: g.sync,
         name: "s-curve",
-        design: Some(g.design),
+        exact: Some(ExactCurve::Design(g.design)),
         segments: None,
     })
 }
 
 // ---------------------------------------------------------------- rotary cut, flying saw
-
-/// A ratio for people: at most six decimals (`1.666667` for 5/3, `2` for
-/// 2), instead of the seventeen digits a float prints.
-fn ratio_text(ratio: f64) -> String {
-    let text = format!("{ratio:.6}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".to_string()
-    } else {
-        text.to_string()
-    }
-}
 
 fn rotary_cut_table(params: &CutParams) -> Result<Generated, GenerateError> {
     let g = rotary_cut::generate(params)?;
@@ -244,17 +233,17 @@ fn rotary_cut_table(params: &CutParams) -> Result<Generated, GenerateError> {
                         .map_or_else(|| "none".to_string(), |(lo, hi)| format!("{lo} .. {hi}")),
                     g.sync_slave.0,
                     g.sync_slave.1,
-                    ratio_text(g.sync_ratio)
+                    crate::short(g.sync_ratio)
                 ),
             ),
-            ("peak ratio", ratio_text(g.peak_ratio)),
+            ("peak ratio", crate::short(g.peak_ratio)),
             ("capped at max ratio", g.capped_at_max.to_string()),
         ],
         kinematics: Some(design_along(&g.table, &g.design)),
         table: g.table,
         sync: g.sync,
         name: "rotary-cut",
-        design: Some(g.design),
+        exact: Some(ExactCurve::Design(g.design)),
         segments: None,
     })
 }
@@ -269,13 +258,13 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> Result<Generated, GenerateE
                     "constant-speed zone (master)",
                     format!("{} .. {}", g.constant_zone.0, g.constant_zone.1),
                 ),
-                ("peak ratio", ratio_text(g.peak_ratio)),
+                ("peak ratio", crate::short(g.peak_ratio)),
             ],
             kinematics: Some(design_along(&g.table, &g.design)),
             table: g.table,
             sync: g.sync,
             name: "fly-saw",
-            design: Some(g.design),
+            exact: Some(ExactCurve::Design(g.design)),
             segments: None,
         });
     }
@@ -298,13 +287,13 @@ fn fly_saw_table(params: &CutParams, cycle: bool) -> Result<Generated, GenerateE
     Ok(Generated {
         outputs: vec![(
             "peak ratio",
-            ratio_text(forward.peak_ratio.max(back.peak_ratio)),
+            crate::short(forward.peak_ratio.max(back.peak_ratio)),
         )],
         kinematics: Some(design_along(&table, &design)),
         table,
         sync: forward.sync,
         name: "fly-saw",
-        design: Some(design),
+        exact: Some(ExactCurve::Design(design)),
         segments: None,
     })
 }
@@ -368,7 +357,7 @@ fn key_points_table(params: &key_points::Params) -> Result<Generated, GenerateEr
         table: generated.table,
         sync: generated.sync,
         name: "keypoints",
-        design: None,
+        exact: Some(ExactCurve::Profile(generated.profile)),
         segments: None,
         outputs: vec![(
             "segment resolutions",
@@ -426,7 +415,7 @@ fn function(params: &function::Params, budget: &mut Budget) -> Result<Generated,
         name: "function",
         outputs: Vec::new(),
         kinematics: Some(kinematics),
-        design: None,
+        exact: None,
         segments: None,
     })
 }
@@ -453,7 +442,7 @@ fn segments_table(params: &segments::Params) -> Result<Generated, GenerateError>
         table: g.table,
         sync: g.sync,
         name: "segments",
-        design: None,
+        exact: Some(ExactCurve::Segments(g.cam.clone())),
         outputs: vec![
             (
                 "segment cam continuity",
@@ -633,10 +622,10 @@ mod tests {
 
     #[test]
     fn ratios_print_at_most_six_decimals() {
-        assert_eq!(ratio_text(5.0 / 3.0), "1.666667");
-        assert_eq!(ratio_text(2.0), "2");
-        assert_eq!(ratio_text(0.5), "0.5");
-        assert_eq!(ratio_text(-0.0000001), "0");
+        assert_eq!(crate::short(5.0 / 3.0), "1.666667");
+        assert_eq!(crate::short(2.0), "2");
+        assert_eq!(crate::short(0.5), "0.5");
+        assert_eq!(crate::short(-0.0000001), "0");
     }
 
     use super::*;

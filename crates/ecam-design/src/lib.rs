@@ -14,9 +14,13 @@
 //!   `3*pi` ([`number`], [`Number`]);
 //! - the `[table]` of a scenario file ([`load_table`]): points, an evenly
 //!   spaced table, a table file, an expression or a generator;
+//! - what `ecam table show` reports about a table file ([`TableReport`]:
+//!   peaks of the design and the table, the rounding note, figures in
+//!   machine units, steps), as text or JSON;
 //! - the designer page's JSON API ([`laws_json`], [`law_curves_json`],
-//!   [`generators_json`], [`key_points_json`], [`generate_json`]): JSON in,
-//!   JSON out, no sockets.
+//!   [`generators_json`], [`key_points_json`], [`generate_json`],
+//!   [`table_check_json`], [`table_read_json`], [`table_convert_json`],
+//!   [`limits_json`]): JSON in, JSON out, no sockets.
 //!
 //! When not to use it: to generate a table from typed parameters, call
 //! the generators of [`ecam_core::generator`] directly (no allocation of
@@ -49,13 +53,16 @@ mod expr;
 #[doc(hidden)]
 pub mod fuzz;
 mod generate;
+mod machine;
 mod params;
+mod report;
+mod segment_view;
+mod table_api;
 mod table_source;
 
 pub use designer::{
     DEFAULT_LAW_POINTS, MAX_DESIGN_POINTS, MAX_LAW_POINTS, generate_json, generate_json_within,
     generators_json, key_points_json, law_curves_json, laws_json, segments_continuous_json,
-    segments_json, segments_text,
 };
 pub use drive::{check_table, drive_check_json, motion_of, motion_of_cam, read_drive};
 pub use error::{DriveFileError, ExprError, GenerateError, TableSourceError};
@@ -65,5 +72,9 @@ pub use generate::{
     function_table, function_table_within, generate, generate_within, parse_key, parse_key_lines,
     parse_point_flag, parse_segment_flag,
 };
+pub use machine::{AtSpeed, Machine, Peaks, Source, Unit, short};
 pub use params::{Number, Param, Values, ValuesSeed, Word, read_toml};
+pub use report::TableReport;
+pub use segment_view::{segments_json, segments_text};
+pub use table_api::{limits_json, table_check_json, table_convert_json, table_read_json};
 pub use table_source::{load as load_table, load_within as load_table_within, resolve};

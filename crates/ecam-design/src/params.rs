@@ -263,13 +263,51 @@ impl<'de> Deserialize<'de> for Word {
     }
 }
 
+/// What is wrong with `value` for `field`: a choice it does not offer, a
+/// whole number outside its range.
+fn out_of_bounds(field: &Field, value: &Param) -> Option<String> {
+    match (field.kind, value) {
+        (FieldKind::Choice(names), Param::Text(text)) if field.choice(text.trim()).is_none() => {
+            Some(format!(
+                "unknown {} {text:?}; use {}",
+                field.name,
+                names.join(", ")
+            ))
+        }
+        (FieldKind::Integer { min, max, .. }, Param::Int(v)) if !(min..=max).contains(v) => {
+            Some(format!("{v} is not between {min} and {max}"))
+        }
+        _ => None,
+    }
+}
+
 /// Reads a TOML parameter file's text (`ecam table gen --params`) for
 /// `generator`.
 ///
 /// # Errors
 /// TOML syntax, keys the generator does not have, values of the wrong kind.
 pub fn read_toml(generator: &'static Schema, text: &str) -> Result<Values, GenerateError> {
-    ValuesSeed::new(generator, false)
+    let values = ValuesSeed::new(generator, false)
         .deserialize(toml::Deserializer::new(text))
-        .map_err(|e| GenerateError::Values(ecam_core::io::plain_serde_message(&e.to_string())))
+        .map_err(|e| GenerateError::Values(ecam_core::io::plain_serde_message(&e.to_string())))?;
+    // A choice or a whole number is checked against the schema here, so
+    // the message names the line it was written on (the generator would
+    // refuse it too, without knowing where it came from).
+    for (key, value) in &values {
+        let problem = generator
+            .field(key)
+            .and_then(|field| out_of_bounds(field, value));
+        if let Some(problem) = problem {
+            let spans: BTreeMap<String, toml::Spanned<toml::Value>> =
+                toml::from_str(text).unwrap_or_default();
+            let at = spans.get(*key).map_or(0, |v| v.span().start);
+            let line = text.get(..at).map_or(0, |t| t.lines().count().max(1));
+            let written = text.lines().nth(line.saturating_sub(1)).unwrap_or_default();
+            return Err(GenerateError::Values(format!(
+                "line {line}: `{}`: {problem}",
+                ecam_core::excerpt::excerpt(written.trim())
+            )));
+        }
+    }
+    Ok(values)
 }

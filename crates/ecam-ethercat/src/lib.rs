@@ -46,6 +46,7 @@ pub mod link;
 pub mod log_bridge;
 pub mod monitor;
 pub mod pdo;
+mod poll_sleep;
 pub mod rt;
 pub mod segment;
 pub mod startup;

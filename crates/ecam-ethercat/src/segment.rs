@@ -17,6 +17,7 @@ use crate::error::EthercatError;
 pub use crate::link::Transport;
 use crate::link::{self, Link, LinkStats, LoopId};
 use crate::pdo::{INPUTS_LEN, OUTPUTS_LEN, PdoLayout};
+use crate::poll_sleep::async_io_free_sleep;
 use crate::startup::{self, Configured, DriveSetup, StartupError};
 
 /// Most drives one segment carries.
@@ -703,18 +704,4 @@ async fn bring_up_group(
         }
         async_io_free_sleep(config.cycle).await;
     }
-}
-
-/// Waits `period` inside a future driven by [`link::run`] (which polls
-/// about every millisecond), without a timer of async-io's.
-pub(crate) async fn async_io_free_sleep(period: Duration) {
-    let until = Instant::now() + period;
-    std::future::poll_fn(|_| {
-        if Instant::now() >= until {
-            std::task::Poll::Ready(())
-        } else {
-            std::task::Poll::Pending
-        }
-    })
-    .await;
 }

@@ -351,7 +351,7 @@ where
         if shown == crate::cia402::MODE_CSP {
             return Ok(());
         }
-        crate::segment::async_io_free_sleep(Duration::from_millis(10)).await;
+        crate::poll_sleep::async_io_free_sleep(Duration::from_millis(10)).await;
     }
     Err(StartupError::Mode { shown })
 }

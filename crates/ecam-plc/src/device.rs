@@ -85,6 +85,18 @@ impl Device {
         }
     }
 
+    /// What the device is, in the manual's words: `data register`,
+    /// `auxiliary relay`, `input`, `output`, `counter`.
+    pub const fn kind(self) -> &'static str {
+        match self {
+            Self::D(_) => "data register",
+            Self::M(_) => "auxiliary relay",
+            Self::X(_) => "input",
+            Self::Y(_) => "output",
+            Self::C(_) => "counter",
+        }
+    }
+
     /// True for the bit devices M, X, Y.
     pub const fn is_bit(self) -> bool {
         matches!(self, Self::M(_) | Self::X(_) | Self::Y(_))

@@ -2,37 +2,30 @@
 //! jerk over the master, the synchronised zone shaded.
 //!
 //! Three cases, by what is known beyond the points:
-//! - **a design curve** (`ecam table gen s-curve | rotary-cut | fly-saw`):
-//!   its exact derivatives, sampled densely so jumps at joints show as
-//!   vertical edges, with the table's rounded points dotted over the
-//!   displacement;
-//! - **derivatives at each point** (a generator that knows its curve only
-//!   there, or a file with `velocity,acceleration,jerk` columns): the
-//!   velocity the table commands (its section slopes, a staircase) with the
-//!   file's velocity column dotted, and the acceleration and jerk columns
-//!   each held until the next point (a staircase). Nothing is known between
-//!   two points, so nothing is drawn there as if it were: a straight line
-//!   from one acceleration sample to the next would show a ramp across a
-//!   constant-velocity zone that has none;
-//! - **only the points** (a plain `master,slave` file): the section
-//!   velocities as a staircase, acceleration and jerk estimated from the
-//!   points (see [`derivatives`]) and dotted, one dot per estimate; the
-//!   title says so.
+//! - **an exact curve** (a generator's [`ExactCurve`]: the S-curve, rotary
+//!   cut and flying saw's design, the key points' laws; or a segment
+//!   profile file): its exact derivatives, sampled densely with both sides
+//!   of every corner, so steps show as vertical edges, with the table's
+//!   rounded points dotted over the displacement;
+//! - **derivatives at each point** (a file with `velocity,acceleration,jerk`
+//!   columns, a function's table): the velocity the table commands (its
+//!   section slopes, a staircase) with the file's columns dotted at the
+//!   points. Nothing is known between two points, so nothing is drawn
+//!   there as if it were;
+//! - **only the points** (a plain `master,slave` file, an evenly spaced
+//!   table): the section velocities as a staircase, acceleration and jerk
+//!   estimated from the points (see [`derivatives`]) and dotted, one dot
+//!   per estimate; the title says so.
 //!
-//! Wherever a quantity steps (a design's acceleration at a joint, or a
-//! file's acceleration column by more than its jerk column explains), the
-//! next derivative has an impulse there, not a flat 0: it is drawn as an
-//! arrow ([`Style::Impulses`]) labelled with the step's size.
-//!
-//! `ecam_core`'s other table kinds are drawn from the curve itself:
-//! - **a segment profile** ([`profile_chart`]): each segment's motion law,
-//!   sampled densely with both ends, so steps at the joints show as vertical
-//!   edges; the key points dotted;
-//! - **an evenly spaced table** ([`uniform_chart`], document 002): straight
-//!   pieces between values at `k · CamCounts / (N − 1)`, drawn as a plain
-//!   point table is (the spacing may be a fraction of a count).
+//! Every step of velocity is an acceleration impulse and every step of
+//! acceleration a jerk impulse, drawn as arrows ([`Style::Impulses`])
+//! labelled `Δv` / `Δa` and the step's size, where [`Steps`] finds them: at
+//! the curve's corners and its seam (the seam's at the last master), by the
+//! one rule of [`ecam_core::table::steps`]. For a table of straight
+//! sections that is every point whose sections' slopes differ.
 
-use ecam_core::generator::DesignCurve;
+use ecam_core::generator::ExactCurve;
+use ecam_core::table::steps::{Step, Steps};
 use ecam_core::{CamCurve, CamPoint, Cursor, Kinematics, SegmentProfile, UniformTable};
 
 use ecam_core::io::TableFile;
@@ -40,17 +33,8 @@ use ecam_core::table::derivatives;
 
 use crate::{Chart, ChartPanel, Style, Trace};
 
-/// Samples of the design curve drawn in all (spread over its pieces).
+/// Samples of an exact curve drawn in all (spread over its pieces).
 const DESIGN_SAMPLES: usize = 2000;
-/// A step in a sampled column is drawn as an impulse of the next
-/// derivative when the step is at least this share of the column's peak
-/// and the next column does not account for it (see [`unexplained_steps`]).
-/// A smooth law sampled at 10 points per stroke leaves about 2 % of its
-/// peak unexplained; a real step is a sizeable share of the peak.
-const STEP_SHARE: f64 = 0.05;
-/// Relative size of a jump between the two ends of a joint of an exact
-/// curve that counts as a step (laws in `f64` agree to ~1e-12).
-const JOINT_TOLERANCE: f64 = 1e-7;
 const ACCELERATION_IMPULSE: &str = "impulse: velocity step (pulses/count)";
 const JERK_IMPULSE: &str = "impulse: acceleration step (pulses/count²)";
 
@@ -64,25 +48,23 @@ const ACCELERATION: &str = "acceleration (pulses/count²)";
 const JERK: &str = "jerk (pulses/count³)";
 const LINE: Style = Style::Line { width: 2 };
 
-/// The plot of `file`, over `design` when the table was generated from one.
-pub fn chart(file: &TableFile, design: Option<&DesignCurve>, name: &str) -> Chart {
+/// The plot of `file`, over `exact` when the table was generated from one.
+pub fn chart(file: &TableFile, exact: Option<&ExactCurve>, name: &str) -> Chart {
     let points = file.table.points();
     let shaded = file
         .sync
         .map(|(lo, hi)| vec![(lo as f64, hi as f64)])
         .unwrap_or_default();
-    let (title, panels) = match (design, &file.kinematics) {
-        (Some(design), _) => (
+    let (title, panels) = match (exact, &file.kinematics) {
+        (Some(exact), _) => (
             format!(
-                "cam table: {name} (lines: design curve; arrows: its steps as impulses; dots: the table's {} points)",
+                "cam table: {name} (lines: its exact curve; arrows: its steps as impulses; dots: the table's {} points)",
                 points.len()
             ),
-            design_panels(points, design),
+            exact_panels(exact, "design", ("table points", points)),
         ),
         (None, Some(known)) if known.len() == points.len() => (
-            format!(
-                "cam table: {name} (the file's derivative columns, each value held to the next point)"
-            ),
+            format!("cam table: {name} (dots: the file's derivative columns at its points)"),
             known_panels(points, known),
         ),
         _ => (
@@ -101,23 +83,13 @@ pub fn chart(file: &TableFile, design: Option<&DesignCurve>, name: &str) -> Char
 }
 
 fn line(name: &str, x: Vec<f64>, y: Vec<f64>) -> Trace {
-    Trace {
-        name: name.into(),
-        x,
-        y,
-        style: LINE,
-    }
+    Trace::new(name, x, y, LINE)
 }
 
-/// Estimates at points, as dots: joining them with lines would draw a
-/// ramp across a long section where none is known.
-fn estimates(name: &str, x: Vec<f64>, y: Vec<f64>) -> Trace {
-    Trace {
-        name: name.into(),
-        x,
-        y,
-        style: Style::Markers,
-    }
+/// Values known only at points, as dots: joining them with lines would
+/// draw a ramp across a long section where none is known.
+fn dots(name: &str, x: Vec<f64>, y: Vec<f64>) -> Trace {
+    Trace::new(name, x, y, Style::Markers)
 }
 
 fn panel(title: &str, traces: Vec<Trace>) -> ChartPanel {
@@ -135,156 +107,95 @@ fn slaves(points: &[CamPoint]) -> Vec<f64> {
     points.iter().map(|p| p.slave as f64).collect()
 }
 
-fn design_panels(points: &[CamPoint], design: &DesignCurve) -> Vec<ChartPanel> {
-    let per_piece = DESIGN_SAMPLES / design.piece_count().max(1);
-    let samples = design.sample_pieces(per_piece.clamp(8, DESIGN_SAMPLES));
+/// The impulses of `steps` as one trace named `name`, each labelled with
+/// `quantity` (`Δv`, `Δa`), the seam's as such; `None` without steps.
+pub fn impulses(name: &str, steps: &[Step], quantity: &str) -> Option<Trace> {
+    if steps.is_empty() {
+        return None;
+    }
+    let mut trace = Trace::new(
+        name,
+        steps.iter().map(|s| s.master).collect(),
+        steps.iter().map(|s| s.size).collect(),
+        Style::Impulses,
+    );
+    trace.tags = steps
+        .iter()
+        .map(|s| {
+            if s.seam {
+                format!("seam {quantity}")
+            } else {
+                quantity.to_string()
+            }
+        })
+        .collect();
+    Some(trace)
+}
+
+/// The acceleration and jerk panels' impulses: `steps`' velocity steps and
+/// acceleration steps.
+fn with_impulses(
+    mut acceleration: Vec<Trace>,
+    mut jerk: Vec<Trace>,
+    steps: &Steps,
+) -> [Vec<Trace>; 2] {
+    acceleration.extend(impulses(ACCELERATION_IMPULSE, &steps.velocity, "Δv"));
+    jerk.extend(impulses(JERK_IMPULSE, &steps.acceleration, "Δa"));
+    [acceleration, jerk]
+}
+
+/// The panels of an exact curve named `name`, sampled densely, with
+/// `marks` (a label and points) dotted over its displacement.
+fn exact_panels(exact: &ExactCurve, name: &str, marks: (&str, &[CamPoint])) -> Vec<ChartPanel> {
+    let samples = exact.samples(DESIGN_SAMPLES);
     let x: Vec<f64> = samples.iter().map(|(m, _)| *m).collect();
     let of = |f: fn(&Kinematics) -> f64| samples.iter().map(|(_, k)| f(k)).collect::<Vec<_>>();
+    let [acceleration, jerk] = with_impulses(
+        vec![line(name, x.clone(), of(|k| k.a))],
+        vec![line(name, x.clone(), of(|k| k.j))],
+        &Steps::of(exact),
+    );
     vec![
         panel(
             DISPLACEMENT,
             vec![
-                line("design", x.clone(), of(|k| k.s)),
-                Trace {
-                    name: "table points".into(),
-                    x: masters(points),
-                    y: slaves(points),
-                    style: Style::Markers,
-                },
+                line(name, x.clone(), of(|k| k.s)),
+                dots(marks.0, masters(marks.1), slaves(marks.1)),
             ],
         ),
-        panel(VELOCITY, vec![line("design", x.clone(), of(|k| k.v))]),
-        exact_panel(
-            ACCELERATION,
-            "design",
-            &x,
-            of(|k| k.a),
-            &of(|k| k.v),
-            ACCELERATION_IMPULSE,
-        ),
-        exact_panel(JERK, "design", &x, of(|k| k.j), &of(|k| k.a), JERK_IMPULSE),
+        panel(VELOCITY, vec![line(name, x, of(|k| k.v))]),
+        panel(ACCELERATION, acceleration),
+        panel(JERK, jerk),
     ]
-}
-
-/// A panel of an exact curve's derivative `y` over `x`, with an impulse
-/// wherever the quantity it derives from (`integral`) steps at a joint.
-fn exact_panel(
-    title: &str,
-    name: &str,
-    x: &[f64],
-    y: Vec<f64>,
-    integral: &[f64],
-    impulse: &str,
-) -> ChartPanel {
-    let mut traces = vec![line(name, x.to_vec(), y)];
-    let (at, size) = joint_steps(x, integral);
-    if !at.is_empty() {
-        traces.push(Trace {
-            name: impulse.into(),
-            x: at,
-            y: size,
-            style: Style::Impulses,
-        });
-    }
-    panel(title, traces)
-}
-
-/// Steps of a densely sampled exact curve: two samples at the same x (both
-/// ends of a joint) whose values differ. Returns their x and the step sizes.
-pub fn joint_steps(x: &[f64], y: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let span = x.last().copied().unwrap_or(0.0) - x.first().copied().unwrap_or(0.0);
-    let same_x = 1e-12 * span.abs().max(1.0);
-    x.windows(2)
-        .zip(y.windows(2))
-        .filter_map(|(x, y)| match (x, y) {
-            ([x0, x1], [y0, y1])
-                if (x1 - x0).abs() <= same_x && (y1 - y0).abs() > JOINT_TOLERANCE * scale =>
-            {
-                Some((*x1, y1 - y0))
-            }
-            _ => None,
-        })
-        .unzip()
-}
-
-/// Steps of a column `y` sampled at points `x` that its derivative column
-/// `dy` does not account for: from one point to the next, `y` changes by
-/// what `dy` integrates to (held from the left point, or averaged over the
-/// section; a column of values that hold between points, or one sampled
-/// from a smooth law), give or take 5 % of `y`'s peak; the rest
-/// is a step at the later point. Returns their x and sizes.
-pub fn unexplained_steps(x: &[f64], y: &[f64], dy: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let n = x.len().min(y.len()).min(dy.len());
-    (1..n)
-        .filter_map(|i| {
-            let (x0, x1) = (*x.get(i - 1)?, *x.get(i)?);
-            let (y0, y1) = (*y.get(i - 1)?, *y.get(i)?);
-            let (d0, d1) = (*dy.get(i - 1)?, *dy.get(i)?);
-            let (h, change) = (x1 - x0, y1 - y0);
-            let held = change - d0 * h;
-            let averaged = change - 0.5 * (d0 + d1) * h;
-            // A step when neither reading explains the change; its size is
-            // the rest after the section's mean derivative.
-            (held.abs().min(averaged.abs()) > STEP_SHARE * scale).then_some((x1, averaged))
-        })
-        .unzip()
 }
 
 fn known_panels(points: &[CamPoint], known: &[Kinematics]) -> Vec<ChartPanel> {
     let x = masters(points);
     let of = |f: fn(&Kinematics) -> f64| known.iter().map(f).collect::<Vec<_>>();
-    let held = |name: &str, y: Vec<f64>| Trace {
-        name: name.into(),
-        x: x.clone(),
-        y,
-        style: Style::Steps,
-    };
-    let (v, a, j) = (of(|k| k.v), of(|k| k.a), of(|k| k.j));
     let sections = derivatives::forward(&x, &slaves(points));
-    let mut acceleration = vec![held("acceleration column", a.clone())];
-    let mut jerk = vec![held("jerk column", j.clone())];
-    for (traces, (at, size), name) in [
-        (
-            &mut acceleration,
-            unexplained_steps(&x, &v, &a),
-            ACCELERATION_IMPULSE,
-        ),
-        (&mut jerk, unexplained_steps(&x, &a, &j), JERK_IMPULSE),
-    ] {
-        if !at.is_empty() {
-            traces.push(Trace {
-                name: name.into(),
-                x: at,
-                y: size,
-                style: Style::Impulses,
-            });
-        }
-    }
+    let [acceleration, jerk] = with_impulses(
+        vec![dots("acceleration column", x.clone(), of(|k| k.a))],
+        vec![dots("jerk column", x.clone(), of(|k| k.j))],
+        &Steps::of_columns(points, known),
+    );
     vec![
         panel(
             DISPLACEMENT,
             vec![
                 line("table", x.clone(), slaves(points)),
-                Trace {
-                    name: "points".into(),
-                    x: x.clone(),
-                    y: slaves(points),
-                    style: Style::Markers,
-                },
+                dots("points", x.clone(), slaves(points)),
             ],
         ),
         panel(
             VELOCITY,
             vec![
-                held("table as run (section slopes)", sections),
-                Trace {
-                    name: "velocity column".into(),
-                    x: x.clone(),
-                    y: v,
-                    style: Style::Markers,
-                },
+                Trace::new(
+                    "table as run (section slopes)",
+                    x.clone(),
+                    sections,
+                    Style::Steps,
+                ),
+                dots("velocity column", x, of(|k| k.v)),
             ],
         ),
         panel(ACCELERATION, acceleration),
@@ -301,7 +212,11 @@ fn estimated_panels(points: &[CamPoint]) -> Vec<ChartPanel> {
         a: k.iter().map(|k| k.a).collect(),
         chords: derivatives::over_sections(points, SMOOTHING_SECTIONS),
     };
-    straight_panels(straight, "points")
+    let steps = match ecam_core::PointTable::new(points.to_vec()) {
+        Ok(table) => Steps::of(&table),
+        Err(_) => Steps::default(),
+    };
+    straight_panels(straight, "points", &steps)
 }
 
 /// A curve of straight sections between its points, with the estimates
@@ -319,7 +234,10 @@ struct Straight {
     chords: (Vec<f64>, Vec<f64>, Vec<f64>),
 }
 
-fn straight_panels(straight: Straight, dots: &str) -> Vec<ChartPanel> {
+/// The panels of straight sections: their velocity steps at every corner
+/// are the acceleration impulses, drawn over the estimates of the motion
+/// the points sample.
+fn straight_panels(straight: Straight, marks: &str, steps: &Steps) -> Vec<ChartPanel> {
     let Straight {
         x,
         s,
@@ -332,45 +250,29 @@ fn straight_panels(straight: Straight, dots: &str) -> Vec<ChartPanel> {
     let inner = 1..x.len().saturating_sub(1);
     let per_joint = joints.get(inner.clone()).unwrap_or_default().to_vec();
     let x_inner = x.get(inner).unwrap_or_default().to_vec();
-    let smoothed = format!("over ±{SMOOTHING_SECTIONS} sections");
+    let smoothed = format!("estimate over ±{SMOOTHING_SECTIONS} sections");
+    let [acceleration, jerk] = with_impulses(
+        vec![
+            dots("estimate per joint", x_inner, per_joint),
+            dots(&smoothed, xs.clone(), a),
+        ],
+        vec![dots(&smoothed, xs, j)],
+        steps,
+    );
     vec![
         panel(
             DISPLACEMENT,
             vec![
                 line("table", x.clone(), s.clone()),
-                Trace {
-                    name: dots.into(),
-                    x: x.clone(),
-                    y: s,
-                    style: Style::Markers,
-                },
+                dots(marks, x.clone(), s),
             ],
         ),
         panel(
             "velocity (pulses/count, per section)",
-            vec![Trace {
-                name: "section velocity".into(),
-                x,
-                y: v,
-                style: Style::Steps,
-            }],
+            vec![Trace::new("section velocity", x, v, Style::Steps)],
         ),
-        panel(
-            "acceleration (pulses/count², estimated)",
-            vec![
-                Trace {
-                    name: "per joint (neighbouring sections)".into(),
-                    x: x_inner,
-                    y: per_joint,
-                    style: Style::Markers,
-                },
-                estimates(&smoothed, xs.clone(), a),
-            ],
-        ),
-        panel(
-            "jerk (pulses/count³, estimated)",
-            vec![estimates(&smoothed, xs, j)],
-        ),
+        panel("acceleration (pulses/count², estimated)", acceleration),
+        panel("jerk (pulses/count³, estimated)", jerk),
     ]
 }
 
@@ -423,7 +325,11 @@ pub fn uniform_chart(table: &UniformTable, sync: Option<(i64, i64)>, name: &str)
         values.len(),
         table.cam_counts()
     );
-    chart_over(title, straight_panels(straight, "values"), sync)
+    chart_over(
+        title,
+        straight_panels(straight, "values", &Steps::of(table)),
+        sync,
+    )
 }
 
 /// [`derivatives::over_sections`] of an evenly spaced table. Its masters
@@ -456,30 +362,14 @@ fn uniform_chords(table: &UniformTable) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 /// The plot of a segment profile: each segment's law evaluated exactly at
 /// dense samples, the key points dotted over the displacement.
 pub fn profile_chart(profile: &SegmentProfile, sync: Option<(i64, i64)>, name: &str) -> Chart {
-    let segments = profile.segments();
-    let per_segment = (DESIGN_SAMPLES / segments.len().max(1)).clamp(8, DESIGN_SAMPLES);
-    let mut samples: Vec<(f64, Kinematics)> =
-        Vec::with_capacity(segments.len().saturating_mul(per_segment + 1));
-    let mut from = profile.start();
-    for segment in segments {
-        // As `SegmentProfile::eval` does, but with both ends of every
-        // segment: at a joint `eval` gives the next segment's values, and
-        // the left end is what makes a step show as a vertical edge.
-        let span = segment.master_end.saturating_sub(from.master) as f64;
-        let rise = segment.slave_end.saturating_sub(from.slave) as f64;
-        for i in 0..=per_segment {
-            let u = i as f64 / per_segment as f64;
-            let k = segment.law.eval(u).scaled(from.slave as f64, rise, span);
-            samples.push((from.master as f64 + span * u, k));
-        }
-        from = CamPoint::new(segment.master_end, segment.slave_end);
-    }
     let key_points: Vec<CamPoint> = profile.key_points().collect();
+    let exact = ExactCurve::Profile(profile.clone());
+    let panels = exact_panels(&exact, "profile", ("key points", &key_points));
     let title = format!(
         "cam table: {name} (lines: its motion laws, exact; arrows: their steps as impulses; dots: its {} key points)",
         key_points.len()
     );
-    exact_chart(&samples, &key_points, "key points", sync, title)
+    chart_over(title, panels, sync)
 }
 
 /// The plot of a segment cam ([`ecam_core::segments::SegmentCam`]): each
@@ -491,55 +381,17 @@ pub fn segment_cam_chart(
     sync: Option<(i64, i64)>,
     name: &str,
 ) -> Chart {
-    let per_segment = (DESIGN_SAMPLES / cam.segments().len().max(1)).clamp(8, DESIGN_SAMPLES);
-    let samples = cam.sample_segments(per_segment);
     let points: Vec<CamPoint> = cam
         .points()
         .iter()
         .map(|p| CamPoint::new(p.master, p.slave))
         .collect();
     let title = format!(
-        "segment cam {name}: each segment's law, exact ({} interpolation points dotted)",
+        "segment cam {name}: each segment's law, exact; arrows: its steps as impulses ({} interpolation points dotted)",
         points.len()
     );
-    exact_chart(&samples, &points, "interpolation points", sync, title)
-}
-
-/// Four panels of exact samples (two at a master where a step is), `marks`
-/// dotted over the displacement.
-fn exact_chart(
-    samples: &[(f64, Kinematics)],
-    marks: &[CamPoint],
-    marks_name: &str,
-    sync: Option<(i64, i64)>,
-    title: String,
-) -> Chart {
-    let x: Vec<f64> = samples.iter().map(|(m, _)| *m).collect();
-    let of = |f: fn(&Kinematics) -> f64| samples.iter().map(|(_, k)| f(k)).collect::<Vec<_>>();
-    let panels = vec![
-        panel(
-            DISPLACEMENT,
-            vec![
-                line("profile", x.clone(), of(|k| k.s)),
-                Trace {
-                    name: marks_name.into(),
-                    x: masters(marks),
-                    y: slaves(marks),
-                    style: Style::Markers,
-                },
-            ],
-        ),
-        panel(VELOCITY, vec![line("profile", x.clone(), of(|k| k.v))]),
-        exact_panel(
-            ACCELERATION,
-            "profile",
-            &x,
-            of(|k| k.a),
-            &of(|k| k.v),
-            ACCELERATION_IMPULSE,
-        ),
-        exact_panel(JERK, "profile", &x, of(|k| k.j), &of(|k| k.a), JERK_IMPULSE),
-    ];
+    let exact = ExactCurve::Segments(cam.clone());
+    let panels = exact_panels(&exact, "profile", ("interpolation points", &points));
     chart_over(title, panels, sync)
 }
 
@@ -632,12 +484,27 @@ mod tests {
         }
     }
 
+    fn impulses_of(panel: &ChartPanel) -> Vec<(f64, f64, String)> {
+        panel
+            .traces
+            .iter()
+            .filter(|t| t.style == Style::Impulses)
+            .flat_map(|t| {
+                t.x.iter()
+                    .zip(&t.y)
+                    .zip(&t.tags)
+                    .map(|((x, y), tag)| (*x, *y, tag.clone()))
+            })
+            .collect()
+    }
+
     #[test]
     fn a_design_is_drawn_densely_with_the_points_dotted() {
         let g = rotary_cut::generate(&rotary_cut::Params::default()).unwrap();
         let n = g.table.points().len();
-        let c = chart(&file(g.table.clone(), None), Some(&g.design), "rotary-cut");
-        assert!(c.title.contains("design"));
+        let exact = ExactCurve::Design(g.design);
+        let c = chart(&file(g.table.clone(), None), Some(&exact), "rotary-cut");
+        assert!(c.title.contains("exact curve"));
         let displacement = &c.panels[0].traces;
         assert_eq!(displacement[1].style, Style::Markers);
         assert_eq!(displacement[1].x.len(), n);
@@ -653,12 +520,28 @@ mod tests {
         assert_eq!(c.panels[1].traces[0].style, Style::Steps);
         // Estimates are dots: no line joins them across a long section.
         for panel in &c.panels[2..] {
-            assert!(panel.traces.iter().all(|t| t.style == Style::Markers));
+            assert!(
+                panel
+                    .traces
+                    .iter()
+                    .all(|t| matches!(t.style, Style::Markers | Style::Impulses))
+            );
         }
         // Interior joints only: masters 10 and 40.
         assert_eq!(c.panels[2].traces[0].x, vec![10.0, 40.0]);
         assert!((c.panels[2].traces[0].y[0] - 0.1).abs() < 1e-12);
         assert_eq!(c.panels[2].traces[1].x, vec![10.0, 40.0]);
+        // The sections' velocity steps (1 → 3 → 0, and back to 1 at the
+        // seam) are the acceleration's impulses.
+        assert_eq!(
+            impulses_of(&c.panels[2]),
+            vec![
+                (10.0, 2.0, "Δv".into()),
+                (40.0, -3.0, "Δv".into()),
+                (50.0, 1.0, "seam Δv".into())
+            ]
+        );
+        assert!(impulses_of(&c.panels[3]).is_empty());
     }
 
     #[test]
@@ -683,11 +566,19 @@ mod tests {
         }
         // Slopes rise by 3 per piece of 10/3 counts: 0.9 pulses/count², per
         // joint and over chords alike (the values sample a parabola).
-        for trace in &c.panels[2].traces {
+        for trace in c.panels[2]
+            .traces
+            .iter()
+            .filter(|t| t.style == Style::Markers)
+        {
             assert_eq!(trace.x.len(), 2);
             for a in &trace.y {
                 assert!((a - 0.9).abs() < 1e-9, "{}: {:?}", trace.name, trace.y);
             }
+        }
+        let steps: Vec<f64> = impulses_of(&c.panels[2]).iter().map(|i| i.1).collect();
+        for (got, want) in steps.iter().zip([3.0, 3.0, -6.0]) {
+            assert!((got - want).abs() < 1e-9, "{steps:?}");
         }
     }
 
@@ -722,14 +613,16 @@ mod tests {
                 .collect();
         assert_eq!(at_200.len(), 2);
         assert!(at_200[0].abs() < 1e-9 && (at_200[1] - 10.0).abs() < 1e-9);
-        // That velocity step is an acceleration impulse of 10 at 200; the
-        // cycloid's acceleration ends at 0, as the dwell's and the
-        // constant velocity's are: no jerk impulse.
-        let impulses = &c.panels[2].traces[1];
-        assert_eq!(impulses.style, Style::Impulses);
-        assert_eq!(impulses.x, vec![200.0]);
-        assert!((impulses.y[0] - 10.0).abs() < 1e-9);
-        assert_eq!(c.panels[3].traces.len(), 1);
+        // That velocity step is an acceleration impulse of 10 at 200, and
+        // the seam (10 back to the cycloid's 0) one of −10; the cycloid's
+        // acceleration ends at 0, as the dwell's and the constant
+        // velocity's are: no jerk impulse.
+        let a = impulses_of(&c.panels[2]);
+        assert_eq!(a.len(), 2);
+        assert_eq!((a[0].0, a[1].0), (200.0, 300.0));
+        assert!((a[0].1 - 10.0).abs() < 1e-9 && (a[1].1 + 10.0).abs() < 1e-9);
+        assert_eq!(a[1].2, "seam Δv");
+        assert!(impulses_of(&c.panels[3]).is_empty());
     }
 
     fn kin(v: f64, a: f64, j: f64) -> Kinematics {
@@ -737,7 +630,7 @@ mod tests {
     }
 
     #[test]
-    fn known_derivatives_are_held_not_joined() {
+    fn known_derivatives_are_dots_with_their_steps_as_impulses() {
         // A rotary cut's columns: constant velocity to 200, deceleration to
         // 600, dwell to 2800. A line from the acceleration at 0 to the one
         // at 200 would ramp across the synchronised zone.
@@ -750,22 +643,24 @@ mod tests {
             kin(0.0, 0.0, 0.0),
         ];
         let c = chart(&file(t, Some(k)), None, "t.csv");
-        assert!(c.title.contains("held to the next point"), "{}", c.title);
+        assert!(c.title.contains("derivative columns"), "{}", c.title);
         let acceleration = &c.panels[2].traces[0];
-        assert_eq!(acceleration.style, Style::Steps);
+        assert_eq!(acceleration.style, Style::Markers);
         assert_eq!(acceleration.y, vec![0.0, a, 0.0, 0.0]);
         // The velocity the table commands is its section slopes.
         assert_eq!(c.panels[1].traces[0].style, Style::Steps);
         assert_eq!(c.panels[1].traces[1].style, Style::Markers);
         // The jerk column is 0, but the acceleration steps at 200 and 600:
         // impulses there, sized by the steps.
-        let impulses = &c.panels[3].traces[1];
-        assert_eq!(impulses.style, Style::Impulses);
-        assert_eq!(impulses.x, vec![200.0, 600.0]);
-        assert!((impulses.y[0] - a).abs() < 1e-15 && (impulses.y[1] + a).abs() < 1e-15);
-        // The velocity column is explained by the held acceleration: no
-        // acceleration impulse.
-        assert_eq!(c.panels[2].traces.len(), 1);
+        let jerk = impulses_of(&c.panels[3]);
+        assert_eq!(jerk.len(), 2, "{jerk:?}");
+        assert_eq!((jerk[0].0, jerk[1].0), (200.0, 600.0));
+        assert!((jerk[0].1 - a).abs() < 1e-15 && (jerk[1].1 + a).abs() < 1e-15);
+        // The velocity column is explained by the acceleration between
+        // points; the seam's velocity steps from 0 to 5/3.
+        let velocity = impulses_of(&c.panels[2]);
+        assert_eq!(velocity.len(), 1, "{velocity:?}");
+        assert_eq!(velocity[0].2, "seam Δv");
     }
 
     #[test]
@@ -790,11 +685,13 @@ mod tests {
         assert_eq!(hz.panels[1].traces[1].y[0], 2000.0);
         assert!((hz.panels[2].traces[0].y[1] - a * 1e6).abs() < 1e-9);
         // The jerk impulse is an acceleration step: Hz/s, not Hz/s².
-        assert!((hz.panels[3].traces[1].y[0] - a * 1e6).abs() < 1e-9);
-        assert_eq!(
-            hz.panels[3].traces[1].name,
-            "impulse: acceleration step (Hz/s)"
-        );
+        let jerk = hz.panels[3]
+            .traces
+            .iter()
+            .find(|t| t.style == Style::Impulses)
+            .unwrap();
+        assert!((jerk.y[0] - a * 1e6).abs() < 1e-9);
+        assert_eq!(jerk.name, "impulse: acceleration step (Hz/s)");
         let mm = at_speed(
             c,
             Machine {
@@ -813,42 +710,26 @@ mod tests {
     }
 
     #[test]
-    fn a_smooth_law_sampled_coarsely_has_no_impulses() {
-        // A cycloid (h = 1, β = 1) sampled at 11 points: its acceleration
-        // changes between samples only as its jerk says.
-        let tau = core::f64::consts::TAU;
-        let x: Vec<f64> = (0..=10).map(|i| i as f64 / 10.0).collect();
-        let a: Vec<f64> = x.iter().map(|u| tau * (tau * u).sin()).collect();
-        let j: Vec<f64> = x.iter().map(|u| tau * tau * (tau * u).cos()).collect();
-        assert_eq!(unexplained_steps(&x, &a, &j), (vec![], vec![]));
-        // The same acceleration with a step of a quarter of its peak at 0.5.
-        let mut stepped = a.clone();
-        for v in &mut stepped[5..] {
-            *v += 0.25 * tau;
-        }
-        let (at, size) = unexplained_steps(&x, &stepped, &j);
-        assert_eq!(at, vec![0.5]);
-        assert!((size[0] - 0.25 * tau).abs() < 0.05 * tau, "{size:?}");
-    }
-
-    #[test]
-    fn a_designs_acceleration_steps_are_jerk_impulses() {
+    fn a_designs_acceleration_steps_are_jerk_impulses_seam_included() {
         let g = rotary_cut::generate(&rotary_cut::Params::default()).unwrap();
-        let c = chart(&file(g.table.clone(), None), Some(&g.design), "rotary-cut");
+        let exact = ExactCurve::Design(g.design);
+        let c = chart(&file(g.table.clone(), None), Some(&exact), "rotary-cut");
         let jerk = &c.panels[3];
         // The design's jerk is 0 everywhere (constant accelerations)...
         assert!(jerk.traces[0].y.iter().all(|j| *j == 0.0));
-        // ...and its acceleration steps: each step an impulse, sized by it.
-        let impulses = jerk
-            .traces
-            .iter()
-            .find(|t| t.style == Style::Impulses)
-            .unwrap();
-        assert!(!impulses.x.is_empty());
+        // ...and its acceleration steps: each step an impulse, sized by it,
+        // the seam's (the ramp into the sync zone ends) last.
+        let impulses = impulses_of(jerk);
+        assert_eq!(impulses.len(), 4, "{impulses:?}");
+        assert_eq!(impulses[3].2, "seam Δa");
+        assert_eq!(impulses[3].0, g.table.master_last() as f64);
         let (xs, ys) = (&c.panels[2].traces[0].x, &c.panels[2].traces[0].y);
-        for (at, size) in impulses.x.iter().zip(&impulses.y) {
+        for (at, size, _) in &impulses[..3] {
             let k = xs.iter().position(|x| x == at).unwrap();
             assert!((ys[k + 1] - ys[k] - size).abs() < 1e-12, "at {at}");
         }
+        assert!((impulses[3].1 - (ys[0] - ys[ys.len() - 1])).abs() < 1e-12);
+        // Velocity is continuous: no acceleration impulse.
+        assert!(impulses_of(&c.panels[2]).is_empty());
     }
 }

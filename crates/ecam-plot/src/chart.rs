@@ -53,11 +53,12 @@ pub enum Style {
     /// A small dot at each point, no line (a table's points over its design,
     /// or samples whose values between points are not known).
     Markers,
-    /// Dirac impulses: at each x an arrow from 0 to the panel's edge (up for
-    /// a positive y, down for a negative one), labelled with y, the
-    /// impulse's area (e.g. the acceleration step behind a jerk impulse).
-    /// y is in the unit of the quantity that steps, not of the panel, so
-    /// impulses do not take part in the panel's y range.
+    /// Dirac impulses: at each x an arrow from 0 (up for a positive y, down
+    /// for a negative one), the largest reaching towards the panel's edge
+    /// and the others in proportion, labelled with the trace's tag and y,
+    /// the impulse's area (e.g. `Δa −0.0042`, the acceleration step behind
+    /// a jerk impulse). y is in the unit of the quantity that steps, not of
+    /// the panel, so impulses do not take part in the panel's y range.
     Impulses,
 }
 
@@ -72,6 +73,22 @@ pub struct Trace {
     pub y: Vec<f64>,
     /// How it is drawn.
     pub style: Style,
+    /// Impulses only: the text before each point's value in its label
+    /// (`Δv`, `seam Δa`); missing ones are `Δ`.
+    pub tags: Vec<String>,
+}
+
+impl Trace {
+    /// A trace of `style` with no tags.
+    pub fn new(name: impl Into<String>, x: Vec<f64>, y: Vec<f64>, style: Style) -> Self {
+        Self {
+            name: name.into(),
+            x,
+            y,
+            style,
+            tags: Vec::new(),
+        }
+    }
 }
 
 /// One panel of a [`Chart`]: a y axis with its traces.
@@ -112,11 +129,13 @@ impl From<&Figure> for Chart {
                     traces: p
                         .series
                         .iter()
-                        .map(|s| Trace {
-                            name: s.name.clone(),
-                            x: figure.x.clone(),
-                            y: s.values.clone(),
-                            style: Style::Line { width },
+                        .map(|s| {
+                            Trace::new(
+                                s.name.clone(),
+                                figure.x.clone(),
+                                s.values.clone(),
+                                Style::Line { width },
+                            )
                         })
                         .collect(),
                 })

@@ -3,15 +3,19 @@
 //! The workspace builds plotters without its system-font loader (`ttf` pulls
 //! in native font libraries), so labels are drawn with `ab_glyph` from
 //! TrueType bytes registered once. The bytes are compiled in (see
-//! `fonts/LICENSE-DejaVu.txt` for the font's licence), so every machine
-//! draws the same picture, with text, without a font installed.
+//! `fonts/LICENSE-DejaVu.txt` for the font's licence): a PNG is drawn the
+//! same on every machine, without a font installed. An SVG keeps its text
+//! as text (searchable, sharp at any size) and names the font: a viewer
+//! with DejaVu Sans draws it as the PNG is, another falls back to its own
+//! sans-serif (labels are laid out with room to spare for that).
 
 use std::sync::OnceLock;
 
 use plotters::style::{FontStyle, register_font};
 
-/// Family name the plots ask plotters for.
-pub const FAMILY: &str = "sans-serif";
+/// Family name the plots ask plotters for, and the font list an SVG names:
+/// DejaVu Sans, else the viewer's sans-serif.
+pub const FAMILY: &str = "DejaVu Sans, sans-serif";
 
 /// DejaVu Sans 2.37 (Bitstream Vera licence, DejaVu changes public domain):
 /// it covers the symbols the labels use (², ³, ±, Δ, µ).

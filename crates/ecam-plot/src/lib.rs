@@ -12,8 +12,10 @@
 //! colour scheme).
 //!
 //! Labels are drawn with DejaVu Sans, compiled into the crate (its licence
-//! is `fonts/LICENSE-DejaVu.txt`), so a plot looks the same on every
-//! machine and needs no font installed.
+//! is `fonts/LICENSE-DejaVu.txt`): a PNG looks the same on every machine
+//! and needs no font installed. An SVG keeps its labels as text naming
+//! `DejaVu Sans, sans-serif`, so a viewer without DejaVu Sans draws them in
+//! its own sans-serif.
 //!
 //! ```
 //! use ecam_plot::{Figure, Panel, Series, draw};
@@ -53,6 +55,7 @@ mod chart;
 mod draw;
 mod error;
 mod font;
+mod labels;
 
 pub use chart::{Chart, ChartPanel, Figure, Panel, Series, Style, Trace};
 pub use draw::{Format, Plot, draw, draw_chart};

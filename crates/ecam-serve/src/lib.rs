@@ -19,9 +19,13 @@
 //! ([`Limits`]), who makes room at a full cap ([`Connections`]), and where
 //! design requests run ([`DesignPool`]).
 //!
-//! It has no async runtime and prints nothing: the binary owns the
-//! sockets, the async tasks and stderr, and hears what the operator should
-//! through [`Event`]. The scan loop and the latched-value saver block the
+//! Without features it has no async runtime and prints nothing: the
+//! binary owns stderr and hears what the operator should through
+//! [`Event`]. The feature `net` adds the sockets and async tasks (`net`:
+//! the Modbus TCP listener, the HTTP router and the live view on tokio and
+//! axum); the feature `ethercat` adds `serve --ethercat`'s fieldbus adapter
+//! (`ethercat`: the PLC's pulse outputs on CiA 402 drives over
+//! ecam-ethercat's cycle driver). The scan loop and the latched-value saver block the
 //! thread they run on; the design pool runs its own worker threads. Use it to serve the PLC over another transport, or
 //! to test what a client sees without a network; to run PLC programs in
 //! simulated time, use `ecam_plc::sim` directly. `docs/modbus.md` describes
@@ -68,6 +72,8 @@ mod clock;
 mod connections;
 mod design_pool;
 mod device_json;
+#[cfg(feature = "ethercat")]
+pub mod ethercat;
 #[doc(hidden)]
 pub mod fuzz;
 mod image;
@@ -76,6 +82,8 @@ mod limits;
 mod live;
 mod map;
 mod mbap;
+#[cfg(feature = "net")]
+pub mod net;
 mod pdu;
 mod periodic_save;
 mod retain;
@@ -83,6 +91,7 @@ mod scan_time;
 mod state;
 mod state_error;
 mod state_file;
+mod state_report;
 mod sync;
 mod table_load;
 mod web_guard;
@@ -125,6 +134,7 @@ pub use scan_time::ThreadCpuTime;
 pub use state::{Closer, Event, ServeInfo, Shared, Stats, WriteError};
 pub use state_error::{Damage, JournalError};
 pub use state_file::{Dropped, SNAPSHOT_HEADER};
+pub use state_report::{Notice, NoticeLevel, open_notices, restore_notices};
 pub use table_load::{TableLoad, TableLoadError, TableSwitch, WhileRunning, parse_table_load};
 pub use web_guard::{Access, MIN_TOKEN_LEN, Refusal, RequestFacts, TokenError, read_token};
 pub use write::{LineError, Slot, WriteBatch};

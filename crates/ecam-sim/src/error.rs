@@ -34,8 +34,8 @@ pub enum ScenarioError {
     Table {
         /// Which table.
         place: String,
-        /// Why.
-        error: TableSourceError,
+        /// Why (boxed: a file error carries its excerpt and path).
+        error: Box<TableSourceError>,
     },
     /// A duration or time outside 0 to a year.
     Seconds {

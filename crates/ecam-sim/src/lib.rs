@@ -13,8 +13,9 @@
 //! caller the axis' sum as a cam's output, [`simulate_couplings`] every
 //! coupling's status.
 //!
-//! This is what `ecam simulate` runs; the command line only reads its
-//! arguments and writes the summary, trace CSV and plot.
+//! This is what `ecam simulate` runs, with the trace CSV it writes
+//! ([`TraceWriter`]) and the picture it draws ([`TracePlot`]); the command
+//! line only reads its arguments and wires them.
 //!
 //! When not to use it: to drive a real axis, call `ecam-engine`'s `tick`
 //! from your own control loop (the simulation holds the whole master
@@ -58,6 +59,7 @@ mod couplings_error;
 mod error;
 #[doc(hidden)]
 pub mod fuzz;
+mod plot;
 mod scenario;
 mod simulate;
 mod steps;
@@ -69,9 +71,10 @@ pub use coupled::{CouplingTick, simulate_couplings};
 pub use couplings::{CamSwitches, Couplings, Marks, SwitchAxis};
 pub use couplings_error::CouplingsError;
 pub use error::{ScenarioError, SimulateError};
+pub use plot::{PLOT_POINTS, TracePlot};
 pub use scenario::{MasterMove, Scenario, StopAt};
 pub use simulate::simulate;
 pub use steps::{Block, PlcopenStep};
 pub use summary::Summary;
-pub use trace::{Row, state_name};
+pub use trace::{HEADER, Row, TraceError, TraceWriter, state_name};
 pub use trigger::StopTrigger;

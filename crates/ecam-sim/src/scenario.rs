@@ -322,7 +322,7 @@ impl Scenario {
             ecam_design::load_table_within(&raw.table, base, &mut budget).map_err(|error| {
                 ScenarioError::Table {
                     place: "[table]".to_string(),
-                    error,
+                    error: Box::new(error),
                 }
             })?;
         let moves = raw
@@ -400,7 +400,7 @@ impl Scenario {
                     let curve = ecam_design::load_table_within(&s.table, base, &mut budget)
                         .map_err(|error| ScenarioError::Table {
                             place: format!("{what} table"),
-                            error,
+                            error: Box::new(error),
                         })?;
                     let blend = match s.blend {
                         Some(b) => Some(

@@ -411,7 +411,7 @@ pub(crate) fn steps(raw: &[RawStep], base: &Path) -> Result<Vec<PlcopenStep>, Sc
                     Some(t) => Some(ecam_design::load_table(t, base).map_err(|error| {
                         ScenarioError::Table {
                             place: format!("{what} MC_CamTableSelect table"),
-                            error,
+                            error: Box::new(error),
                         }
                     })?),
                     None => None,

@@ -95,28 +95,10 @@ fn load(path: &Path) -> anyhow::Result<(LineConfig, Vec<Box<dyn CamCurve>>)> {
     Ok((config, tables))
 }
 
-/// The frames' way, or why there is none.
-///
-/// # Errors
-/// Neither `--emulated` nor an interface is given.
-pub(crate) fn transport(
-    emulated: Option<u16>,
-    interface: Option<&str>,
-    config: &Path,
-) -> anyhow::Result<(Transport, Option<Arc<Mutex<EmulatedSegment>>>)> {
-    match Transport::choose(emulated, interface) {
-        Some(chosen) => Ok(chosen),
-        None => bail!(
-            "{}: no interface; set interface = \"...\" or pass --emulated N",
-            config.display()
-        ),
-    }
-}
-
 fn run_line(args: RunArgs) -> anyhow::Result<()> {
     let (config, tables) = load(&args.config)?;
-    let (transport, emulation) =
-        transport(args.emulated, config.interface.as_deref(), &args.config)?;
+    let (transport, emulation) = Transport::chosen(args.emulated, config.interface.as_deref())
+        .with_context(|| args.config.display().to_string())?;
     let mut axes = Vec::with_capacity(tables.len());
     for (spec, table) in config.axes.iter().zip(tables) {
         let axis = CamAxis::new(table, spec.axis_config())

@@ -35,6 +35,7 @@ pub struct ManArgs {
 /// When stdout cannot be written.
 pub fn completions(args: &CompletionsArgs) -> anyhow::Result<()> {
     let mut command = Cli::command();
+    tracing::debug!("completions for {}", args.shell);
     let mut out = Vec::new();
     clap_complete::generate(args.shell, &mut command, "ecam", &mut out);
     let mut stdout = std::io::stdout().lock();
@@ -49,6 +50,10 @@ pub fn completions(args: &CompletionsArgs) -> anyhow::Result<()> {
 /// When the output cannot be written.
 pub fn man(args: &ManArgs) -> anyhow::Result<()> {
     let command = Cli::command();
+    tracing::debug!(
+        "man pages for {} commands",
+        command.get_subcommands().count() + 1
+    );
     match &args.dir {
         Some(dir) => {
             std::fs::create_dir_all(dir)

@@ -6,7 +6,6 @@
 
 use std::io::Write;
 
-use anyhow::bail;
 use ecam_core::law::MotionLaw;
 
 /// Arguments of `ecam law`.
@@ -17,10 +16,10 @@ pub struct Args {
     #[arg(long)]
     pub list: bool,
     /// The law to print as CSV (see `ecam law --list`).
-    #[arg(value_parser = parse_law)]
+    #[arg(value_parser = law())]
     pub name: Option<MotionLaw>,
     /// Number of rows, both ends of u ∈ [0, 1] included (at least 2).
-    #[arg(long, default_value_t = 1001)]
+    #[arg(long, default_value_t = 1001, value_parser = points)]
     pub points: usize,
 }
 
@@ -28,6 +27,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
+    tracing::debug!("{} rows", args.points);
     if args.list {
         for law in MotionLaw::ALL {
             writeln!(out, "{}", law.name())?;
@@ -39,27 +39,29 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// clap value parser: a law by name, so a wrong one is a usage error (exit 2).
-fn parse_law(name: &str) -> Result<MotionLaw, String> {
-    MotionLaw::from_name(name.trim()).ok_or_else(|| {
-        let names: Vec<&str> = MotionLaw::ALL.iter().map(|l| l.name()).collect();
-        format!("unknown motion law {name:?}; use {}", names.join(", "))
-    })
+/// clap value parser: a law by name, so a wrong one is a usage error (exit
+/// 2), and completions offer the names.
+fn law() -> impl clap::builder::TypedValueParser<Value = MotionLaw> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(MotionLaw::ALL.map(MotionLaw::name))
+        .map(|name| MotionLaw::from_name(&name).unwrap_or(MotionLaw::Cycloid))
 }
 
-/// Writes `points` rows of `law` as CSV `u,s,v,a,j`.
+/// `--points`: 2 up to the limit, or a usage error.
+fn points(text: &str) -> Result<usize, String> {
+    let max = ecam_core::limits::MAX_TABLE_POINTS;
+    match text.trim().parse::<usize>() {
+        Ok(n) if (2..=max).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "must be a whole number from 2 (both ends of u = 0..1) to the limit of {max} points"
+        )),
+    }
+}
+
+/// Writes `points` rows (at least 2) of `law` as CSV `u,s,v,a,j`.
 fn write_csv(law: MotionLaw, points: usize, out: &mut impl Write) -> anyhow::Result<()> {
-    if points > ecam_core::limits::MAX_TABLE_POINTS {
-        bail!(
-            "--points {points} is above the limit of {} points",
-            ecam_core::limits::MAX_TABLE_POINTS
-        );
-    }
-    if points < 2 {
-        bail!("--points must be at least 2 (both ends of u = 0..1), got {points}");
-    }
     writeln!(out, "u,s,v,a,j")?;
-    let last = (points - 1) as f64;
+    let last = points.saturating_sub(1).max(1) as f64;
     for i in 0..points {
         // The last row is exactly u = 1, not an accumulated sum.
         let u = if i + 1 == points {
@@ -99,8 +101,8 @@ mod tests {
     }
 
     #[test]
-    fn refuses_fewer_than_two_points() {
-        let mut buf = Vec::new();
-        assert!(write_csv(MotionLaw::Cycloid, 1, &mut buf).is_err());
+    fn points_are_two_up_to_the_limit() {
+        assert!(points("1").is_err() && points("x").is_err());
+        assert_eq!(points("2"), Ok(2));
     }
 }

@@ -16,12 +16,14 @@ pub enum Command {
 #[derive(clap::Args)]
 pub struct RunArgs {
     /// The script: one command per line; `'` starts a comment.
+    #[arg(value_hint = clap::ValueHint::FilePath)]
     pub script: PathBuf,
 }
 
 /// Runs `ecam mc`.
 pub fn run(command: Command) -> anyhow::Result<()> {
     let Command::Run(args) = command;
+    tracing::debug!("script {}", args.script.display());
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let mut written = Ok(());

@@ -9,4 +9,3 @@ pub mod pmd;
 pub mod serve;
 pub mod simulate;
 pub mod table;
-pub mod table_peaks;

@@ -6,13 +6,14 @@
 use std::collections::{BTreeSet, HashSet};
 use std::fmt::Write as _;
 use std::io::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use ecam_plc::Plc;
-use ecam_plc::View;
-use ecam_plc::Wire;
 use ecam_plc::sim::{self, RunLength, Timing};
+use ecam_plc::{Plc, View, Wire};
+
+use crate::progress::Progress;
+use crate::values;
 
 /// Subcommands of `ecam plc`.
 #[derive(clap::Subcommand)]
@@ -26,6 +27,7 @@ pub enum Command {
 #[command(group(clap::ArgGroup::new("length").required(true).args(["scans", "ms"])))]
 pub struct RunArgs {
     /// The instruction-list program (`;` comments, one instruction per line).
+    #[arg(value_hint = clap::ValueHint::FilePath)]
     pub program: PathBuf,
     /// Scan period in microseconds of simulated time.
     #[arg(long, value_name = "US", default_value_t = sim::DEFAULT_SCAN_US)]
@@ -40,25 +42,25 @@ pub struct RunArgs {
     #[arg(long, value_name = "T")]
     pub ms: Option<u64>,
     /// Set a device before the first scan: D100=3183, DD100=3183, DE106=1.6667, M0=1, X2=1, C231=0, D200.F=1, T0=5, Z0=5.
-    #[arg(long = "set", value_name = "DEV=VALUE")]
-    pub sets: Vec<String>,
+    #[arg(long = "set", value_name = "DEV=VALUE", value_parser = values::set)]
+    pub sets: Vec<(View, String)>,
     /// Wire a pulse output to a counter input, e.g. Y1:X0.
-    #[arg(long = "wire", value_name = "Yn:Xm")]
-    pub wires: Vec<String>,
+    #[arg(long = "wire", value_name = "Yn:Xm", value_parser = values::wire)]
+    pub wires: Vec<Wire>,
     /// Load a point table (CSV or JSON file) into a DECAM block before the
     /// first scan, as its register image: D2000=table.csv writes D2038 (the
     /// point count), D2039 and the points from D2040.
-    #[arg(long = "load", value_name = "Dn=FILE")]
-    pub loads: Vec<String>,
+    #[arg(long = "load", value_name = "Dn=FILE", value_parser = values::load)]
+    pub loads: Vec<(u16, PathBuf)>,
     /// Print a device (or COUNT consecutive ones) after the run: D2000, D2019:2, DD2019, Y7, D2001.1, T0, Z0:8.
-    #[arg(long = "dump", value_name = "DEV[:COUNT]")]
-    pub dumps: Vec<String>,
+    #[arg(long = "dump", value_name = "DEV[:COUNT]", value_parser = values::dump)]
+    pub dumps: Vec<Vec<View>>,
     /// Write one CSV row per scan (header `t_us,DEV...`) to this file.
     #[arg(long, value_name = "FILE.csv", requires = "trace_dev", value_parser = crate::paths::csv)]
     pub trace: Option<PathBuf>,
     /// Devices for the trace columns.
-    #[arg(long = "trace-dev", value_name = "DEV", num_args = 1.., requires = "trace")]
-    pub trace_dev: Vec<String>,
+    #[arg(long = "trace-dev", value_name = "DEV", num_args = 1.., requires = "trace", value_parser = values::device)]
+    pub trace_dev: Vec<View>,
 }
 
 /// Runs `ecam plc`.
@@ -69,32 +71,32 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 }
 
 fn run_program(args: &RunArgs) -> anyhow::Result<()> {
-    let dumps = dump_views(&args.dumps)?;
-    let trace_views = args
-        .trace_dev
+    // Each key once, in the order of the `--dump`s (a JSON object).
+    let mut seen = HashSet::new();
+    let dumps: Vec<View> = args
+        .dumps
         .iter()
-        .map(|text| View::parse(text))
-        .collect::<Result<Vec<_>, _>>()
-        .context("--trace-dev")?;
+        .flatten()
+        .copied()
+        .filter(|v| seen.insert(*v))
+        .collect();
+    let trace_views = args.trace_dev.as_slice();
     let file = args.program.display().to_string();
     let source =
         std::fs::read_to_string(&args.program).with_context(|| format!("cannot read {file}"))?;
     let program = ecam_plc::Program::parse(&source, &file)?;
+    tracing::debug!("{file}: {} lines", source.lines().count());
     let mut plc = Plc::new(program)?;
-    for wire in &args.wires {
-        plc.hardware_mut()
-            .add_wire(Wire::parse(wire).context("--wire")?);
+    for &wire in &args.wires {
+        plc.hardware_mut().add_wire(wire);
     }
-    for set in &args.sets {
-        let (name, value) = set
-            .split_once('=')
-            .with_context(|| format!("--set `{set}`: expected DEV=VALUE, e.g. D100=3183"))?;
-        View::parse(name)
-            .and_then(|view| view.write(plc.devices_mut(), value))
-            .with_context(|| format!("--set `{set}`"))?;
+    for (view, value) in &args.sets {
+        view.write(plc.devices_mut(), value)
+            .with_context(|| format!("--set {view}={value}"))?;
     }
-    for load in &args.loads {
-        load_table(plc.devices_mut(), load).with_context(|| format!("--load `{load}`"))?;
+    for (block, path) in &args.loads {
+        load_table(plc.devices_mut(), *block, path)
+            .with_context(|| format!("--load D{block}={}", path.display()))?;
     }
     let length = match (args.scans, args.ms) {
         (Some(n), _) => RunLength::Scans(n),
@@ -108,21 +110,30 @@ fn run_program(args: &RunArgs) -> anyhow::Result<()> {
     let mut trace = String::new();
     if args.trace.is_some() {
         trace.push_str("t_us");
-        for view in &trace_views {
+        for view in trace_views {
             let _ = write!(trace, ",{view}");
         }
         trace.push('\n');
     }
     let tracing = args.trace.is_some();
+    // The simulated time the run covers, for the progress bar (the run's
+    // own budget check refuses one too long).
+    let run_us = match length {
+        RunLength::Scans(n) => n.saturating_mul(u64::from(timing.scan_us)),
+        RunLength::Millis(ms) => ms.saturating_mul(1000),
+    };
+    let progress = Progress::new("running", run_us);
     let errors = sim::run(&mut plc, timing, length, |plc| {
+        progress.at(plc.now_us());
         if tracing {
             let _ = write!(trace, "{}", plc.now_us());
-            for view in &trace_views {
+            for view in trace_views {
                 let _ = write!(trace, ",{}", view.read(plc.devices()));
             }
             trace.push('\n');
         }
     })?;
+    progress.finish();
     if let Some(path) = &args.trace {
         std::fs::write(path, trace).with_context(|| format!("cannot write {}", path.display()))?;
     }
@@ -132,9 +143,11 @@ fn run_program(args: &RunArgs) -> anyhow::Result<()> {
     let mut seen = BTreeSet::new();
     for e in errors {
         if seen.insert((e.line, e.error.code)) {
-            eprintln!(
-                "ecam: warning: {file}:{}: {} (D8067={}, M8067=1)",
-                e.line, e.error, e.error.code
+            tracing::warn!(
+                "{file}:{}: {} (D8067={}, M8067=1)",
+                e.line,
+                e.error,
+                e.error.code
             );
         }
     }
@@ -157,42 +170,9 @@ fn run_program(args: &RunArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Expands `--dump` arguments in order, dropping repeats (a JSON object has
-/// each key once).
-fn dump_views(dumps: &[String]) -> anyhow::Result<Vec<View>> {
-    let mut views: Vec<View> = Vec::new();
-    let mut seen = HashSet::new();
-    for dump in dumps {
-        let (name, count) = match dump.split_once(':') {
-            Some((name, count)) => {
-                let count: u16 = count.parse().ok().filter(|&c| c >= 1).with_context(|| {
-                    format!("--dump `{dump}`: COUNT must be a whole number from 1 to 65535")
-                })?;
-                (name, count)
-            }
-            None => (dump.as_str(), 1),
-        };
-        let first = View::parse(name).with_context(|| format!("--dump `{dump}`"))?;
-        for k in 0..count {
-            let view = first.nth(k).with_context(|| format!("--dump `{dump}`"))?;
-            if seen.insert(view) {
-                views.push(view);
-            }
-        }
-    }
-    Ok(views)
-}
-
 /// `--load Dn=FILE`: the file's point table written as the block's image.
-fn load_table(devices: &mut ecam_plc::Devices, load: &str) -> anyhow::Result<()> {
-    let (block, file) = load
-        .split_once('=')
-        .context("expected Dn=FILE, e.g. D2000=table.csv")?;
-    let block = match ecam_plc::Device::parse(block.trim()) {
-        Ok(ecam_plc::Device::D(n)) => n,
-        _ => bail!("`{block}` is not a D register (the DECAM block's first word, e.g. D2000)"),
-    };
-    let table = match ecam_core::io::read(std::path::Path::new(file.trim()))? {
+fn load_table(devices: &mut ecam_plc::Devices, block: u16, file: &Path) -> anyhow::Result<()> {
+    let table = match ecam_core::io::read(file)? {
         ecam_core::io::AnyTable::Points(file) => file.table,
         _ => bail!("a DECAM table is a point table: give a CSV or JSON of master,slave points"),
     };

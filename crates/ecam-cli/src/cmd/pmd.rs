@@ -21,11 +21,12 @@ pub enum Command {
 #[derive(clap::Args)]
 pub struct RunArgs {
     /// The script: one command per line; `'` starts a comment.
+    #[arg(value_hint = clap::ValueHint::FilePath)]
     pub script: PathBuf,
     /// Give a symbolic value in the script a number, e.g. `cam_table_0=120`
     /// (same as a `Define cam_table_0 120` line at the top).
-    #[arg(long = "define", value_name = "NAME=VALUE")]
-    pub defines: Vec<String>,
+    #[arg(long = "define", value_name = "NAME=VALUE", value_parser = crate::values::define)]
+    pub defines: Vec<(String, i64)>,
     /// Stop at the first refused line with a non-zero exit.
     #[arg(long)]
     pub strict: bool,
@@ -41,15 +42,10 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 fn run_script(args: &RunArgs) -> anyhow::Result<()> {
     let text = std::fs::read_to_string(&args.script)
         .with_context(|| format!("cannot read script {}", args.script.display()))?;
+    tracing::debug!("{}: {} lines", args.script.display(), text.lines().count());
     let mut runner = ecam_pmd::ScriptRunner::new();
-    for define in &args.defines {
-        let (name, value) = define
-            .split_once('=')
-            .with_context(|| format!("--define {define}: expected NAME=VALUE"))?;
-        let value = ecam_core::script_line::parse_number(value.trim())
-            .ok()
-            .with_context(|| format!("--define {define}: '{value}' is not a number"))?;
-        runner.define(name.trim(), value);
+    for (name, value) in &args.defines {
+        runner.define(name, *value);
     }
     let stdout = std::io::stdout();
     let mut out = stdout.lock();

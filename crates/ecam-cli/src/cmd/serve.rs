@@ -16,11 +16,13 @@ use ecam_plc::Plc;
 use ecam_plc::Wire;
 use ecam_plc::sim::{self, Timing};
 use ecam_serve::{
-    Event, Journal, JournalError, LatchedImage, OnDamage, Recovery, ServeInfo, Shared, Slot,
+    Event, Journal, JournalError, LatchedImage, Notice, NoticeLevel, OnDamage, ServeInfo, Shared,
 };
 use tokio::net::TcpListener;
 
-use crate::serve::{ethercat, http, modbus};
+use crate::serve::assets;
+use ecam_serve::ethercat;
+use ecam_serve::net::{http, modbus};
 
 /// Default Modbus TCP address (5020: the Modbus port 502 needs root).
 pub const DEFAULT_MODBUS: &str = "127.0.0.1:5020";
@@ -145,7 +147,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     return Err(err).with_context(|| format!("state directory {}", dir.display()));
                 }
             };
-            report_open(dir, &recovery, &journal);
+            log_notices(ecam_serve::open_notices(dir, &recovery, &journal));
             journal.restore_into(plc.devices_mut());
             let restored = journal.persisted().clone();
             (Some(journal), Some((dir.clone(), recovery, restored)))
@@ -207,7 +209,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         // changes of the restored values is the program's (or hardware's) doing.
         ecam_serve::scan_period(&shared);
         if let Some((dir, recovery, restored)) = &restored {
-            report_restore(&shared, dir, recovery, restored);
+            log_notices(ecam_serve::restore_notices(
+                &shared, dir, recovery, restored,
+            ));
         }
         let stop = Arc::new(AtomicBool::new(false));
         let scan_loop = match bus {
@@ -235,7 +239,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             None => None,
         };
         let access = ecam_serve::Access::new(shared.info.http, &args.http_names, token.clone());
-        let router = http::router(Arc::clone(&shared), access);
+        let router = http::router(Arc::clone(&shared), access, assets::PAGE);
         let served: anyhow::Result<()> = tokio::select! {
             () = modbus::serve(modbus_listener, Arc::clone(&shared)) => Ok(()),
             () = http::serve(http_listener, router, Arc::clone(&shared)) => Ok(()),
@@ -297,111 +301,13 @@ fn report(event: Event) {
     }
 }
 
-/// Says on stderr what opening the state directory dropped, set aside or
-/// rewrote, and whether it is read-only.
-fn report_open(dir: &std::path::Path, recovery: &Recovery, journal: &Journal) {
-    let dir = dir.display();
-    for dropped in &recovery.dropped {
-        tracing::warn!(target: LOG, "state {dir}: --recover-state: {dropped}");
-    }
-    for aside in &recovery.set_aside {
-        tracing::warn!(
-            target: LOG, "state {dir}: --recover-state: damaged file kept as {}",
-            aside.display()
-        );
-    }
-    match journal.read_only() {
-        Some(err) => {
-            tracing::error!(
-                target: LOG, "state {dir}: READ-ONLY: cannot compact the state files ({err}); \
-                 they are left as they were and every write is refused until a restart \
-                 with space to spare"
-            );
+/// Logs the server's notices about its state directory.
+fn log_notices(notices: Vec<Notice>) {
+    for Notice { level, text } in notices {
+        match level {
+            NoticeLevel::Info => tracing::info!(target: LOG, "{text}"),
+            NoticeLevel::Warn => tracing::warn!(target: LOG, "{text}"),
+            NoticeLevel::Error => tracing::error!(target: LOG, "{text}"),
         }
-        None if recovery.old_format => tracing::info!(
-            target: LOG, "state {dir}: state files without checksums (an older version's) \
-             loaded and rewritten with checksums"
-        ),
-        None => {}
     }
-}
-
-/// Longest list of device names one stderr line gives.
-const NAMES_SHOWN: usize = 32;
-
-/// `M8145, D8140, … and 3 more`.
-fn names(slots: impl ExactSizeIterator<Item = Slot>) -> String {
-    let total = slots.len();
-    let mut text: Vec<String> = slots
-        .take(NAMES_SHOWN)
-        .map(|s| s.device().to_string())
-        .collect();
-    if total > NAMES_SHOWN {
-        text.push(format!("and {} more", total - NAMES_SHOWN));
-    }
-    text.join(", ")
-}
-
-/// Says on stderr what the state directory gave back: special devices
-/// skipped, restored values the first scan changed, and the counts.
-fn report_restore(
-    shared: &Shared,
-    dir: &std::path::Path,
-    recovery: &Recovery,
-    restored: &std::collections::BTreeMap<Slot, i32>,
-) {
-    let dir = dir.display();
-    let skipped = &recovery.skipped_special;
-    if !skipped.is_empty() {
-        tracing::warn!(
-            target: LOG, "state {dir}: not restoring {}: special devices are the PLC's own, \
-             set up afresh at start (these records, kept by an older version, are now dropped)",
-            names(skipped.iter().copied())
-        );
-    }
-    let overridden = shared.read(|devices| ecam_serve::overridden(restored, devices));
-    for o in overridden.iter().take(NAMES_SHOWN) {
-        tracing::warn!(
-            target: LOG, "state {dir}: {} restored as {}, but it is {} after the first scan \
-             period (the program or the hardware sets it at start)",
-            o.slot.device(),
-            o.restored,
-            o.now
-        );
-    }
-    if overridden.len() > NAMES_SHOWN {
-        tracing::warn!(
-            target: LOG, "state {dir}: and {} more restored values the first scan period changed",
-            overridden.len() - NAMES_SHOWN
-        );
-    }
-    let mut summary = format!(
-        "state {dir}: {} values restored ({} journal records replayed{})",
-        restored.len(),
-        recovery.replayed,
-        if recovery.torn_tail {
-            ", an unacknowledged torn last record dropped"
-        } else {
-            ""
-        }
-    );
-    if !skipped.is_empty() {
-        summary.push_str(&format!(
-            ", {} skipped (special devices, never restored)",
-            skipped.len()
-        ));
-    }
-    if !recovery.dropped.is_empty() {
-        let records: usize = recovery.dropped.iter().map(|d| d.records).sum();
-        summary.push_str(&format!(
-            ", {records} damaged records dropped by --recover-state (listed above)"
-        ));
-    }
-    if !overridden.is_empty() {
-        summary.push_str(&format!(
-            ", {} changed by the first scan period (listed above)",
-            overridden.len()
-        ));
-    }
-    tracing::info!(target: LOG, "{summary}");
 }

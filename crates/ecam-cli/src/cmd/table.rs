@@ -10,17 +10,12 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, bail};
-use ecam_core::CamCurve;
-use ecam_core::drive_check::DriveReport;
+use anyhow::Context;
 use ecam_core::io::{self, AnyTable, Columns, TableFile};
-use ecam_core::table::Summary;
+use ecam_design::{Machine, TableReport, Unit};
 use ecam_plot::cam_table;
-use serde::Serialize;
 
-use crate::cmd::table_peaks::{self, AtSpeed, MachineArgs, Peaks, Source};
 use crate::generate::{self, GenCommand};
-use crate::plot;
 
 /// Subcommands of `ecam table`.
 #[derive(clap::Subcommand, Debug)]
@@ -99,14 +94,12 @@ pub fn run(command: Command) -> anyhow::Result<()> {
 
 fn generate_table(args: GenArgs) -> anyhow::Result<()> {
     let output = args.generator.output().clone();
-    // Refuse bad extensions before the (possibly slow) generation.
-    if let Some(path) = &output.output {
-        io::FileFormat::of(path)?;
-    }
-    if let Some(path) = &output.plot {
-        plot::Format::of(path)?;
-    }
     let generated = generate::run(&args.generator)?;
+    tracing::debug!(
+        "{}: {} points",
+        generated.name,
+        generated.table.points().len()
+    );
     let file = TableFile {
         table: generated.table,
         sync: generated.sync,
@@ -128,81 +121,21 @@ fn generate_table(args: GenArgs) -> anyhow::Result<()> {
         }
     }
     for (key, value) in &generated.outputs {
-        eprintln!("{key}: {value}");
+        tracing::info!("{key}: {value}");
     }
     if let Some(path) = &output.plot {
         let chart = match &file.segments {
             Some(cam) => cam_table::segment_cam_chart(cam, file.sync, generated.name),
-            None => cam_table::chart(&file, generated.design.as_ref(), generated.name),
+            None => cam_table::chart(&file, generated.exact.as_ref(), generated.name),
         };
-        plot::draw_chart(chart, path)?;
+        ecam_plot::draw_chart(&chart, path)?;
     }
     Ok(())
 }
 
-/// What `ecam table show --json` prints.
-#[derive(Serialize)]
-struct ShowJson<'a> {
-    file: String,
-    /// Only for the kinds other than point tables, whose output predates it.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    kind: Option<&'static str>,
-    points: usize,
-    master_first: i64,
-    master_last: i64,
-    slave_first: i64,
-    slave_last: i64,
-    sync: Option<(i64, i64)>,
-    #[serde(flatten)]
-    summary: &'a Summary,
-    /// The design's peaks, from a file's derivative columns.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    design: Option<Peaks>,
-    /// The peaks at `--master-speed`: the design's when known, else the
-    /// table's (`of` says which).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    at_speed: Option<AtSpeed>,
-    /// A segment cam's points, continuity at every point and per-segment
-    /// peaks (files of `ecam table gen segments`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    segments: Option<serde_json::Value>,
-    /// `--drive`: the drive check.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    drive: Option<&'a DriveReport>,
-}
-
-fn peaks(summary: &Summary) -> Peaks {
-    Peaks {
-        peak_velocity: summary.peak_velocity,
-        peak_acceleration: summary.peak_acceleration,
-    }
-}
-
-/// The design's peaks from a file's derivative columns, when it has them.
-fn design_peaks(file: &TableFile) -> Option<Peaks> {
-    // A segment cam's own peaks are exact (closed forms), not those at the points.
-    if let Some(cam) = &file.segments {
-        let (v, a) = cam.peaks().iter().fold((0.0_f64, 0.0_f64), |(v, a), p| {
-            (v.max(p.peak_velocity), a.max(p.peak_acceleration))
-        });
-        return Some(Peaks {
-            peak_velocity: v,
-            peak_acceleration: a,
-        });
-    }
-    let known = file.kinematics.as_ref()?;
-    let peak = |f: fn(&ecam_core::Kinematics) -> f64| {
-        known.iter().map(f).fold(0.0_f64, |m, v| m.max(v.abs()))
-    };
-    Some(Peaks {
-        peak_velocity: peak(|k| k.v),
-        peak_acceleration: peak(|k| k.a),
-    })
-}
-
 fn show(args: &ShowArgs) -> anyhow::Result<()> {
     let table = io::read(&args.file)?;
-    let kind = table.kind();
+    tracing::debug!("{}: a {} table", args.file.display(), table.kind());
     let drive = match &args.drive {
         Some(path) => {
             let text = std::fs::read_to_string(path)
@@ -213,203 +146,67 @@ fn show(args: &ShowArgs) -> anyhow::Result<()> {
         }
         None => None,
     };
-    let extra = Extra {
-        drive: drive.as_ref(),
-    };
-    match table {
-        AnyTable::Points(file) => show_points(args, &file, &extra),
-        AnyTable::Uniform(table) => {
-            let values = table.values().len();
-            // Document 002: N values make N − 1 pieces over CamCounts.
-            let spacing = table.cam_counts() as f64 / (values.saturating_sub(1)).max(1) as f64;
-            let what = format!(
-                "evenly spaced table, a value every {} counts",
-                short(spacing)
-            );
-            show_curve(
-                args,
-                kind,
-                &what,
-                values,
-                &table,
-                Source::UniformPieces,
-                &extra,
-            )
-        }
-        AnyTable::Profile(profile) => {
-            let key_points = profile.segments().len().saturating_add(1);
-            let what = "segment profile, key points joined by motion laws, evaluated exactly";
-            show_curve(
-                args,
-                kind,
-                what,
-                key_points,
-                &profile,
-                Source::ProfileLaws,
-                &extra,
-            )
-        }
-    }
-}
-
-/// What `show` adds to any table kind: the drive check.
-struct Extra<'a> {
-    drive: Option<&'a DriveReport>,
-}
-
-/// `show` for an evenly spaced table or a segment profile: its summary is
-/// measured on the curve itself, not on a sampled point table. `points` is
-/// the number of values (key points) the file holds.
-fn show_curve(
-    args: &ShowArgs,
-    kind: &'static str,
-    what: &str,
-    points: usize,
-    curve: &impl CamCurve,
-    source: Source,
-    extra: &Extra<'_>,
-) -> anyhow::Result<()> {
+    let report = TableReport::of(&args.file.display().to_string(), &table)
+        .at(args.machine.into())
+        .with_drive(drive);
+    // A handle, not `println!`: a closed pipe is an error, not a panic.
     let mut out = std::io::stdout().lock();
-    let summary = Summary::of(curve);
-    let table = peaks(&summary);
     if args.json {
-        let json = ShowJson {
-            file: args.file.display().to_string(),
-            kind: Some(kind),
-            points,
-            master_first: curve.master_first(),
-            master_last: curve.master_last(),
-            slave_first: curve.slave_first(),
-            slave_last: curve.slave_last(),
-            sync: None,
-            summary: &summary,
-            design: None,
-            at_speed: args.machine.at_speed(&table, source),
-            segments: None,
-            drive: extra.drive,
-        };
-        writeln!(out, "{}", serde_json::to_string(&json)?)?;
-        return Ok(());
-    }
-    writeln!(out, "file:              {}", args.file.display())?;
-    writeln!(out, "kind:              {kind} ({what})")?;
-    writeln!(out, "points:            {points}")?;
-    write_summary(
-        &mut out,
-        &summary,
-        (curve.master_first(), curve.master_last()),
-        (curve.slave_first(), curve.slave_last()),
-    )?;
-    table_peaks::write(&mut out, None, (&table, source), None, &args.machine)?;
-    writeln!(out, "continuity:        {}", summary.continuity)?;
-    if let Some(drive) = extra.drive {
-        writeln!(out, "{drive}")?;
+        writeln!(out, "{}", serde_json::to_string(&report)?)?;
+    } else {
+        report.write_text(&mut out)?;
     }
     Ok(())
 }
 
-fn show_points(args: &ShowArgs, file: &TableFile, extra: &Extra<'_>) -> anyhow::Result<()> {
-    // Written through a handle, not `println!`, so a closed pipe
-    // (`ecam table show t.csv | head -1`) is an error, not a panic.
-    let mut out = std::io::stdout().lock();
-    let summary = Summary::of(&file.table);
-    let table = peaks(&summary);
-    let design = design_peaks(file);
-    let design_source = match file.segments {
-        Some(_) => Source::ProfileLaws,
-        None => Source::DesignColumns,
-    };
-    let points = file.table.points();
-    let (first, last) = match (points.first(), points.last()) {
-        (Some(f), Some(l)) => (*f, *l),
-        _ => bail!("the table has no points"),
-    };
-    if args.json {
-        let json = ShowJson {
-            file: args.file.display().to_string(),
-            kind: None,
-            points: points.len(),
-            master_first: first.master,
-            master_last: last.master,
-            slave_first: first.slave,
-            slave_last: last.slave,
-            sync: file.sync,
-            summary: &summary,
-            design,
-            at_speed: match &design {
-                Some(design) => args.machine.at_speed(design, design_source),
-                None => args.machine.at_speed(&table, Source::SampledTable),
-            },
-            segments: file.segments.as_deref().map(ecam_design::segments_json),
-            drive: extra.drive,
-        };
-        writeln!(out, "{}", serde_json::to_string(&json)?)?;
-        return Ok(());
-    }
-    writeln!(out, "file:              {}", args.file.display())?;
-    if let Some(generator) = &file.generator {
-        writeln!(out, "generator:         {generator}")?;
-    }
-    writeln!(out, "points:            {}", points.len())?;
-    write_summary(
-        &mut out,
-        &summary,
-        (first.master, last.master),
-        (first.slave, last.slave),
-    )?;
-    let shortest = points
-        .windows(2)
-        .filter_map(|w| match w {
-            [a, b] => b.master.checked_sub(a.master),
-            _ => None,
-        })
-        .min();
-    table_peaks::write(
-        &mut out,
-        design.as_ref().map(|d| (d, design_source)),
-        (&table, Source::SampledTable),
-        shortest,
-        &args.machine,
-    )?;
-    writeln!(out, "continuity:        {}", summary.continuity)?;
-    if let Some((lo, hi)) = file.sync {
-        writeln!(out, "sync zone:         master {lo} .. {hi}")?;
-    }
-    if let Some(cam) = &file.segments {
-        write!(out, "{}", ecam_design::segments_text(cam))?;
-    }
-    if let Some(drive) = extra.drive {
-        writeln!(out, "{drive}")?;
-    }
-    Ok(())
+/// `--master-speed`, `--units`, `--unit-per-pulse`: the machine the table
+/// runs on, for peaks in physical units.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct MachineArgs {
+    /// Master speed in counts per second (the master encoder's frequency,
+    /// Hz): adds the slave's peak speed in Hz (pulses/s) and acceleration in
+    /// Hz/s.
+    #[arg(long, value_name = "COUNTS_PER_S", value_parser = positive)]
+    pub master_speed: Option<f64>,
+    /// The slave's length unit, for speeds in mm/s or deg/s (needs
+    /// --unit-per-pulse and --master-speed).
+    #[arg(long, value_name = "UNIT", value_parser = unit(),
+        requires = "unit_per_pulse", requires = "master_speed")]
+    pub units: Option<Unit>,
+    /// Slave units per slave pulse: 0.01 for 100 pulses per mm, 0.036 for
+    /// 10000 pulses per turn in degrees (needs --units).
+    #[arg(long, value_name = "UNITS", value_parser = positive, requires = "units")]
+    pub unit_per_pulse: Option<f64>,
 }
 
-/// The lines every table kind shares, from `sections` to `slave`.
-fn write_summary(
-    out: &mut impl Write,
-    summary: &Summary,
-    (master_first, master_last): (i64, i64),
-    (slave_first, slave_last): (i64, i64),
-) -> anyhow::Result<()> {
-    writeln!(out, "sections:          {}", summary.sections)?;
-    writeln!(
-        out,
-        "master:            {master_first} .. {master_last} (span {})",
-        summary.master_span
-    )?;
-    writeln!(
-        out,
-        "slave:             {slave_first} .. {slave_last} (stroke {}, range {} .. {})",
-        summary.stroke, summary.slave_min, summary.slave_max
-    )?;
-    Ok(())
+impl From<MachineArgs> for Machine {
+    fn from(m: MachineArgs) -> Self {
+        Self {
+            master_speed: m.master_speed,
+            unit: m.units.zip(m.unit_per_pulse),
+        }
+    }
 }
 
-use table_peaks::short;
+/// `--units`: one of [`Unit::NAMES`] (completions offer them).
+fn unit() -> impl clap::builder::TypedValueParser<Value = Unit> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(Unit::NAMES)
+        .map(|name| Unit::from_name(&name).unwrap_or(Unit::Mm))
+}
+
+fn positive(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        Ok(_) => Err(format!("{text} must be a number above 0")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
+}
 
 fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
-    plot::Format::of(&args.output)?;
-    let chart = match io::read(&args.file)? {
+    let table = io::read(&args.file)?;
+    tracing::debug!("{}: a {} table", args.file.display(), table.kind());
+    let chart = match table {
         AnyTable::Points(mut file) => {
             if args.sync.is_some() {
                 file.sync = args.sync;
@@ -430,17 +227,15 @@ fn plot_file(args: &PlotArgs) -> anyhow::Result<()> {
             cam_table::profile_chart(&profile, args.sync, &display_name(&args.file))
         }
     };
-    let chart = match args.machine.master_speed {
+    let machine = Machine::from(args.machine);
+    let chart = match machine.master_speed {
         Some(master_hz) => {
-            let unit = match (args.machine.units, args.machine.unit_per_pulse) {
-                (Some(unit), Some(per)) => Some((unit.symbol(), per)),
-                _ => None,
-            };
+            let unit = machine.unit.map(|(unit, per)| (unit.symbol(), per));
             cam_table::at_speed(chart, cam_table::Machine { master_hz, unit })
         }
         None => chart,
     };
-    plot::draw_chart(chart, &args.output)
+    Ok(ecam_plot::draw_chart(&chart, &args.output)?)
 }
 
 fn display_name(path: &Path) -> String {

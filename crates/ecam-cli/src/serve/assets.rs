@@ -3,16 +3,7 @@
 //! and nothing is fetched from the network when it is shown (uPlot is
 //! vendored, see `web/README.md`).
 
-/// One file of the page.
-#[derive(Clone, Copy, Debug)]
-pub struct Asset {
-    /// Path the page asks for (`/app.js`).
-    pub path: &'static str,
-    /// `Content-Type` it is served with.
-    pub content_type: &'static str,
-    /// The file itself.
-    pub body: &'static str,
-}
+pub use ecam_serve::net::page::{Asset, Page};
 
 macro_rules! web_file {
     ($name:literal) => {
@@ -72,6 +63,12 @@ pub const ASSETS: &[Asset] = &[
         body: web_file!("vendor/uplot/LICENSE"),
     },
 ];
+
+/// The page as the router serves it.
+pub const PAGE: Page = Page {
+    index: INDEX,
+    files: ASSETS,
+};
 
 #[cfg(test)]
 mod tests {

@@ -3,10 +3,13 @@
 // see the plot change, download it (and read it back with `ecam table
 // show`), write it to the PLC, start the cam, watch the slave move in the
 // live view, meet the 409 of a running cam and switch at the seam, drag a
-// key point, reload from the address; edit a segment cam (change a law,
-// make it continuous, drag a point, see the plots, the continuity report
-// and the drive check change, write it to the PLC). Screenshots go to
-// target/browser-artifacts/.
+// key point, reload from the address; impulses where the server's steps
+// are, labelled without overlap; a point table's jerk switch off; the
+// DECAM block named by the server; edit a segment cam (change a law, make
+// it continuous, drag a point, see the plots, the continuity report and
+// the drive check change, write it to the PLC). Screenshots go to
+// target/browser-artifacts/; with ECAM_DOCS_SCREENSHOTS=1 the two the
+// user guide shows are refreshed in docs/img/.
 //
 // Run by .ci/run after `cargo test` (which builds target/debug/ecam):
 //   node crates/ecam-cli/tests/browser/designer.test.js
@@ -91,6 +94,20 @@ async function until(what, check) {
   }
 }
 
+// What a chart drew of its impulses (plots.js keeps it): the arrows, and
+// labels that stay inside the plot and overlap no other.
+async function impulsesDrawn(page, key) {
+  const drawn = await page.evaluate((k) => charts[k].drawn, key);
+  const overlaps = (a, b) => a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h;
+  for (const [i, a] of drawn.labels.entries()) {
+    const box = drawn.box;
+    assert.ok(a.x >= box.x && a.y >= box.y && a.x + a.w <= box.x + box.w + 0.5 && a.y + a.h <= box.y + box.h + 0.5,
+      `${key}: label ${a.text} leaves the plot`);
+    for (const b of drawn.labels.slice(i + 1)) assert.ok(!overlaps(a, b), `${key}: ${a.text} overlaps ${b.text}`);
+  }
+  return drawn;
+}
+
 async function postJson(base, url, body) {
   const response = await fetch(base + url, {
     method: "POST",
@@ -156,6 +173,23 @@ async function main() {
     assert.match(summary, /stroke\s*1200/, summary);
     const after = await page.locator("#plot-s canvas").screenshot();
     assert.ok(!before.equals(after), "the displacement plot changed with the design");
+    // Jerk impulses where the server says the acceleration steps (the
+    // four corners of the ramps around the centred sync zone; the seam
+    // lies in the dwell), none in acceleration (velocity is continuous),
+    // labels inside the plot and apart.
+    await page.check("#show-jerk");
+    await until("the jerk plot", async () => page.isVisible("#plot-j"));
+    const gen = await postJson(base, "/api/table/gen", await page.evaluate(() => ({
+      generator: "rotary-cut", params: paramsOf(generator("rotary-cut").fields, state.gen.params) })));
+    assert.equal(gen.steps.acceleration.length, 4, JSON.stringify(gen.steps));
+    const jerk = await impulsesDrawn(page, "j");
+    assert.equal(jerk.arrows, 4, "an arrow per acceleration step");
+    assert.ok(jerk.labels.length >= 3 && jerk.labels.every((l) => /Δa/.test(l.text)), JSON.stringify(jerk.labels));
+    assert.equal((await impulsesDrawn(page, "a")).arrows, 0, "no acceleration impulse");
+    // The design's jerk is 0 between its impulses: an axis labelled 0 only,
+    // not a range of meaningless units.
+    assert.ok(await page.evaluate(() => charts.j.flat), "a flat jerk axis");
+    await shot("05-jerk-impulses.png", page.locator("#plot-j"));
     // The address holds the design: a reload restores it.
     const url = page.url();
     assert.match(decodeURIComponent(url), /"master":"4000"/);
@@ -256,6 +290,7 @@ async function main() {
     await page.goto(url);
     await until("the rotary cut", async () => (await page.textContent("#plots-title")).includes("120 points"));
     await until("a settled plot", async () => !(await page.getAttribute("#plots", "class") || "").includes("updating"));
+    await page.check("#show-jerk");
     const [csvDownload] = await Promise.all([page.waitForEvent("download"), page.click("#download-csv")]);
     const csvPath = path.join(ARTIFACTS, "rotary-cut.csv");
     await csvDownload.saveAs(csvPath);
@@ -272,6 +307,14 @@ async function main() {
     assert.equal(doc.generator, "rotary-cut");
     assert.equal(doc.points.length, 120);
     execFileSync(ECAM, ["table", "show", jsonPath], { encoding: "utf8" });
+
+    // ---- a DECAM block the server refuses, named by its kind
+    await page.fill("#plc-block", "D9000");
+    await page.click("#plc-write");
+    await until("the refused block", async () => /past the last data register, D8511/.test(await page.textContent("#plc-result")));
+    await page.fill("#plc-block", "M100");
+    await page.click("#plc-write");
+    await until("the refused relay", async () => /M100 is an auxiliary relay/.test(await page.textContent("#plc-result")));
 
     // ---- write it to the PLC (the cam is idle: taken now), start the cam
     await page.fill("#plc-block", "D2000");
@@ -294,6 +337,10 @@ async function main() {
     await page.waitForTimeout(1500);
     await shot("03-designer-live.png");
     await page.screenshot({ path: path.join(ARTIFACTS, "designer-full.png"), fullPage: true });
+    if (process.env.ECAM_DOCS_SCREENSHOTS) {
+      fs.copyFileSync(path.join(ARTIFACTS, "designer-full.png"), path.join(ROOT, "docs", "img", "designer.png"));
+      fs.copyFileSync(path.join(ARTIFACTS, "02-key-points.png"), path.join(ROOT, "docs", "img", "designer-key-points.png"));
+    }
 
     // ---- a second write while the cam runs: 409, then switch at the seam
     await page.click("#plc-write");
@@ -306,6 +353,20 @@ async function main() {
     // ---- an upload becomes an editable point table
     await page.setInputFiles("#upload", csvPath);
     await until("the uploaded table", async () => (await page.textContent("#plots-title")).includes("Point table — 120 points"));
+    await until("a settled plot", async () => !(await page.getAttribute("#plots", "class") || "").includes("updating"));
+    // Its velocity steps at its points are acceleration impulses (Δv),
+    // their labels never overlapping; a point table has no jerk to draw.
+    const points = await impulsesDrawn(page, "a");
+    assert.ok(points.arrows > 50, `arrows at the points (${points.arrows})`);
+    assert.ok(points.labels.every((l) => /Δv/.test(l.text)), JSON.stringify(points.labels));
+    assert.ok(await page.isDisabled("#show-jerk"), "the jerk switch is off for a point table");
+    assert.ok(await page.isHidden("#plot-j"));
+    await shot("06-point-table.png", page.locator("#plot-a"));
+    // A file the server cannot read is refused with its line and value.
+    const bad = path.join(work, "bad.csv");
+    fs.writeFileSync(bad, "master,slave\n0,0\n# a comment\n10,x\n");
+    await page.setInputFiles("#upload", bad);
+    await until("the refused upload", async () => /bad\.csv: line 4: slave `x`/.test(await page.textContent("#error")));
 
     assert.deepEqual(errors, [], "no script errors on the page");
     console.log("designer browser test: ok (screenshots in target/browser-artifacts)");

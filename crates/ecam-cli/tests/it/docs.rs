@@ -257,3 +257,57 @@ fn bad_choices_and_output_names_are_usage_errors() {
         "4",
     ]));
 }
+
+#[test]
+fn the_table_show_json_keys_cli_md_lists_are_the_ones_printed() {
+    let cli = std::fs::read_to_string(root().join("docs/cli.md")).unwrap();
+    let at = cli
+        .find("`--json` prints the\nsame as one JSON object (keys `")
+        .unwrap();
+    let rest = &cli[at..];
+    let list = &rest[rest.find("(keys `").unwrap() + 7..];
+    let list = &list[..list.find('`').unwrap()];
+    let listed: Vec<String> = list
+        .split(',')
+        .map(|k| k.split_whitespace().collect::<String>())
+        .collect();
+    let out = ok(ecam(&[
+        "table",
+        "show",
+        "--json",
+        "../../examples/tables/doc001.csv",
+    ]));
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let printed: Vec<String> = json.as_object().unwrap().keys().cloned().collect();
+    let mut sorted = (listed.clone(), printed.clone());
+    sorted.0.sort();
+    sorted.1.sort();
+    assert_eq!(
+        sorted.0, sorted.1,
+        "cli.md lists {listed:?}, ecam prints {printed:?}"
+    );
+}
+
+#[test]
+fn the_rotary_cut_scenario_example_turns_the_knife_forward() {
+    // docs/simulate.md's `[table]` example of a generator, run as the page
+    // shows it: a knife adds a revolution per cut, it never jumps back.
+    let page = std::fs::read_to_string(root().join("docs/simulate.md")).unwrap();
+    let block = page
+        .split("```toml\n")
+        .find(|b| b.contains("generator = \"rotary-cut\""))
+        .and_then(|b| b.split("```").next())
+        .unwrap();
+    let dir = crate::common::scratch_dir("docs-rotary-scenario");
+    let scenario = dir.join("knife.toml");
+    std::fs::write(
+        &scenario,
+        format!("{block}\n[master]\nmoves = [[1.0, 10000]]\n"),
+    )
+    .unwrap();
+    let out = ok(ecam(&["simulate", scenario.to_str().unwrap()]));
+    let summary: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(summary["seam_jumps"], 0, "{out}");
+    assert_eq!(summary["direction_changes"], 0, "{out}");
+    assert!(summary["final_slave"].as_i64().unwrap() > 3000, "{out}");
+}

@@ -4,8 +4,11 @@
 
 mod common;
 
+mod conventions;
 mod docs;
+mod docs_commands;
 mod ethercat;
+mod impulses;
 mod install;
 mod law;
 mod limits;
@@ -15,6 +18,7 @@ mod plc_examples;
 mod plc_rotary_knife;
 mod plc_run;
 mod plc_starts;
+mod plots_readable;
 mod pmd_run;
 mod safe_motion;
 mod serve;

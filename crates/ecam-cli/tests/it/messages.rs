@@ -94,6 +94,59 @@ fn generator_reports_use_words_not_rust_names() {
 }
 
 #[test]
+fn csv_errors_name_the_file_line_and_value() {
+    let dir = scratch_dir("messages-csv");
+    let csv = dir.join("t.csv");
+    // The bad value is on line 4 of the file (a comment before it counts).
+    std::fs::write(&csv, "master,slave\n0,0\n# a comment\n10,x\n").unwrap();
+    let err = fails(ecam(&["table", "show", csv.to_str().unwrap()]));
+    assert!(
+        err.contains("t.csv") && err.contains("line 4: slave `x`"),
+        "{err}"
+    );
+    std::fs::write(&csv, "master,slave\n0,0\n10,5\n5,6\n").unwrap();
+    let err = fails(ecam(&["table", "show", csv.to_str().unwrap()]));
+    assert!(err.contains("line 4: `5,6`: table error (6782)"), "{err}");
+}
+
+#[test]
+fn a_bad_value_in_a_parameter_file_names_the_file_and_line() {
+    let dir = scratch_dir("messages-params-file");
+    let params = dir.join("cut.toml");
+    std::fs::write(&params, "master = 3183\naccel = \"linear\"\n").unwrap();
+    let out = ecam(&[
+        "table",
+        "gen",
+        "rotary-cut",
+        "--params",
+        params.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("cut.toml") && err.contains("line 2: `accel = \"linear\"`"),
+        "{err}"
+    );
+    assert!(
+        err.contains("uniform, uniform-acceleration, b-type"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_unknown_function_is_named_not_a_parser_internal() {
+    let err = fails(ecam(&[
+        "table",
+        "gen",
+        "function",
+        "--expr",
+        "1000*sinn(x)",
+    ]));
+    assert!(err.contains("`sinn` is not a function"), "{err}");
+    assert!(!err.contains("wlog") && !err.contains("right:"), "{err}");
+}
+
+#[test]
 fn errors_quote_a_short_excerpt_of_a_huge_input() {
     let dir = scratch_dir("messages-excerpt");
     // A 10 MB field in a CSV table, a 3 MB value in a parameter file.
@@ -106,7 +159,7 @@ fn errors_quote_a_short_excerpt_of_a_huge_input() {
     let err = fails(ecam(&["table", "show", csv.to_str().unwrap()]));
     assert!(err.len() < 300, "{} bytes", err.len());
     assert!(err.contains("(10000002 bytes)"), "{err}");
-    assert!(err.contains("row 2"), "the position: {err}");
+    assert!(err.contains("line 3"), "the position: {err}");
     let params = dir.join("huge.toml");
     std::fs::write(&params, format!("pulses = \"{}\"\n", "x".repeat(3_000_000))).unwrap();
     let err = fails(ecam(&[

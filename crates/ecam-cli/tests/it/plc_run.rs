@@ -455,7 +455,7 @@ fn load_writes_a_table_file_as_the_blocks_register_image() {
         &format!("D8400={table}"),
     ]);
     assert!(err.contains("6783") && err.contains("D8512"), "{err}");
-    let err = failure(&[
+    let out = ecam(&[
         "plc",
         "run",
         p.to_str().unwrap(),
@@ -464,7 +464,10 @@ fn load_writes_a_table_file_as_the_blocks_register_image() {
         "--load",
         &format!("M0={table}"),
     ]);
-    assert!(err.contains("not a D register"), "{err}");
+    // A usage mistake, naming what M0 is.
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("M0 is an auxiliary relay"), "{err}");
 }
 
 #[test]

@@ -1156,3 +1156,49 @@ async fn a_table_loaded_over_http_is_one_write_and_waits_for_the_seam_while_runn
     tokio::time::sleep(Duration::from_millis(500)).await;
     assert!(y0_pulses(&mut ctx).await > before);
 }
+
+#[test]
+fn the_designers_table_facts_come_from_the_server() {
+    let server = Server::start_stateless(&[]);
+    // A DECAM block is named by what the device really is.
+    let (status, body) = server.http("GET", "/api/block?name=D9000", None);
+    assert_eq!(status, 400);
+    assert!(
+        body.contains("D9000 is past the last data register, D8511"),
+        "{body}"
+    );
+    let (status, body) = server.http("GET", "/api/block?name=M100", None);
+    assert_eq!(status, 400);
+    assert!(body.contains("M100 is an auxiliary relay"), "{body}");
+    assert_eq!(server.get_json("/api/block?name=2000")["block"], 2000);
+    // Limits and option names.
+    let limits = server.get_json("/api/limits");
+    assert_eq!(limits["table_points"]["max"], 512);
+    assert_eq!(limits["key_curves"][0], "constant-acceleration");
+    // A point table checked, with its velocity steps; a file read and written.
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/check",
+        Some(r#"{"points": [[0, 0], [10, 10], [40, 100], [50, 100]]}"#),
+    );
+    assert_eq!(status, 200, "{body}");
+    let checked: Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(checked["steps"]["velocity"].as_array().unwrap().len(), 3);
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/read",
+        Some(r#"{"name": "t.csv", "text": "master,slave\n0,0\n# c\n10,x\n"}"#),
+    );
+    assert_eq!(status, 400);
+    assert!(body.contains("t.csv: line 4: slave `x`"), "{body}");
+    let (status, body) = server.http(
+        "POST",
+        "/api/table/convert",
+        Some(r#"{"format": "json", "points": [[0, 0], [100, 50]], "sync": [0, 10]}"#),
+    );
+    assert_eq!(status, 200, "{body}");
+    assert!(
+        body.contains(r#"\"low\": 0"#) || body.contains(r#"\"low\":0"#),
+        "{body}"
+    );
+}

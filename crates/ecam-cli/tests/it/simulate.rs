@@ -394,7 +394,7 @@ fn tables_from_files_and_generators() {
 }
 
 #[test]
-fn a_closed_stdout_is_an_error_not_a_panic() {
+fn a_closed_stdout_ends_the_run_quietly() {
     use std::process::Stdio;
     // The reading end is closed before the child starts, so its first write
     // fails however the two processes are scheduled.
@@ -406,9 +406,10 @@ fn a_closed_stdout_is_an_error_not_a_panic() {
         .stderr(Stdio::piped())
         .output()
         .unwrap();
+    // As Unix tools do: no panic, no message, status 0.
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!err.contains("panicked"), "{err}");
-    assert!(!out.status.success());
+    assert!(err.is_empty(), "{err}");
+    assert!(out.status.success());
 }
 
 #[test]

@@ -124,7 +124,7 @@ fn plots_name_what_they_show() {
     ok(ecam(&args));
     let text = std::fs::read_to_string(&svg).unwrap();
     if text.contains("<text") {
-        assert!(text.contains("design curve"), "title");
+        assert!(text.contains("exact curve"), "title");
         assert!(text.contains("table points"), "legend");
     }
     // The design is drawn densely; the table's points as dots.

@@ -41,7 +41,7 @@ fn a_csv_plot_holds_its_columns_and_marks_acceleration_steps_as_jerk_impulses() 
     let svg = dir.join("rc.svg");
     ok(ecam(&["table", "plot", s(&csv), "-o", s(&svg)]));
     let svg = std::fs::read_to_string(&svg).unwrap();
-    assert!(svg.contains("each value held to the next point"));
+    assert!(svg.contains("derivative columns at its points"));
     // The jerk column is 0 throughout, yet the acceleration steps by about
     // ±0.0042 pulses/count² where the sync zone and the dwell begin and
     // end: labelled impulses, not a flat 0 alone.
@@ -171,5 +171,5 @@ fn a_plot_in_machine_units_scales_every_panel_and_impulse() {
         assert!(svg.contains(title), "{title}");
     }
     // 0.004177 pulses/count² · 1000² · 0.01 mm: the acceleration steps by 41.77 mm/s².
-    assert!(svg.contains("Δ -41.77") && svg.contains("Δ 41.77"));
+    assert!(svg.contains("Δa -41.77") && svg.contains("Δa 41.77"));
 }

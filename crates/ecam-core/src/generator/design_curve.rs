@@ -36,6 +36,7 @@ use alloc::vec::Vec;
 
 use super::motion_path::Path;
 use crate::Kinematics;
+use crate::table::steps::{Corner, Corners};
 
 /// The continuous motion a generator designed before rounding it into its
 /// table: slave position, velocity ratio, acceleration and jerk at any
@@ -154,6 +155,37 @@ impl DesignCurve {
     }
 }
 
+/// Where the design's pieces meet, and its seam (the last piece's end
+/// meeting the first piece's start). Pieces of no length are passed over:
+/// a corner joins the pieces either side of them.
+impl Corners for DesignCurve {
+    fn corners(&self) -> Vec<Corner> {
+        let pieces: Vec<_> = self.path.pieces().iter().filter(|p| p.len > 0.0).collect();
+        let mut corners = Vec::with_capacity(pieces.len());
+        for pair in pieces.windows(2) {
+            if let [before, after] = pair {
+                corners.push(Corner {
+                    master: after.master_start,
+                    before: before.kinematics_at(before.master_end()),
+                    after: after.kinematics_at(after.master_start),
+                    reach: before.len.max(after.len),
+                    seam: false,
+                });
+            }
+        }
+        if let (Some(first), Some(last)) = (pieces.first(), pieces.last()) {
+            corners.push(Corner {
+                master: self.master_last,
+                before: last.kinematics_at(last.master_end()),
+                after: first.kinematics_at(first.master_start),
+                reach: first.len.max(last.len),
+                seam: true,
+            });
+        }
+        corners
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -241,6 +273,32 @@ mod tests {
         assert!(cycle.slave_last().abs() < 1e-9);
         assert!((cycle.eval(300.0).s - (300.0 + back.eval(100.0).s)).abs() < 1e-9);
         assert_eq!(cycle.eval(300.0).v, back.eval(100.0).v);
+    }
+
+    #[test]
+    fn a_uniform_ramps_steps_are_at_its_joints_and_its_seam() {
+        use crate::table::steps::Steps;
+        // Acceleration 2/50 = 0.04 up to 50, 0 to 150, −0.04 to 200.
+        let s = Steps::of(&trapezoid(AccelCurve::Uniform));
+        assert!(s.velocity.is_empty());
+        let a: Vec<(f64, f64, bool)> = s
+            .acceleration
+            .iter()
+            .map(|s| (s.master, (s.size * 1e12).round() / 1e12, s.seam))
+            .collect();
+        assert_eq!(
+            a,
+            [
+                (50.0, -0.04, false),
+                (150.0, -0.04, false),
+                (200.0, 0.08, true)
+            ]
+        );
+        // The S-type ramp's acceleration is continuous everywhere.
+        assert_eq!(
+            Steps::of(&trapezoid(AccelCurve::UniformAcceleration)),
+            Steps::default()
+        );
     }
 
     #[test]

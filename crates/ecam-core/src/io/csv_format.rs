@@ -10,7 +10,7 @@
 //! assert_eq!(to_csv(&table), "master,slave\n0,0\n100,50\n");
 //! assert_eq!(
 //!     from_csv("master,slave\n0,0\n10,1.5\n").unwrap_err().to_string(),
-//!     "row 2: slave \"1.5\" is not an integer"
+//!     "line 3: slave `1.5` is not an integer"
 //! );
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -21,7 +21,7 @@ use std::vec::Vec;
 
 use super::FormatError;
 use super::table_file::{Columns, TableFile};
-use crate::{CamCurve, CamPoint, Cursor, Kinematics, PointTable};
+use crate::{CamCurve, CamPoint, Cursor, Kinematics, PointTable, TableError};
 
 /// The header of a table with its derivatives.
 const FULL_HEADER: &str = "master,slave,velocity,acceleration,jerk";
@@ -50,6 +50,18 @@ pub fn curve_to_csv(curve: &impl CamCurve, masters: impl IntoIterator<Item = i64
     out
 }
 
+/// The csv crate's message without its own position (the caller names
+/// the line): `found record with 3 fields, but the previous record has 2
+/// fields`.
+fn plain_csv_message(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => std::format!("{len} fields, but the header has {expected_len}"),
+        _ => e.to_string(),
+    }
+}
+
 /// Reads a point table from CSV text (the rules: [`TableFile::from_csv`]);
 /// derivative columns are checked, then dropped.
 ///
@@ -75,8 +87,8 @@ impl TableFile {
     /// - spaces around fields, `#` comment lines and a UTF-8 byte-order mark are
     ///   accepted.
     ///
-    /// Errors name the data row, counting from 1 (header and comments not
-    /// counted).
+    /// Errors name the line of the file (counting from 1, header and
+    /// comments included) and quote the value or, excerpted, the line.
     ///
     /// # Errors
     /// [`FormatError::MissingColumn`], [`FormatError::CsvHeader`],
@@ -109,17 +121,43 @@ impl TableFile {
         };
         let mut kinematics = Vec::new();
         let mut points = Vec::new();
-        for (row, record) in (1u64..).zip(reader.records()) {
-            let record = record.map_err(|e| FormatError::CsvRow {
-                row,
-                message: e.to_string(),
+        // The file line each point was read from, for the table checks.
+        let mut lines = Vec::new();
+        // The csv crate's line count skips comment lines, and a record's
+        // position is where the reader went looking for it (before the
+        // comment and blank lines it passed): count from its byte, then
+        // pass those lines too.
+        let line_at = |position: Option<&csv::Position>| {
+            let byte = position.map_or(0, |p| usize::try_from(p.byte()).unwrap_or(usize::MAX));
+            let before = text.get(..byte).unwrap_or(text);
+            let first = before.bytes().filter(|&b| b == b'\n').count();
+            let passed = text
+                .lines()
+                .skip(first)
+                .take_while(|l| l.trim().is_empty() || l.trim_start().starts_with('#'))
+                .count();
+            (first + passed) as u64 + 1
+        };
+        let quoted = |line: u64| {
+            let at = usize::try_from(line.saturating_sub(1)).unwrap_or(usize::MAX);
+            crate::excerpt::excerpt(text.lines().nth(at).unwrap_or_default().trim()).to_string()
+        };
+        for record in reader.records() {
+            let record = record.map_err(|e| {
+                let line = line_at(e.position());
+                FormatError::CsvRow {
+                    line,
+                    text: quoted(line),
+                    message: plain_csv_message(&e),
+                }
             })?;
+            let line = line_at(record.position());
             let raw = |i: usize| record.get(i).unwrap_or("");
             let position = |i: usize, column: &'static str| {
                 parse_position(raw(i)).ok_or_else(|| FormatError::NotAnInteger {
-                    row,
+                    line,
                     column,
-                    text: raw(i).to_string(),
+                    text: crate::excerpt::excerpt(raw(i)).to_string(),
                 })
             };
             let point = CamPoint::new(position(mi, "master")?, position(si, "slave")?);
@@ -130,9 +168,9 @@ impl TableFile {
                         .ok()
                         .filter(|v| v.is_finite())
                         .ok_or_else(|| FormatError::NotANumber {
-                            row,
+                            line,
                             column,
-                            text: raw(i).to_string(),
+                            text: crate::excerpt::excerpt(raw(i)).to_string(),
                         })
                 };
                 kinematics.push(Kinematics {
@@ -143,9 +181,26 @@ impl TableFile {
                 });
             }
             points.push(point);
+            lines.push(line);
         }
+        let table = PointTable::new(points).map_err(|error| {
+            // Name the line of the point the checks refused.
+            let section = match error {
+                TableError::MasterNotIncreasing { section }
+                | TableError::ValueOutOfRange { section } => Some(section),
+                _ => None,
+            };
+            match section.and_then(|k| lines.get(k)) {
+                Some(&line) => FormatError::TableLine {
+                    line,
+                    text: quoted(line),
+                    error,
+                },
+                None => FormatError::Table(error),
+            }
+        })?;
         Ok(Self {
-            table: PointTable::new(points)?,
+            table,
             sync: None,
             generator: None,
             kinematics: derivative_columns.map(|_| kinematics),
@@ -226,7 +281,7 @@ mod tests {
         let err = TableFile::from_csv("m,s\n0,0\n").unwrap_err();
         assert!(err.to_string().contains("master"));
         let err = TableFile::from_csv("master,slave\n0,0\n1,x\n").unwrap_err();
-        assert!(err.to_string().contains("row 2"));
+        assert!(err.to_string().contains("line 3: slave `x`"));
         let err = TableFile::from_csv("master,slave\n0,0\n0,1\n").unwrap_err();
         assert!(err.to_string().contains("6782"));
     }

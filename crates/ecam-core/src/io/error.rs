@@ -26,15 +26,17 @@ pub enum FormatError {
     },
     /// A CSV row is malformed (e.g. its field count differs from the header's).
     CsvRow {
-        /// Data row, counting from 1 (header and comment lines not counted).
-        row: u64,
+        /// Line of the file, counting from 1 (header and comments counted).
+        line: u64,
+        /// The line, excerpted.
+        text: String,
         /// The CSV parser's message.
         message: String,
     },
     /// A position is not a whole number of counts or pulses.
     NotAnInteger {
-        /// Data row, counting from 1.
-        row: u64,
+        /// Line of the file, counting from 1.
+        line: u64,
         /// `master` or `slave`.
         column: &'static str,
         /// The text found.
@@ -42,8 +44,8 @@ pub enum FormatError {
     },
     /// A derivative column holds something other than a finite number.
     NotANumber {
-        /// Data row, counting from 1.
-        row: u64,
+        /// Line of the file, counting from 1.
+        line: u64,
         /// `velocity`, `acceleration` or `jerk`.
         column: &'static str,
         /// The text found.
@@ -69,6 +71,16 @@ pub enum FormatError {
         /// High end (master counts).
         high: i64,
     },
+    /// A CSV table whose point on `line` the table checks refuse (a master
+    /// not above the one before, a value out of range).
+    TableLine {
+        /// Line of the file, counting from 1.
+        line: u64,
+        /// The line, excerpted.
+        text: String,
+        /// What the table checks say (with the PLC's error code).
+        error: TableError,
+    },
     /// The text was read but the table it holds is invalid.
     Table(TableError),
 }
@@ -81,14 +93,19 @@ impl fmt::Display for FormatError {
                 f,
                 "the CSV header needs a `{column}` column (e.g. `master,slave`)"
             ),
-            Self::CsvRow { row, message } => write!(f, "bad CSV row {row}: {message}"),
-            Self::NotAnInteger { row, column, text } => {
-                let text = crate::excerpt::excerpt(text);
-                write!(f, "row {row}: {column} {text:?} is not an integer")
+            Self::CsvRow {
+                line,
+                text,
+                message,
+            } => write!(f, "line {line}: `{text}`: {message}"),
+            Self::NotAnInteger { line, column, text } => {
+                write!(f, "line {line}: {column} `{text}` is not an integer")
             }
-            Self::NotANumber { row, column, text } => {
-                let text = crate::excerpt::excerpt(text);
-                write!(f, "row {row}: {column} {text:?} is not a number")
+            Self::NotANumber { line, column, text } => {
+                write!(f, "line {line}: {column} `{text}` is not a number")
+            }
+            Self::TableLine { line, text, error } => {
+                write!(f, "line {line}: `{text}`: {error}")
             }
             Self::Json { message } => write!(f, "JSON: {message}"),
             Self::NotATable { message } => write!(f, "not a table JSON object: {message}"),

@@ -180,6 +180,36 @@ impl MotionLaw {
         }
     }
 
+    /// Where inside the rise (0 < u < 1) the law's acceleration steps: only
+    /// the constant-acceleration law's, at its middle, where acceleration
+    /// turns into deceleration. Every other law's acceleration is
+    /// continuous inside the rise (its pieces meet with equal acceleration;
+    /// only their jerk may step), and no law's velocity steps inside.
+    /// [`crate::table::steps`] looks for impulses there.
+    pub const fn acceleration_knots(self) -> &'static [f64] {
+        match self {
+            Self::ConstantAcceleration => &[0.5],
+            _ => &[],
+        }
+    }
+
+    /// As [`MotionLaw::eval`], but at a knot of
+    /// [`MotionLaw::acceleration_knots`] the value just after it (`eval`
+    /// gives the one just before the middle).
+    pub fn eval_after(self, u: f64) -> Kinematics {
+        let u = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) };
+        if u < 0.5 {
+            return self.first_half(u);
+        }
+        let k = self.first_half(1.0 - u);
+        Kinematics {
+            s: 1.0 - k.s,
+            v: k.v,
+            a: -k.a,
+            j: k.j,
+        }
+    }
+
     /// The law on `0 ≤ u ≤ 1/2`.
     fn first_half(self, u: f64) -> Kinematics {
         match self {
@@ -297,6 +327,33 @@ impl<'de> serde::Deserialize<'de> for MotionLaw {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn acceleration_steps_inside_a_rise_only_at_the_listed_knots() {
+        // A fine scan: wherever a and a little further differ by more than
+        // the jerk explains, the law's acceleration steps there.
+        let n = 72_000;
+        for law in MotionLaw::ALL {
+            let mut found = alloc::vec::Vec::new();
+            for i in 1..n {
+                let (u0, u1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+                let (k0, k1) = (law.eval_after(u0), law.eval_after(u1));
+                let h = u1 - u0;
+                let explained = h * k0.j.abs().max(k1.j.abs()) + 1e-9;
+                if (k1.a - k0.a).abs() > 10.0 * explained {
+                    found.push(u1);
+                }
+                assert!((k1.v - k0.v).abs() < 10.0 * h * k0.a.abs().max(k1.a.abs()) + 1e-9);
+            }
+            assert_eq!(found, law.acceleration_knots(), "{law}");
+            for &u in law.acceleration_knots() {
+                let (before, after) = (law.eval(u), law.eval_after(u));
+                assert_eq!((before.s, before.v), (after.s, after.v), "{law}");
+                assert!((after.a - before.a).abs() > 1.0, "{law}");
+            }
+        }
+        assert_eq!(MotionLaw::ConstantAcceleration.eval_after(0.5).a, -4.0);
+    }
 
     /// Sampled peaks of |v|, |a|, |j| over [0, 1], grid hitting every piece boundary.
     fn sampled_peaks(law: MotionLaw) -> (f64, f64, f64) {

@@ -9,6 +9,7 @@ use super::peaks::SegmentPeaks;
 use super::point::{InterpolationPoint, Quantity, SegmentSpec};
 use super::shape::Shape;
 use super::solve::{agree, check_points, solve_segment, value_at};
+use crate::table::steps::{Corner, Corners};
 use crate::table::{distribute, sample_spans, sample_uniform};
 use crate::{CamCurve, CamPoint, Cursor, Kinematics, PointTable, TableError, UniformTable};
 
@@ -186,9 +187,19 @@ impl SegmentCam {
     /// Kinematics of segment `i` (0-based) at its normalised master `u`,
     /// per count.
     pub(crate) fn segment_at(&self, i: usize, u: f64) -> Kinematics {
+        self.per_count(i, self.shapes[i].at(u))
+    }
+
+    /// As [`SegmentCam::segment_at`], at a knot of its law the value just
+    /// before it.
+    fn segment_before(&self, i: usize, u: f64) -> Kinematics {
+        self.per_count(i, self.shapes[i].at_before(u))
+    }
+
+    /// A shape's value in units of `u` as kinematics per count of segment `i`.
+    fn per_count(&self, i: usize, k: Kinematics) -> Kinematics {
         let (_, beta) = self.span(i);
         let base = self.point(i).slave as f64;
-        let k = self.shapes[i].at(u);
         let inv = 1.0 / beta;
         Kinematics {
             s: base + k.s,
@@ -227,16 +238,27 @@ impl SegmentCam {
 
     /// Points to draw the cam with: `per_segment + 1` evenly spaced samples
     /// over every segment, both ends included and each evaluated on its own
-    /// segment, so a step at a point shows as a vertical edge (two samples
-    /// at the same master).
+    /// segment, and both sides of a knot where a law's acceleration turns,
+    /// so a step shows as a vertical edge (two samples at the same master).
     pub fn sample_segments(&self, per_segment: usize) -> Vec<(f64, Kinematics)> {
         let per = per_segment.max(1);
         let mut out = Vec::with_capacity(self.segments.len().saturating_mul(per + 1));
         for i in 0..self.segments.len() {
             let (lo, beta) = self.span(i);
+            let mut knots = self.shapes[i].acceleration_knots().iter().peekable();
             for k in 0..=per {
                 let u = k as f64 / per as f64;
-                out.push((lo + beta * u, self.segment_at(i, u)));
+                // Both sides of a knot where the law's acceleration turns.
+                let mut on_knot = false;
+                while let Some(&&knot) = knots.peek().filter(|&&&knot| knot <= u) {
+                    out.push((lo + beta * knot, self.segment_before(i, knot)));
+                    out.push((lo + beta * knot, self.segment_at(i, knot)));
+                    on_knot |= knot == u;
+                    knots.next();
+                }
+                if !on_knot {
+                    out.push((lo + beta * u, self.segment_at(i, u)));
+                }
             }
         }
         out
@@ -318,6 +340,42 @@ impl TryFrom<&crate::SegmentProfile> for SegmentCam {
             })
             .collect();
         Self::new(InterpolationPoint::new(start.master, start.slave), segments)
+    }
+}
+
+/// Where the segments meet (the interpolation points), where a rise law's
+/// acceleration turns inside its segment, and the seam
+/// ([`crate::table::steps`]).
+impl Corners for SegmentCam {
+    fn corners(&self) -> Vec<Corner> {
+        let n = self.segments.len();
+        let mut corners = Vec::with_capacity(n.saturating_mul(2));
+        for i in 0..n {
+            let (lo, beta) = self.span(i);
+            let knots = self.shapes[i].acceleration_knots();
+            for &u in knots {
+                corners.push(Corner {
+                    master: lo + beta * u,
+                    before: self.segment_before(i, u),
+                    after: self.segment_at(i, u),
+                    reach: beta * u.max(1.0 - u),
+                    seam: false,
+                });
+            }
+            let next = if i + 1 < n { i + 1 } else { 0 };
+            let next_beta = self.span(next).1;
+            let next_knot = self.shapes[next].acceleration_knots().first().copied();
+            corners.push(Corner {
+                master: lo + beta,
+                before: self.segment_at(i, 1.0),
+                after: self.segment_at(next, 0.0),
+                // The stretches beside the point run to the laws' knots.
+                reach: (beta * (1.0 - knots.last().copied().unwrap_or(0.0)))
+                    .max(next_beta * next_knot.unwrap_or(1.0)),
+                seam: i + 1 == n,
+            });
+        }
+        corners
     }
 }
 

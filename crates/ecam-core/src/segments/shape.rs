@@ -31,6 +31,16 @@ pub(crate) enum Shape {
 
 const TAU: f64 = 2.0 * PI;
 
+/// A normalised law value times the segment's rise.
+fn scaled(k: Kinematics, rise: f64) -> Kinematics {
+    Kinematics {
+        s: rise * k.s,
+        v: rise * k.v,
+        a: rise * k.a,
+        j: rise * k.j,
+    }
+}
+
 impl Shape {
     /// Solves `law` over a segment rising `rise` (pulses) with the end values
     /// `start` and `end` (in units of `u`); values the law does not adapt
@@ -62,15 +72,9 @@ impl Shape {
     pub fn at(&self, u: f64) -> Kinematics {
         let u = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) };
         match *self {
-            Self::Rise { law, rise } => {
-                let k = law.eval(u);
-                Kinematics {
-                    s: rise * k.s,
-                    v: rise * k.v,
-                    a: rise * k.a,
-                    j: rise * k.j,
-                }
-            }
+            // At a knot of the law, the value after it (a joint belongs
+            // to the piece starting there).
+            Self::Rise { law, rise } => scaled(law.eval_after(u), rise),
             Self::Polynomial(p) => {
                 let d1 = p.derivative();
                 let d2 = d1.derivative();
@@ -98,6 +102,24 @@ impl Shape {
                     j: dv * TAU * sin + c * TAU * TAU * cos,
                 }
             }
+        }
+    }
+
+    /// Where inside the segment the shape's acceleration steps: a rise
+    /// law's knots ([`MotionLaw::acceleration_knots`]); the polynomials and
+    /// the velocity cycloid are smooth inside.
+    pub fn acceleration_knots(&self) -> &'static [f64] {
+        match self {
+            Self::Rise { law, .. } => law.acceleration_knots(),
+            _ => &[],
+        }
+    }
+
+    /// As [`Shape::at`], but at a knot the value just before it.
+    pub fn at_before(&self, u: f64) -> Kinematics {
+        match *self {
+            Self::Rise { law, rise } => scaled(law.eval(u), rise),
+            _ => self.at(u),
         }
     }
 

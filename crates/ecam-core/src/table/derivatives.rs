@@ -100,6 +100,34 @@ pub fn joint_acceleration(dv: f64, x_before: f64, x_after: f64) -> f64 {
     if mean_len > 0.0 { dv / mean_len } else { 0.0 }
 }
 
+/// The most whole-pulse rounding moves a joint's acceleration estimate on
+/// sections of `section` counts: each point lies within ½ pulse of the
+/// curve it samples, so a section's slope moves by up to `1/L` and the
+/// joint estimate by up to `2/L²`. On short sections this ripple can dwarf
+/// a design's acceleration: both figures are true, of different things.
+///
+/// ```
+/// use ecam_core::table::derivatives::rounding_ripple;
+///
+/// assert_eq!(rounding_ripple(8.0), 0.03125);
+/// ```
+pub fn rounding_ripple(section: f64) -> f64 {
+    let l = section.max(1.0);
+    2.0 / (l * l)
+}
+
+/// A table's peak acceleration above this multiple of its design's is
+/// mostly rounding ripple, and summaries say so.
+pub const RIPPLE_NOTE_RATIO: f64 = 1.5;
+
+/// How many times the design's peak acceleration the table's is, when that
+/// is more than [`RIPPLE_NOTE_RATIO`] (a summary then notes the ripple);
+/// `None` otherwise, or without a design acceleration.
+pub fn ripple_ratio(table_peak: f64, design_peak: f64) -> Option<f64> {
+    let ratio = table_peak / design_peak;
+    (design_peak > 0.0 && ratio > RIPPLE_NOTE_RATIO).then_some(ratio)
+}
+
 /// [`joint_acceleration`] at each interior point; 0 at both ends. `v[i]`
 /// is the slope of the section starting at `x[i]`.
 pub fn at_joints(x: &[f64], v: &[f64]) -> Vec<f64> {
@@ -137,7 +165,7 @@ pub fn over_sections(points: &[CamPoint], k: usize) -> (Vec<f64>, Vec<f64>, Vec<
             let (lo, hi) = window(i);
             let half = 0.5 * (x.get(hi).unwrap_or(&0.0) - x.get(lo).unwrap_or(&0.0));
             if half > 0.0 {
-                (slope(i, hi) - slope(lo, i)) / half
+                cancelled(slope(lo, i), slope(i, hi)) / half
             } else {
                 0.0
             }
@@ -158,13 +186,27 @@ pub fn over_sections(points: &[CamPoint], k: usize) -> (Vec<f64>, Vec<f64>, Vec<
                 x.get(lo + 1),
                 x.get(hi + 1),
             ) {
-                (Some(a0), Some(a1), Some(x0), Some(x1)) if x1 > x0 => (a1 - a0) / (x1 - x0),
+                (Some(a0), Some(a1), Some(x0), Some(x1)) if x1 > x0 => {
+                    (cancelled(*a0, *a1)) / (x1 - x0)
+                }
                 _ => 0.0,
             }
         })
         .collect();
     let xs = inner.iter().filter_map(|&i| x.get(i).copied()).collect();
     (xs, acceleration, jerk)
+}
+
+/// `after − before`, exactly 0 where the two agree to floating-point
+/// rounding (equal chords computed over different spans differ in the last
+/// bits; that difference divided by a span is noise, not a derivative).
+fn cancelled(before: f64, after: f64) -> f64 {
+    let change = after - before;
+    if change.abs() <= 1e-12 * before.abs().max(after.abs()) {
+        0.0
+    } else {
+        change
+    }
 }
 
 /// Central difference of `y` at each interior point; 0 at both ends.

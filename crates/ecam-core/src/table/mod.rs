@@ -9,6 +9,8 @@
 //! - [`CamTable`]: any of them behind one type;
 //! - [`sample_function`]: a point table from a function of the master;
 //! - [`Summary`]: a table's sections, stroke, peaks and continuity;
+//! - [`steps`]: where a curve's velocity or acceleration steps (the
+//!   impulses its plots draw), by one rule;
 //! - [`derivatives`]: velocity, acceleration and jerk estimated from a
 //!   point table's points where no exact curve is known.
 //!
@@ -17,24 +19,27 @@
 
 mod cam_point;
 mod cam_table;
+mod continuity;
 pub mod derivatives;
 mod function;
 mod lines;
 mod point;
 mod resolution;
 mod segment;
+pub mod steps;
 mod summary;
 mod uniform;
 
 pub use cam_point::CamPoint;
 pub use cam_table::CamTable;
+pub use continuity::Continuity;
 pub use function::sample_function;
 pub use point::PointTable;
 pub(crate) use resolution::distribute;
 pub use resolution::{MAX_TOTAL_RESOLUTION, MIN_TOTAL_RESOLUTION};
 pub use segment::{MAX_PROFILE_POSITION, MAX_SEGMENT_RESOLUTION, Segment, SegmentProfile};
 pub(crate) use segment::{sample_spans, sample_uniform};
-pub use summary::{Continuity, Summary};
+pub use summary::Summary;
 pub use uniform::{MAX_CAM_COUNTS, UniformTable};
 
 /// Whether slave values taken in master order move both up and down

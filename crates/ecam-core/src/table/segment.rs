@@ -218,6 +218,42 @@ impl SegmentProfile {
         sample_uniform(self, values)
     }
 
+    /// Points to draw the profile with: `per_segment + 1` evenly spaced
+    /// samples over every segment, both ends included and each evaluated on
+    /// its own segment, and both sides of every knot where a law's
+    /// acceleration turns ([`MotionLaw::acceleration_knots`](crate::MotionLaw::acceleration_knots)),
+    /// so every step shows as a vertical edge (two samples at one master).
+    pub fn sample_pieces(&self, per_segment: usize) -> Vec<(f64, Kinematics)> {
+        let per_segment = per_segment.max(1);
+        let mut out = Vec::with_capacity(self.segments.len().saturating_mul(per_segment + 3));
+        for (i, seg) in self.segments.iter().enumerate() {
+            let from = self.segment_start(i);
+            let span = seg.master_end.saturating_sub(from.master) as f64;
+            let rise = seg.slave_end.saturating_sub(from.slave) as f64;
+            let at = |u: f64, k: Kinematics| {
+                (
+                    from.master as f64 + span * u,
+                    k.scaled(from.slave as f64, rise, span),
+                )
+            };
+            let mut knots = seg.law.acceleration_knots().iter().peekable();
+            for k in 0..=per_segment {
+                let u = k as f64 / per_segment as f64;
+                let mut on_knot = false;
+                while let Some(&&knot) = knots.peek().filter(|&&&knot| knot <= u) {
+                    out.push(at(knot, seg.law.eval(knot)));
+                    out.push(at(knot, seg.law.eval_after(knot)));
+                    on_knot |= knot == u;
+                    knots.next();
+                }
+                if !on_knot {
+                    out.push(at(u, seg.law.eval_after(u)));
+                }
+            }
+        }
+        out
+    }
+
     /// Index of the segment holding `master`: the cursor's, a neighbour, or
     /// a binary search.
     fn locate(&self, master: f64, cursor: &mut Cursor) -> usize {
@@ -362,6 +398,8 @@ impl CamCurve for SegmentProfile {
         let span = (seg.master_end - from.master) as f64;
         let rise = (seg.slave_end - from.slave) as f64;
         let u = (master - from.master as f64) / span;
-        seg.law.eval(u).scaled(from.slave as f64, rise, span)
+        // At a law's knot (the constant-acceleration law's middle) the value
+        // after it, as a joint belongs to the segment starting there.
+        seg.law.eval_after(u).scaled(from.slave as f64, rise, span)
     }
 }

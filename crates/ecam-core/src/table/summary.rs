@@ -2,37 +2,10 @@
 
 use alloc::vec::Vec;
 
+use super::continuity::Continuity;
 use super::derivatives;
+use super::steps::{Corners, Steps};
 use crate::{CamCurve, Cursor, Kinematics};
-
-/// How smooth a curve is where its segments meet.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
-pub enum Continuity {
-    /// The position jumps at a joint.
-    Discontinuous,
-    /// Position continuous, velocity jumps at some joint (every point table
-    /// whose points are not collinear).
-    C0,
-    /// Velocity continuous, acceleration jumps at some joint.
-    C1,
-    /// Acceleration continuous at every joint.
-    C2,
-    /// Jerk continuous too. [`Summary`] stops at `C2`; a segment cam's joint
-    /// report ([`crate::segments::ContinuityReport`]) tells `C2` from `C3`.
-    C3,
-}
-
-impl core::fmt::Display for Continuity {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(match self {
-            Self::Discontinuous => "discontinuous",
-            Self::C0 => "C0",
-            Self::C1 => "C1",
-            Self::C2 => "C2",
-            Self::C3 => "C3",
-        })
-    }
-}
 
 /// A cam's key figures.
 ///
@@ -75,12 +48,16 @@ pub struct Summary {
     /// sections that meet there, `|v₂ − v₁| / ((L₁ + L₂)/2)` (the central
     /// second difference); the largest over the interior joints.
     pub peak_acceleration: f64,
-    /// Weakest continuity found at a joint between sections.
+    /// Weakest continuity found at a corner inside the cycle: `C0` where
+    /// velocity steps, `C1` where only acceleration does, by the rule of
+    /// [`super::steps`] (the corners that rule looks at, the tolerance it
+    /// keeps).
     pub continuity: Continuity,
     /// Continuity where one cycle ends and the next begins, for a cam that
     /// repeats with its stroke added (repeat/incremental coupling: the
     /// position meets by construction, velocity and acceleration are
-    /// compared). A periodic coupling also jumps by `stroke` unless it is 0.
+    /// compared, by the rule of [`super::steps`]). A periodic coupling also
+    /// jumps by `stroke` unless it is 0.
     pub seam: Continuity,
 }
 
@@ -97,8 +74,9 @@ impl Summary {
     /// Measures `curve`: a sweep (at least 4096 samples, 32 per section)
     /// finds the joints between sections by bisection on the cursor's
     /// segment index and compares both sides of each; then every section is
-    /// sampled 289 times, ends included, for the peaks.
-    pub fn of(curve: &impl CamCurve) -> Self {
+    /// sampled 289 times, ends included, for the peaks. Velocity and
+    /// acceleration continuity are those of its [`Steps`].
+    pub fn of(curve: &(impl CamCurve + Corners)) -> Self {
         let first = curve.master_first() as f64;
         let last = curve.master_last() as f64;
         let span = last - first;
@@ -156,27 +134,16 @@ impl Summary {
             }
         }
 
+        // Every curve here is continuous by construction; a position jump
+        // would still show (the steps rule only looks at derivatives).
         let scale_s = (acc.slave_max - acc.slave_min).abs().max(1.0);
-        let scale_v = acc.peak_v.max(scale_s / span.max(1.0));
-        let scale_a = acc.peak_a.max(scale_v / span.max(1.0));
-        let classify = |jump: &Jumps| {
-            if jump.s > JUMP_TOLERANCE * scale_s {
-                Continuity::Discontinuous
-            } else if jump.v > JUMP_TOLERANCE * scale_v {
-                Continuity::C0
-            } else if jump.a > JUMP_TOLERANCE * scale_a {
-                Continuity::C1
-            } else {
-                Continuity::C2
-            }
+        let jumps = worst_jump.s > JUMP_TOLERANCE * scale_s;
+        let (continuity, seam) = Steps::of(curve).continuity();
+        let continuity = if jumps {
+            Continuity::Discontinuous
+        } else {
+            continuity
         };
-        let continuity = classify(&worst_jump);
-        let mut seam_jump = Jumps::default();
-        let end = curve.eval(last, &mut Cursor { segment: sections });
-        let mut start = curve.eval(first, &mut Cursor::new());
-        start.s = end.s; // the stroke is carried over
-        seam_jump.add(&end, &start);
-        let seam = classify(&seam_jump);
         // Straight sections only (see `peak_acceleration`); estimated after
         // the classification, which keeps comparing the sections' own
         // derivatives.

@@ -44,32 +44,45 @@ fn csv_errors_name_the_row() {
         matches!(
             e,
             FormatError::NotAnInteger {
-                row: 2,
+                line: 3,
                 column: "slave",
                 ..
             }
         ),
         "{e}"
     );
-    assert!(e.to_string().starts_with("row 2: "));
-    // Every row has the header's number of fields.
-    let e = from_csv("master,slave\n0,0\n10\n").unwrap_err();
-    assert!(matches!(e, FormatError::CsvRow { row: 2, .. }), "{e}");
-    assert!(from_csv("master,slave\n0,0\n10,5,7\n").is_err());
-    assert_eq!(
-        from_csv("master,slave\n0,0\n0,1\n").unwrap_err(),
-        FormatError::Table(TableError::MasterNotIncreasing { section: 1 })
+    assert!(e.to_string().starts_with("line 3: slave `1.5`"), "{e}");
+    // Every row has the header's number of fields; the message names the
+    // file's line (comments counted) and quotes it.
+    let e = from_csv("master,slave\n# a comment\n0,0\n10\n").unwrap_err();
+    assert!(matches!(e, FormatError::CsvRow { line: 4, .. }), "{e}");
+    assert!(e.to_string().starts_with("line 4: `10`: 1 fields"), "{e}");
+    // A point the table checks refuse is named by its line too.
+    let e = from_csv("master,slave\n0,0\n# a comment\n10,5\n5,6\n").unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("line 5: `5,6`: table error (6782)"),
+        "{e}"
     );
+    assert!(from_csv("master,slave\n0,0\n10,5,7\n").is_err());
+    assert!(matches!(
+        from_csv("master,slave\n0,0\n0,1\n").unwrap_err(),
+        FormatError::TableLine {
+            line: 3,
+            error: TableError::MasterNotIncreasing { section: 1 },
+            ..
+        }
+    ));
     assert_eq!(
         from_csv("master,slave\n0,0\n1e300,1\n")
             .unwrap_err()
             .to_string(),
-        "row 2: master \"1e300\" is not an integer"
+        "line 3: master `1e300` is not an integer"
     );
     // Derivative columns, when all three are there, must hold numbers.
     let e =
         from_csv("master,slave,velocity,acceleration,jerk\n0,0,1,0,0\n10,5,nan,0,0\n").unwrap_err();
-    assert_eq!(e.to_string(), "row 2: velocity \"nan\" is not a number");
+    assert_eq!(e.to_string(), "line 3: velocity `nan` is not a number");
 }
 
 #[test]

@@ -111,6 +111,22 @@ impl core::fmt::Debug for Link {
     }
 }
 
+/// Neither an interface nor emulated drives were given: there is no way to
+/// the drives (the configuration file names itself in front of this).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NoTransport;
+
+impl std::fmt::Display for NoTransport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("no interface; set interface = \"...\" or pass --emulated N")
+    }
+}
+
+impl std::error::Error for NoTransport {}
+
+/// A chosen transport and, when emulated, the segment (to inject faults).
+pub type Chosen = (Transport, Option<Arc<Mutex<EmulatedSegment>>>);
+
 /// The way to the drives a link opens.
 #[derive(Clone, Debug)]
 pub enum Transport {
@@ -139,6 +155,14 @@ impl Transport {
             (None, Some(interface)) => Some((Self::Interface(interface.to_string()), None)),
             (None, None) => None,
         }
+    }
+
+    /// [`Transport::choose`], or why there is no way to the drives.
+    ///
+    /// # Errors
+    /// [`NoTransport`]: neither `emulated` nor `interface` is given.
+    pub fn chosen(emulated: Option<u16>, interface: Option<&str>) -> Result<Chosen, NoTransport> {
+        Self::choose(emulated, interface).ok_or(NoTransport)
     }
 
     /// The transport in words: the interface, or `emulated (N drives)`.

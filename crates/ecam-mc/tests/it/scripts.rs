@@ -226,7 +226,7 @@ fn table_files_are_read_relative_to_the_script() {
     let err = run_file(dir.join("bad.mc")).unwrap_err().to_string();
     assert!(
         err.contains(":2: ECAMTableFile: in table file")
-            && err.ends_with("row 2: slave \"1.5\" is not an integer"),
+            && err.ends_with("line 3: slave `1.5` is not an integer"),
         "{err}"
     );
     std::fs::remove_dir_all(&dir).unwrap();

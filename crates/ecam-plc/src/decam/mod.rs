@@ -48,6 +48,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod address;
 mod block;
 mod block_error;
 pub mod flags;
@@ -59,6 +60,7 @@ mod start_gate;
 mod sync_output;
 mod table_load;
 
+pub use address::{BlockAddressError, LAST_START, block_at};
 pub use block_error::BlockError;
 pub use operands::{DecamOperands, MasterOperand};
 pub use start_gate::CamMode;

@@ -1,11 +1,11 @@
 //! `GET /api/live?block=2000&rate=20`: a WebSocket that streams one cam's
-//! state ([`ecam_serve::LiveSample`] as JSON, one text message per sample)
+//! state ([`crate::LiveSample`] as JSON, one text message per sample)
 //! while the page is open.
 //!
-//! The rate is bounded ([`ecam_serve::MAX_LIVE_RATE`]) and each sample is
+//! The rate is bounded ([`crate::MAX_LIVE_RATE`]) and each sample is
 //! taken only once the previous one is sent: a slow client gets fewer
 //! samples, never a growing queue. A live view counts against the HTTP and
-//! live-view caps ([`ecam_serve::Limits`]); it is pinged, and closed when
+//! live-view caps ([`crate::Limits`]); it is pinged, and closed when
 //! its client answers nothing for the live deadline (a page that stopped
 //! reading) or takes longer than the send deadline over one sample. The
 //! upgrade request passes the same Host/Origin guard as every other route
@@ -16,12 +16,12 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use crate::{LiveRequest, LiveSample, Shared};
 use axum::extract::ws::rejection::WebSocketUpgradeRejection;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{Extension, Query, State};
 use axum::http::StatusCode;
 use axum::response::Response;
-use ecam_serve::{LiveRequest, LiveSample, Shared};
 use tokio::time::MissedTickBehavior;
 
 use super::conn::Conn;

@@ -1,5 +1,5 @@
 //! The Modbus TCP listener: one task per client, reading MBAP frames and
-//! answering them through [`ecam_serve`] (framing, codec, address map and
+//! answering them through [`crate`] (framing, codec, address map and
 //! writes are all there; `docs/modbus.md` describes them).
 //!
 //! Refused writes are logged as warnings (target `ecam::modbus`). Every
@@ -11,9 +11,7 @@ use std::io;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
-use ecam_serve::{
-    Exception, Kind, MbapHeader, Shared, answer_request, encode_response, parse_request,
-};
+use crate::{Exception, Kind, MbapHeader, Shared, answer_request, encode_response, parse_request};
 use tokio::io::{AsyncReadExt as _, AsyncWriteExt as _};
 use tokio::net::{TcpListener, TcpStream};
 use tokio::time::timeout;

@@ -1,10 +1,10 @@
 //! The HTTP face: device memory and status as JSON, the designer's JSON
 //! endpoints, the live view's WebSocket, and the designer page itself
-//! (`crates/ecam-cli/web/`, compiled into the binary by [`super::assets`]).
+//! (`crates/ecam-cli/web/`, compiled into the binary, handed over as a [`Page`]).
 //!
 //! | route | what |
 //! |---|---|
-//! | `GET /`, `/app.js`, … | the designer page ([`super::assets::ASSETS`]) |
+//! | `GET /`, `/app.js`, … | the designer page ([`Page::files`]) |
 //! | `GET /api/status` | scan count, PLC time, lag, Modbus counters, state dir |
 //! | `GET /api/devices?names=D2000,M0,DD2019,D100:4` | values, as `ecam plc run --dump` prints them |
 //! | `POST /api/devices` `{"D100": 3183, "M0": 1}` | set (durably, like a Modbus write); answers the new values |
@@ -16,6 +16,11 @@
 //! | `POST /api/segments/continuous` `{"start": {...}, "segment": [...]}` | a segment cam's free boundary values filled in from the neighbours |
 //! | `POST /api/drive/check` `{"generator", "params", "drive", "master_speed"}` | the design checked against a drive (docs/design.md) |
 //! | `POST /api/table/load` `{"block": 2000, "points": [[0, 0], ...], "while_running": "at-seam"}` | a point table into a DECAM block the program names (or one clear of them, below D8000), one durable write (409 while its cam runs, unless `at-seam`) |
+//! | `POST /api/table/check` `{"points": [[0, 0], ...]}` | a point table checked, with its section velocities, impulses and summary |
+//! | `POST /api/table/read` `{"name": "t.csv", "text": "..."}` | an uploaded table file read as `ecam table show` reads it |
+//! | `POST /api/table/convert` `{"format": "csv", "points": [...], ...}` | a table as `ecam table gen -o` writes it, `{"text": ...}` |
+//! | `GET /api/limits` | table and key-point limits, key-point curve names |
+//! | `GET /api/block?name=D2000` | where a DECAM block starts, or why it cannot |
 //! | `GET /api/live?block=2000&rate=20` (WebSocket) | the cam's master, slave, speeds and sync output, [`super::live`] |
 //! | `GET /api/ethercat` | `--ethercat`: the line and every drive (state, positions, faults, lateness) |
 //! | `POST /api/ethercat/enable`, `/disable`, `/reset` `{}` | `--ethercat`: enable or disable the drives, clear the faults (202: done at the next cycle) |
@@ -29,6 +34,10 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use crate::{
+    Access, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
+    parse_bus_command, parse_device_names, parse_device_sets, parse_json_body,
+};
 use axum::Router;
 use axum::body::{Body, Bytes};
 use axum::extract::Request;
@@ -38,23 +47,19 @@ use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use ecam_core::budget::Budget;
-use ecam_serve::{
-    Access, Kind, MAX_BODY_BYTES, Outcome, RequestFacts, Shared, devices_to_json,
-    parse_bus_command, parse_device_names, parse_device_sets, parse_json_body,
-};
 use hyper_util::rt::{TokioIo, TokioTimer};
 use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tower::Service as _;
 
-use super::assets::{ASSETS, Asset, INDEX};
 use super::conn::Conn;
+use super::page::{Asset, Page};
 use super::reply::{error, json_text, json_value};
 
 /// Serves `router` on `listener` for ever, within the server's limits: at
 /// the HTTP cap the idlest connection makes room, request headers must be
 /// complete within `partial` (so an idle keep-alive connection closes
-/// then), bodies within `body` ([`body_within`]). (`axum::serve` offers
+/// then), bodies within `body` (`body_within`). (`axum::serve` offers
 /// neither a cap nor these deadlines.)
 pub async fn serve(listener: TcpListener, router: Router, shared: Arc<Shared>) {
     loop {
@@ -164,9 +169,10 @@ async fn guard(State(access): State<Arc<Access>>, request: Request, next: Next) 
 }
 
 /// The router of `ecam serve`'s HTTP face, behind [`Access`].
-pub fn router(shared: Arc<Shared>, access: Access) -> Router {
-    let mut router = Router::new().route("/", get(|| async { asset(INDEX) }));
-    for &file in ASSETS {
+pub fn router(shared: Arc<Shared>, access: Access, page: Page) -> Router {
+    let index = page.index;
+    let mut router = Router::new().route("/", get(move || async move { asset(index) }));
+    for &file in page.files {
         router = router.route(file.path, get(move || async move { asset(file) }));
     }
     router
@@ -185,6 +191,29 @@ pub fn router(shared: Arc<Shared>, access: Access) -> Router {
         .route("/api/keypoints", post(key_points))
         .route("/api/segments/continuous", post(segments_continuous))
         .route("/api/drive/check", post(drive_check))
+        .route(
+            "/api/table/check",
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_check_json)
+            }),
+        )
+        .route(
+            "/api/table/read",
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_read_json)
+            }),
+        )
+        .route(
+            "/api/table/convert",
+            post(|state: State<Arc<Shared>>, b: Bytes| {
+                table_fact(state, b, ecam_design::table_convert_json)
+            }),
+        )
+        .route(
+            "/api/limits",
+            get(|| async { json_value(StatusCode::OK, &ecam_design::limits_json()) }),
+        )
+        .route("/api/block", get(block))
         .route("/api/table/load", post(table_load))
         .route("/api/live", get(super::live::live))
         .route("/api/ethercat", get(ethercat_status))
@@ -312,7 +341,7 @@ async fn law(
 }
 
 async fn table_load(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
-    let load = match ecam_serve::parse_table_load(&body) {
+    let load = match crate::parse_table_load(&body) {
         Ok(load) => load,
         Err(message) => return error(StatusCode::BAD_REQUEST, &message),
     };
@@ -359,8 +388,26 @@ async fn drive_check(State(shared): State<Arc<Shared>>, body: Bytes) -> Response
     .await
 }
 
+/// The designer's table facts (check, read, convert): in the design pool
+/// like every design request.
+async fn table_fact(
+    State(shared): State<Arc<Shared>>,
+    body: Bytes,
+    answer: fn(&Value) -> Result<Value, String>,
+) -> Response {
+    design(&shared, move |_| json_call(&body, answer)).await
+}
+
+async fn block(Query(query): Query<HashMap<String, String>>) -> Response {
+    let name = query.get("name").map_or("", String::as_str);
+    match ecam_plc::decam::block_at(name) {
+        Ok(block) => json_value(StatusCode::OK, &json!({ "block": block })),
+        Err(e) => error(StatusCode::BAD_REQUEST, &e.to_string()),
+    }
+}
+
 /// Every design request goes through here: computed in the server's design
-/// pool ([`ecam_serve::DesignPool`]: bounded, at the lowest CPU priority,
+/// pool ([`crate::DesignPool`]: bounded, at the lowest CPU priority,
 /// never on the threads that answer Modbus), answered 503 at once when the
 /// pool is full or when the design deadline passes, and its work stopped
 /// then, or as soon as the client leaves (this future is dropped, and the

@@ -1,11 +1,11 @@
 //! One accepted connection as the listeners hold it: its place in
-//! [`ecam_serve::Connections`] (which decides caps and who makes room) and
+//! [`crate::Connections`] (which decides caps and who makes room) and
 //! the signal that closes it when the registry chooses it.
 
 use std::sync::Arc;
 use std::time::Instant;
 
-use ecam_serve::{Closer, Kind, Registration, Shared};
+use crate::{Closer, Kind, Registration, Shared};
 use tokio::sync::Notify;
 
 /// An admitted connection; it leaves the registry when the last clone is

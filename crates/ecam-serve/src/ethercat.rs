@@ -1,11 +1,20 @@
-//! `ecam serve --ethercat CONFIG`: the PLC's pulse outputs on CiA 402
-//! drives. ecam-ethercat's cycle driver runs the drives; at the end of
+//! `ecam serve --ethercat CONFIG` (feature `ethercat`): the PLC's pulse
+//! outputs on CiA 402 drives. ecam-ethercat's cycle driver runs the drives; at the end of
 //! every cycle whose frame came back it wakes the PLC's thread, which runs
 //! exactly one cycle time of scans (ecam-serve's `scan_on_bus_ticks`) and
 //! publishes the pulse totals the drives follow next. The cycle shares no
 //! lock with the PLC, Modbus or HTTP: its status goes out through the
-//! driver's published image, which [`Source`] turns into ecam-serve's
-//! [`BusSnapshot`] when a client asks.
+//! driver's published image, which the adapter in `source.rs` turns into this
+//! crate's [`crate::BusSnapshot`] when a client asks.
+//!
+//! The dependency points from the server to the fieldbus: ecam-ethercat
+//! knows nothing of Modbus or the PLC, and this adapter implements this
+//! crate's [`crate::BusSource`] over its cycle driver.
+
+mod error;
+mod source;
+
+pub use error::BusError;
 
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -13,21 +22,19 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use anyhow::{Context as _, bail};
-use ecam_ethercat::Segment;
-use ecam_ethercat::cia402::error_code_text;
 use ecam_ethercat::config::FollowConfig;
 use ecam_ethercat::driver::{self, DriverConfig, Following, PulseTotals};
 use ecam_ethercat::emulation::EmulatedSegment;
 use ecam_ethercat::follow::FollowLine;
-use ecam_ethercat::monitor::{LineCommand, LineMonitor};
+use ecam_ethercat::monitor::LineMonitor;
 use ecam_ethercat::summary::summary_json;
-use ecam_ethercat::supervisor::{LineState, al_state_code};
+use ecam_ethercat::supervisor::LineState;
+use ecam_ethercat::{Segment, Transport};
 use ecam_plc::Device;
-use ecam_serve::{
-    BusCommand, BusFace, BusLineState, BusSnapshot, BusSource, BusTicks, DriveView, Shared,
-};
 use serde_json::Value;
+
+use crate::{BusFace, BusTicks, Shared};
+use source::Source;
 
 /// The tracing target of the bus cycle's messages.
 const LOG: &str = "ecam::ethercat";
@@ -41,11 +48,15 @@ pub struct Bus {
     relays: [Option<u16>; 2],
 }
 
-fn relay(name: Option<&str>, key: &str) -> anyhow::Result<Option<u16>> {
+fn relay(file: &str, name: Option<&str>, key: &'static str) -> Result<Option<u16>, BusError> {
     let Some(name) = name else { return Ok(None) };
     match Device::parse(name) {
         Ok(Device::M(n)) if n < 8000 => Ok(Some(n)),
-        _ => bail!("{key} = \"{name}\": name an M relay below M8000 (e.g. \"M100\")"),
+        _ => Err(BusError::Relay {
+            file: file.to_string(),
+            key,
+            name: name.to_string(),
+        }),
     }
 }
 
@@ -55,30 +66,41 @@ fn relay(name: Option<&str>, key: &str) -> anyhow::Result<Option<u16>> {
 /// # Errors
 /// An unreadable or invalid file, a cycle that is not a whole number of
 /// scan periods, no interface, or a failed bring-up.
-pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> anyhow::Result<Bus> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let config = FollowConfig::parse(&text).with_context(|| format!("{}", path.display()))?;
+pub fn bring_up(path: &Path, emulated: Option<u16>, scan_us: u32) -> Result<Bus, BusError> {
     let file = path.display().to_string();
-    if config.cycle_us % scan_us != 0 {
-        bail!(
-            "{file}: cycle_us = {} is not a whole number of scan periods (--scan-us {scan_us}): \
-             each bus cycle runs the PLC for exactly one cycle time",
-            config.cycle_us
-        );
+    let text = std::fs::read_to_string(path).map_err(|error| BusError::Read {
+        file: file.clone(),
+        error,
+    })?;
+    let config_error = |error| BusError::Config {
+        file: file.clone(),
+        error,
+    };
+    let config = FollowConfig::parse(&text).map_err(config_error)?;
+    if scan_us == 0 || config.cycle_us % scan_us != 0 {
+        return Err(BusError::CycleNotWholeScans {
+            file,
+            cycle_us: config.cycle_us,
+            scan_us,
+        });
     }
     let relays = [
-        relay(config.fault_relay.as_deref(), "fault_relay").context(file.clone())?,
-        relay(config.running_relay.as_deref(), "running_relay").context(file.clone())?,
+        relay(&file, config.fault_relay.as_deref(), "fault_relay")?,
+        relay(&file, config.running_relay.as_deref(), "running_relay")?,
     ];
-    let followers = config.followers().context(file.clone())?;
+    let followers = config.followers().map_err(config_error)?;
     let (transport, emulation) =
-        crate::cmd::ethercat::transport(emulated, config.interface.as_deref(), path)?;
+        Transport::chosen(emulated, config.interface.as_deref()).map_err(|error| {
+            BusError::NoInterface {
+                file: file.clone(),
+                error,
+            }
+        })?;
     let transport_name = transport.describe();
     let timing = config.timing();
     let segment = Segment::bring_up_with(transport, timing.segment(), config.setups())?;
     let line = FollowLine::new(segment, followers, timing.max_lost_cycles(), timing.stop())
-        .context(file)?;
+        .map_err(|error| BusError::Follow { file, error })?;
     tracing::info!(
         target: LOG,
         "{} drives in OP on {transport_name}, SYNC0 every {} µs",
@@ -116,7 +138,7 @@ impl Bus {
         self,
         shared: Arc<Shared>,
         stop: Arc<AtomicBool>,
-    ) -> anyhow::Result<JoinHandle<Value>> {
+    ) -> Result<JoinHandle<Value>, BusError> {
         let drives = self.line.segment().len();
         let monitor = Arc::new(LineMonitor::new(drives));
         let source = Source {
@@ -157,7 +179,10 @@ impl Bus {
                     }
                 },
             )
-            .context("cannot start the fieldbus cycle")?
+            .map_err(|error| BusError::Thread {
+                what: "the fieldbus cycle",
+                error,
+            })?
         };
         let scans = cycle_us / shared.info.timing.scan_us;
         let relays = self.relays;
@@ -167,7 +192,7 @@ impl Bus {
             std::thread::Builder::new()
                 .name("plc-scan".into())
                 .spawn(move || {
-                    ecam_serve::scan_on_bus_ticks(
+                    crate::scan_on_bus_ticks(
                         &shared,
                         &ticks,
                         scans,
@@ -181,7 +206,10 @@ impl Bus {
                         },
                     );
                 })
-                .context("cannot start the PLC thread")?;
+                .map_err(|error| BusError::Thread {
+                    what: "the PLC thread",
+                    error,
+                })?;
         }
         std::thread::Builder::new()
             .name("ecam-bus-watch".into())
@@ -202,7 +230,10 @@ impl Bus {
                     Err(_) => serde_json::json!({"error": "the fieldbus cycle panicked"}),
                 }
             })
-            .context("cannot start the fieldbus watcher")
+            .map_err(|error| BusError::Thread {
+                what: "the fieldbus watcher",
+                error,
+            })
     }
 }
 
@@ -234,88 +265,4 @@ fn set_relays(shared: &Shared, relays: [Option<u16>; 2], state: Option<LineState
             }
         }
     });
-}
-
-/// The driver's published image as ecam-serve's snapshot, and its
-/// commands as the driver's.
-struct Source {
-    monitor: Arc<LineMonitor>,
-    transport: String,
-    cycle_us: u32,
-    max_lost: u32,
-    names: Vec<String>,
-    outputs: Vec<Option<u8>>,
-}
-
-impl BusSource for Source {
-    fn snapshot(&self) -> BusSnapshot {
-        let s = self.monitor.snapshot();
-        let c = s.counters;
-        let drives = s
-            .drives
-            .iter()
-            .enumerate()
-            .map(|(position, d)| DriveView {
-                position,
-                name: self.names.get(position).cloned().unwrap_or_default(),
-                state_code: d.state.code(),
-                state: d.state.to_string(),
-                statusword: d.statusword,
-                error_code: d.error_code,
-                error: error_code_text(d.error_code).to_string(),
-                reachable: d.reachable,
-                enabled: d.enabled,
-                fault: s
-                    .faults
-                    .iter()
-                    .find(|f| f.drive == Some(position))
-                    .map(|f| f.cause.to_string()),
-                actual: d.actual,
-                target: self
-                    .outputs
-                    .get(position)
-                    .copied()
-                    .flatten()
-                    .map(|_| d.target),
-                following_error: d.following_error,
-                output: self.outputs.get(position).copied().flatten(),
-                al_state_code: al_state_code(d.al_state),
-                al_state: d.al_state.name().to_string(),
-                missed_cycles: d.missed,
-            })
-            .collect();
-        BusSnapshot {
-            transport: self.transport.clone(),
-            cycle_us: self.cycle_us,
-            state: match s.state {
-                None | Some(LineState::Stopped) => BusLineState::Stopped,
-                Some(LineState::Enabling) => BusLineState::Enabling,
-                Some(LineState::Running) => BusLineState::Running,
-                Some(LineState::Faulted) => BusLineState::Faulted,
-                Some(LineState::Stopping) => BusLineState::Stopping,
-                Some(LineState::Recovering) => BusLineState::Recovering,
-            },
-            faults: s.faults.iter().map(ToString::to_string).collect(),
-            cycles: c.cycles,
-            working_counter_errors: c.working_counter_errors,
-            lateness_max_us: c.lateness_max_ns as f64 / 1000.0,
-            lateness_mean_us: c.lateness_mean_ns as f64 / 1000.0,
-            overruns: c.overruns,
-            lost_cycles: c.lost_cycles,
-            lost_in_a_row_max: c.lost_in_a_row_max,
-            max_lost_cycles: self.max_lost,
-            late_replies: c.late_replies,
-            sync0_lead_us: c.sync0_lead_ns as f64 / 1000.0,
-            drives,
-        }
-    }
-
-    fn command(&self, command: BusCommand) -> bool {
-        self.monitor.command(match command {
-            BusCommand::Enable => LineCommand::Enable,
-            BusCommand::Disable => LineCommand::Disable,
-            BusCommand::Reset => LineCommand::Reset,
-            BusCommand::EmulateFault { drive, code } => LineCommand::InjectFault { drive, code },
-        })
-    }
 }
