@@ -154,6 +154,7 @@ proptest! {
         distance in 1u64..2000,
     ) {
         let mut points = vec![(0i64, 0i64)];
+        let rise_stroke: i64 = rise.iter().map(|r| r.1).sum();
         let (mut m, mut s, mut steepest) = (0, 0, 0.0f64);
         for (dm, ds) in rise {
             m += dm;
@@ -198,8 +199,9 @@ proptest! {
             prop_assert!(ds <= bound, "tick {}: slave moved {ds} for {dm} (bound {bound})", i + 1);
         }
         // Zero drift: once the change is ramped in (the master far enough
-        // from where it was asked, whichever way it went), the same as an
-        // axis engaged with the final scaling from the start.
+        // from where it was asked, whichever way it went), exactly an axis
+        // engaged at the same place whose scaling changed at once: the
+        // change keeps the strokes the axis engaged with.
         for m in (master - 50_000..=master).rev().step_by(997) {
             let _ = axis.tick(&TickInput::at(m, 1000));
         }
@@ -207,17 +209,105 @@ proptest! {
             let _ = axis.tick(&TickInput::at(m, 1000));
         }
         let settled = master + 50_000;
-        let fresh_config = AxisConfig {
-            slave_zoom: if changed { new_zoom } else { slave_zoom },
-            ..config
+        let final_zoom = if changed { new_zoom } else { slave_zoom };
+        let engaged = |zoom: Zoom| {
+            let mut a = CamAxis::new(table.clone(), AxisConfig { slave_zoom: zoom, ..config }).unwrap();
+            a.arm().unwrap();
+            let _ = a.tick(&TickInput::at(0, 1000));
+            a
         };
-        let mut fresh = CamAxis::new(table, fresh_config).unwrap();
-        fresh.arm().unwrap();
-        let _ = fresh.tick(&TickInput::at(0, 1000));
-        for m in (settled - 2000..=settled).step_by(37) {
-            let a = axis.tick(&TickInput::at(m, 1000)).slave;
-            let b = fresh.tick(&TickInput::at(m, 1000)).slave;
-            prop_assert_eq!(a, b, "master {}", m);
+        let mut at_once = engaged(slave_zoom);
+        if changed {
+            at_once.change_slave_scaling(new_zoom, NonZeroU64::MIN).unwrap();
         }
+        // And an axis engaged with the final scaling from the start, up to
+        // the start rule's whole strokes (start_rule.rs): it takes the first
+        // stroke count whose *rounded* value is at or ahead of the slave, so
+        // where a scaled stroke is below one pulse several counts round to
+        // the slave's 0 and which one it takes depends on the scaling (the
+        // shrunk case: 1/1 engages on strokes 0, 1/3 a stroke back, a third
+        // of a pulse away). With a stroke of at least one pulse under both
+        // scalings (or none) only strokes 0 round to 0: exactly equal.
+        // Otherwise a fixed offset of whole strokes: exactly, the old start
+        // lies within half a pulse of 0 at the old scaling, so within
+        // |new/old| / 2 at the new, the fresh one within 1/2; rounded, at
+        // most a pulse more, and varying by at most one pulse from place to
+        // place (never growing: no drift).
+        let mut fresh = engaged(final_zoom);
+        let pulses = |z: Zoom| rise_stroke.unsigned_abs() * u64::from(z.num()) >= u64::from(z.den());
+        let same_strokes = rise_stroke == 0 || (pulses(slave_zoom) && pulses(final_zoom));
+        let bound = (0.5 * (final_zoom.ratio() / slave_zoom.ratio()).abs() + 0.5).floor() as i64 + 1;
+        let mut offsets = Vec::new();
+        for m in (settled - 2000..=settled).step_by(37) {
+            let input = TickInput::at(m, 1000);
+            let a = axis.tick(&input).slave;
+            prop_assert_eq!(a, at_once.tick(&input).slave, "master {}", m);
+            let offset = a - fresh.tick(&input).slave;
+            if same_strokes {
+                prop_assert_eq!(offset, 0, "master {}", m);
+            }
+            prop_assert!(offset.abs() <= bound, "master {}: offset {} beyond {}", m, offset, bound);
+            offsets.push(offset);
+        }
+        let spread = offsets.iter().max().unwrap() - offsets.iter().min().unwrap();
+        prop_assert!(spread <= 1, "offsets {:?}", offsets);
     }
+}
+
+/// The shrunk proptest case (tests/it/signed_scaling.proptest-regressions):
+/// a repeat cam falling one count per master count, engaged at master 0
+/// with the slave at 0, its slave scaling changed from 1/1 to 1/3. The
+/// change itself is exact: afterwards the axis is the cam `−master/3`,
+/// just as an axis whose scaling changed at once. An axis engaged with 1/3
+/// from the start stands one stroke (a third of a pulse) away, `(1 −
+/// master)/3`: with a stroke below one pulse, strokes 0 and −1 both round
+/// to the slave's 0 at the start, and the start rule takes the first of
+/// them in the cam's direction (the master at 0 and strokes 0 on 1/1, a
+/// stroke back on 1/3). A whole stroke, fixed: no drift, one pulse apart
+/// wherever the two round differently (master 48074: −16025 against
+/// −16024).
+#[test]
+fn a_scaled_stroke_below_one_pulse_changed_on_the_fly_keeps_the_engaged_strokes() {
+    let table = PointTable::from_pairs(&[(0, 0), (1, -1)]).unwrap();
+    let config = AxisConfig {
+        coupling: Coupling::Repeat { min_stroke: 1 },
+        ..AxisConfig::default()
+    };
+    let third = Zoom::new(1, 3).unwrap();
+    let engaged = |zoom: Zoom| {
+        let mut axis = CamAxis::new(
+            table.clone(),
+            AxisConfig {
+                slave_zoom: zoom,
+                ..config
+            },
+        )
+        .unwrap();
+        axis.arm().unwrap();
+        let _ = axis.tick(&TickInput::at(0, 1000));
+        axis
+    };
+    let mut axis = engaged(Zoom::ONE);
+    let _ = axis.tick(&TickInput::at(0, 1000));
+    axis.change_slave_scaling(third, NonZeroU64::MIN).unwrap();
+    let mut at_once = engaged(Zoom::ONE);
+    at_once
+        .change_slave_scaling(third, NonZeroU64::MIN)
+        .unwrap();
+    let mut fresh = engaged(third);
+    // Round to nearest of n/3 (never a tie).
+    let third_of = |n: i64| (2 * n + 3).div_euclid(6);
+    for m in (-50_000..=50_000)
+        .step_by(997)
+        .chain(48_000..=48_100)
+        .chain(-5..=5)
+    {
+        let input = TickInput::at(m, 1000);
+        let a = axis.tick(&input).slave;
+        assert_eq!(a, at_once.tick(&input).slave, "master {m}");
+        assert_eq!(a, third_of(-m), "master {m}");
+        assert_eq!(fresh.tick(&input).slave, third_of(1 - m), "master {m}");
+    }
+    assert_eq!(fresh.tick(&TickInput::at(48_074, 1000)).slave, -16024);
+    assert_eq!(axis.tick(&TickInput::at(48_074, 1000)).slave, -16025);
 }
