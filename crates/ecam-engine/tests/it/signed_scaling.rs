@@ -254,7 +254,7 @@ proptest! {
     }
 }
 
-/// The shrunk proptest case (tests/it/signed_scaling.proptest-regressions):
+/// The shrunk proptest case (tests/proptest-regressions/signed_scaling.txt):
 /// a repeat cam falling one count per master count, engaged at master 0
 /// with the slave at 0, its slave scaling changed from 1/1 to 1/3. The
 /// change itself is exact: afterwards the axis is the cam `−master/3`,
