@@ -260,12 +260,12 @@ proptest! {
 /// change itself is exact: afterwards the axis is the cam `−master/3`,
 /// just as an axis whose scaling changed at once. An axis engaged with 1/3
 /// from the start stands one stroke (a third of a pulse) away, `(1 −
-/// master)/3`: with a stroke below one pulse, strokes 0 and −1 both round
-/// to the slave's 0 at the start, and the start rule takes the first of
-/// them in the cam's direction (the master at 0 and strokes 0 on 1/1, a
-/// stroke back on 1/3). A whole stroke, fixed: no drift, one pulse apart
-/// wherever the two round differently (master 48074: −16025 against
-/// −16024).
+/// master)/3`: with a stroke below one pulse, strokes −1, 0 and 1 all
+/// round to the slave's 0 at the start (1/3, 0, −1/3), and the start rule
+/// takes the first of them in the cam's direction, the least travel: on
+/// 1/1 strokes 0 (the only one), on 1/3 strokes −1. A whole stroke, fixed:
+/// no drift, one pulse apart wherever the two round differently (master
+/// 48074: −16025 against −16024).
 #[test]
 fn a_scaled_stroke_below_one_pulse_changed_on_the_fly_keeps_the_engaged_strokes() {
     let table = PointTable::from_pairs(&[(0, 0), (1, -1)]).unwrap();
