@@ -8,8 +8,10 @@
 //! where both cams are the same table, engagement and offsets, zoomed by
 //! the old and the new slave scaling: position and velocity are continuous
 //! at both ends, and at `u = 1` the axis takes the new scaling into its
-//! geometry, so the slave is exactly the cam as if engaged with the new
-//! scaling (zero drift afterwards).
+//! geometry, so the slave is exactly the cam with the new scaling on the
+//! strokes it engaged with (zero drift afterwards; an axis engaged with the
+//! new scaling from the start may stand whole strokes away, where the
+//! start rule's rounded choice differs with the scaling).
 
 use core::num::NonZeroU64;
 
