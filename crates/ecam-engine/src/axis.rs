@@ -263,7 +263,9 @@ impl<C: CamCurve> CamAxis<C> {
                     ),
                     previous: None,
                     delaying: false,
+                    ready: None,
                 });
+                self.prepare_engagement();
                 Ok(())
             }
         }

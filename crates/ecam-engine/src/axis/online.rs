@@ -80,6 +80,8 @@ impl<C: CamCurve> CamAxis<C> {
                 self.geometry = geometry;
                 self.cursor = Cursor::new();
                 self.retired = Some(core::mem::replace(&mut self.curve, queued.curve));
+                // An armed axis' prepared engagement was of the old table.
+                self.prepare_engagement();
             }
         }
         Ok(())
@@ -161,7 +163,9 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Running(engaged) => {
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 let ramp = OffsetRamp::new(change, from, mden);
-                engaged.underway.begin(Change::Offsets(ramp, None))
+                engaged.underway.begin(Change::Offsets(ramp, None))?;
+                engaged.take_lane_constants(&self.geometry);
+                Ok(())
             }
             _ => Err(EngineError::NotRunning),
         }
@@ -188,8 +192,9 @@ impl<C: CamCurve> CamAxis<C> {
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 let ramp = ScalingRamp::new(target, from, distance);
                 engaged.underway.begin(Change::Scaling(ramp, None))?;
-                // The lane's constants on the new scaling, taken here
+                // The lane's constants, on the new scaling too, taken here
                 // rather than in the cycle.
+                engaged.take_lane_constants(&self.geometry);
                 if let Some(lane) = engaged.lane.as_mut() {
                     lane.target = engaged.engagement.steady(&target);
                 }

@@ -2,13 +2,14 @@
 
 use crate::blend::Blend;
 use crate::coast::Coast;
-use crate::coupling::{Engagement, Place};
+use crate::coupling::{Engagement, Geometry, Place};
 use crate::offset_ramp::OffsetRamp;
 use crate::ramp::Ramp;
 use crate::start::StartWatch;
 use crate::stop::CycleEnd;
 use crate::{AxisState, EngineError, MasterPosition};
 
+use super::engage::ReadyEngagement;
 use super::lane_constants::LaneConstants;
 use super::prepared::Plan;
 use super::underway::{Change, Underway};
@@ -41,6 +42,10 @@ pub(super) struct Armed {
     pub(super) previous: Option<i64>,
     /// The start came and a delay is being counted.
     pub(super) delaying: bool,
+    /// The engagement worked out at arm for a start whose master position
+    /// is known then (`engage.rs`), so that the tick that engages only
+    /// takes it.
+    pub(super) ready: Option<ReadyEngagement>,
 }
 
 /// What an engaged axis has.
@@ -90,6 +95,20 @@ impl<C> Engaged<C> {
             self.underway.end_change();
         }
         Ok(())
+    }
+
+    /// Takes the fast lane's constants of the engagement on `geometry` if
+    /// they are missing (a cam settled since engaging runs on the steady
+    /// tick's own): at a request, so that the tick the change starts in
+    /// does not. `None` when they leave 64 bits (the lane then leaves
+    /// the ticks to the general path, as it would have).
+    pub(super) fn take_lane_constants(&mut self, geometry: &Geometry) {
+        if self.lane.is_none() {
+            self.lane = self
+                .engagement
+                .steady(geometry)
+                .map(|cam| LaneConstants { cam, target: None });
+        }
     }
 
     /// The engagement in effect at `master`, an offset ramp included.

@@ -26,6 +26,7 @@ use crate::turn_position;
 
 use super::CamAxis;
 use super::landing::{Old, resolve_on};
+use super::lane_constants::LaneConstants;
 use super::phase::{Engaged, Phase};
 use super::prepared::{Plan, Prepared};
 
@@ -62,6 +63,14 @@ impl<C: CamCurve> CamAxis<C> {
         let Some(old) = engaged.engagement.steady(&self.geometry) else {
             return;
         };
+        // The lane follows the old cam until the switch with the same
+        // constants, taken here if missing rather than in the cycle.
+        if engaged.lane.is_none() {
+            engaged.lane = Some(LaneConstants {
+                cam: old,
+                target: None,
+            });
+        }
         let from = Old {
             curve: &self.curve,
             geometry: &self.geometry,
