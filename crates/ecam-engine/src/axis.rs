@@ -38,6 +38,7 @@ mod online;
 mod phase;
 mod plan;
 mod prepared;
+mod ramp_tick;
 #[cfg(test)]
 mod steady_tests;
 mod takeover;

@@ -108,12 +108,16 @@ impl<C: CamCurve> CamAxis<C> {
         // Without a ramp-in the cam is settled from the first tick: its
         // constants taken here let that tick be a steady one (set in
         // place: the phase is not built twice).
-        if let Phase::Running(engaged) = &mut self.phase
-            && engaged.underway.is_settled()
-        {
-            engaged
-                .underway
-                .settle(engaged.engagement.steady(&self.geometry));
+        // With one, the ramp-in tick follows the cam with the lane's
+        // constants: taken here too.
+        if let Phase::Running(engaged) = &mut self.phase {
+            if engaged.underway.is_settled() {
+                engaged
+                    .underway
+                    .settle(engaged.engagement.steady(&self.geometry));
+            } else {
+                engaged.take_lane_constants(&self.geometry);
+            }
         }
         Ok(())
     }

@@ -42,6 +42,19 @@ impl<C: CamCurve> Coupled<'_, C> {
         stop_at: Option<&CycleEnd>,
         master: i64,
     ) -> Option<Followed> {
+        // A ramp-in alone: the steady tick with the ramp on top.
+        if stop_at.is_none() && engaged.underway.ramps_in_alone() {
+            let mut events = Events::default();
+            if let Some(sample) = engaged.ramp_in_tick(
+                master,
+                self.curve,
+                self.cursor,
+                self.geometry.jumps_at_seam,
+                &mut events,
+            ) {
+                return Some((false, sample, events));
+            }
+        }
         let at = MasterPosition {
             counts: master,
             fraction: 0,

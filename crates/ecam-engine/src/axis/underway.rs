@@ -110,6 +110,12 @@ impl<C> Underway<C> {
         }
     }
 
+    /// A ramp-in with nothing else under way (the ramp-in tick's case).
+    #[inline(always)]
+    pub(super) fn ramps_in_alone(&self) -> bool {
+        matches!(self, Self::RampIn(_, None))
+    }
+
     /// Only a table waits, for the next seam: no ramp-in, ramp, blend or
     /// switch beside it.
     #[inline(always)]
@@ -291,6 +297,7 @@ impl<C> Underway<C> {
 
     /// Sets the steady tick's constants (`None`: drops them): only a
     /// settled cam keeps them.
+    #[inline(always)]
     pub(super) fn settle(&mut self, steady: Option<Steady>) {
         // In place where it can be: the tick that refreshes the constants
         // copies them, not the whole enum.

@@ -1,0 +1,74 @@
+//! The steady tick with a ramp-in on top: a cam easing in from where the
+//! slave held, with nothing else under way, at a whole master count. The
+//! cam comes from the lane's 64-bit constants in one call, as on a settled
+//! cam, and the ramp goes on top exactly as the fast lane (`lane.rs`) and
+//! the general tick put it, so a ramp-in tick costs a steady tick and the
+//! ramp's blend, not the lane's whole dispatch (docs/engine.md,
+//! "Benchmarks": the worst tick). The steady-vs-general property test
+//! compares it with the general tick.
+
+use ecam_core::{CamCurve, Cursor};
+
+use crate::coupling::Place;
+use crate::{Events, MasterPosition};
+
+use super::phase::Engaged;
+use super::underway::Underway;
+use super::{FollowSample, clamp_i64};
+
+impl<C: CamCurve> Engaged<C> {
+    /// One tick at whole master count `master` of a cam whose ramp-in is
+    /// all that runs, with the lane's constants taken; `None` (nothing
+    /// changed) leaves the tick to the lane: anything else under way, no
+    /// constants, or a value that leaves 64 bits. Out of line: the
+    /// ticks that are not ramp-ins only check `Underway::ramps_in_alone`.
+    #[inline(never)]
+    pub(super) fn ramp_in_tick(
+        &mut self,
+        master: i64,
+        curve: &C,
+        cursor: &mut Cursor,
+        jumps_at_seam: bool,
+        events: &mut Events,
+    ) -> Option<FollowSample> {
+        let Underway::RampIn(ramp, None) = &self.underway else {
+            return None;
+        };
+        let constants = self.lane.as_ref()?.cam;
+        let cam = constants.sample(master, curve, cursor)?;
+        let (slave, velocity_ratio, ramping) = match ramp.blend(master, cam.slave) {
+            Some(blended) => (blended, cam.velocity_ratio * ramp.weight(master), true),
+            None => (cam.slave, cam.velocity_ratio, false),
+        };
+        let ended = ramp.finished_at(MasterPosition {
+            counts: master,
+            fraction: 0,
+        });
+        let k = i128::from(cam.k);
+        if self.place.k != k {
+            events.cycle_completed = true;
+            events.seam_jump |= jumps_at_seam;
+        }
+        self.place = Place {
+            k,
+            r_num: i128::from(cam.r_num),
+        };
+        self.followed = i128::from(master) << 32;
+        if ended {
+            // Settled from here: the steady tick's constants are the lane's.
+            self.underway.end_ramp_in();
+            self.underway.settle(Some(constants));
+        }
+        Some(FollowSample {
+            master_in_cycle: cam.master_in_cycle,
+            master_in_cycle_raw: cam.master_in_cycle_raw,
+            cycle: clamp_i64(k - i128::from(constants.k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
+            velocity_ratio,
+            following: !ramping,
+            input_offset: constants.input_offset,
+            slave,
+        })
+    }
+}
