@@ -56,6 +56,15 @@ impl MasterSpeed {
         (i128::from(counts) << 32) | i128::from(fraction)
     }
 
+    /// Time from the oldest reading (in slot `oldest`) to the newest, µs:
+    /// the tick lengths after the oldest. Slots not yet filled hold 0, so
+    /// it is the sum of every slot less the oldest's own, one pass of
+    /// fixed length (vectorised) rather than a walk around the ring.
+    fn span_us(&self, oldest: usize) -> u64 {
+        let total: u64 = self.dts.iter().map(|&dt| u64::from(dt)).sum();
+        total - u64::from(self.dts.get(oldest).copied().unwrap_or(0))
+    }
+
     /// The master's mean velocity over the window (counts/s, signed), 0
     /// before two readings: what a cam-out continues from.
     pub(crate) fn velocity(&self) -> f64 {
@@ -64,10 +73,7 @@ impl MasterSpeed {
         }
         let newest = (self.next + WINDOW - 1) % WINDOW;
         let oldest = (self.next + WINDOW - self.filled) % WINDOW;
-        let mut us: u64 = 0;
-        for i in 1..self.filled {
-            us += u64::from(self.dts.get((oldest + i) % WINDOW).copied().unwrap_or(0));
-        }
+        let us = self.span_us(oldest);
         if us == 0 {
             return 0.0;
         }
@@ -83,11 +89,8 @@ impl MasterSpeed {
         }
         let newest = (self.next + WINDOW - 1) % WINDOW;
         let oldest = (self.next + WINDOW - self.filled) % WINDOW;
-        // Time from the oldest reading to the newest: the dts after the oldest.
-        let mut us: u64 = 0;
-        for i in 1..self.filled {
-            us += u64::from(self.dts.get((oldest + i) % WINDOW).copied().unwrap_or(0));
-        }
+        // Time from the oldest reading to the newest.
+        let us = self.span_us(oldest);
         if us == 0 {
             return 0.0;
         }
@@ -118,5 +121,31 @@ mod tests {
         }
         // 8 counts in 7 ms, plus one count: 9/7 counts per ms.
         assert!((s.bound() - 9.0 / 7.0 * 1000.0).abs() < 1e-6);
+    }
+
+    proptest::proptest! {
+        /// The window's time span, as it fills and after it wraps, is the
+        /// tick lengths after the oldest reading, as a walk around the
+        /// ring gives it.
+        #[test]
+        fn the_span_is_the_ticks_after_the_oldest(
+            ticks in proptest::collection::vec((-1_000_000i64..1_000_000, 0u32..5000), 2..100),
+        ) {
+            let mut s = MasterSpeed::new();
+            let mut kept: std::vec::Vec<(i64, u32)> = std::vec::Vec::new();
+            for &(counts, dt) in &ticks {
+                s.update(MasterPosition { counts, fraction: 0 }, dt);
+                kept.push((counts, dt));
+                let window = &kept[kept.len().saturating_sub(WINDOW)..];
+                let us: u64 = window.iter().skip(1).map(|&(_, dt)| u64::from(dt)).sum();
+                let oldest = (s.next + WINDOW - s.filled) % WINDOW;
+                if window.len() >= 2 {
+                    proptest::prop_assert_eq!(s.span_us(oldest), us);
+                    let travel = (window[window.len() - 1].0 - window[0].0) as f64;
+                    let expected = if us == 0 { 0.0 } else { travel * 1.0e6 / us as f64 };
+                    proptest::prop_assert!((s.velocity() - expected).abs() <= 1e-9 * expected.abs().max(1.0));
+                }
+            }
+        }
     }
 }

@@ -19,7 +19,10 @@ use crate::{EngineError, RampIn};
 
 use crate::StartMode;
 
+use crate::steady::Steady;
+
 use super::CamAxis;
+use super::lane_constants::LaneConstants;
 use super::phase::{Armed, Engaged, Phase};
 use super::underway::Underway;
 
@@ -33,6 +36,14 @@ pub(super) struct ReadyEngagement {
     slave: i64,
     engagement: Engagement,
     place: Place,
+}
+
+/// The cam's command at the engage master: what sizing a ramp-in under
+/// limits needs of it.
+#[derive(Clone, Copy, Debug)]
+struct CamAt {
+    slave: i64,
+    velocity_ratio: f64,
 }
 
 impl<C: CamCurve> CamAxis<C> {
@@ -93,9 +104,11 @@ impl<C: CamCurve> CamAxis<C> {
                 self.commanded,
             )?,
         };
-        let ramp_in = match self.ramp_limits {
-            Some(limits) => self.limited_ramp(limits, &mut engagement, place)?,
-            None => self.config.ramp_in,
+        // Under limits the lane's constants are taken to size the ramp,
+        // and kept for the ramp-in tick.
+        let (ramp_in, constants) = match self.ramp_limits {
+            Some(limits) => self.limited_ramp(limits, &mut engagement, at, place)?,
+            None => (self.config.ramp_in, None),
         };
         self.phase = Phase::Running(Engaged {
             engagement,
@@ -116,22 +129,29 @@ impl<C: CamCurve> CamAxis<C> {
                     .underway
                     .settle(engaged.engagement.steady(&self.geometry));
             } else {
+                if let Some(cam) = constants {
+                    engaged.lane = Some(LaneConstants { cam, target: None });
+                }
                 engaged.take_lane_constants(&self.geometry);
             }
         }
         Ok(())
     }
 
-    /// The ramp-in that keeps to `limits` for the engagement at `place`,
-    /// after moving its target by whole strokes for a restricted direction.
+    /// The ramp-in that keeps to `limits` for the engagement at master
+    /// `at` (at `place`), after moving its target by whole strokes for a
+    /// restricted direction; with the lane's constants of the engagement
+    /// as it ends up, when they could be taken.
     fn limited_ramp(
         &mut self,
         limits: RampInLimits,
         engagement: &mut Engagement,
+        at: i64,
         place: Place,
-    ) -> Result<Option<RampIn>, EngineError> {
+    ) -> Result<(Option<RampIn>, Option<Steady>), EngineError> {
         let hold = i128::from(self.commanded);
-        let mut cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        let mut constants = engagement.steady(&self.geometry);
+        let mut cam = self.cam_at(engagement, constants.as_ref(), at, place)?;
         let wrong_way = |slave: i64| {
             let gap = i128::from(slave) - hold;
             match limits.direction {
@@ -153,24 +173,51 @@ impl<C: CamCurve> CamAxis<C> {
             };
             let n = strokes * toward * libm::copysign(1.0, stroke);
             engagement.add_strokes(n as i128);
-            cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+            constants = engagement.steady(&self.geometry);
+            cam = self.cam_at(engagement, constants.as_ref(), at, place)?;
             if wrong_way(cam.slave) {
                 // Rounding left it a pulse short: one stroke more.
                 engagement.add_strokes(libm::copysign(1.0, n) as i128);
-                cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+                constants = engagement.steady(&self.geometry);
+                cam = self.cam_at(engagement, constants.as_ref(), at, place)?;
             }
         }
         let gap = exact_f64(i128::from(cam.slave) - hold);
         let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
         let configured = self.config.ramp_in.map(|r| r.distance.get());
-        Ok(match (needed, configured) {
+        let ramp = match (needed, configured) {
             (Some(a), Some(b)) => NonZeroU64::new(a.max(b)),
             (Some(d), None) | (None, Some(d)) => NonZeroU64::new(d),
             // A master at rest gives no speed to size the ramp for: one
             // master count per 1/1.875 pulse of gap.
             (None, None) => NonZeroU64::new(libm::ceil(1.875 * libm::fabs(gap)).max(1.0) as u64),
         }
-        .map(|distance| RampIn { distance }))
+        .map(|distance| RampIn { distance });
+        Ok((ramp, constants))
+    }
+
+    /// The cam at master `at` (at `place`) under `engagement`: from its
+    /// 64-bit `constants` when they hold it (the same values, see
+    /// `steady.rs`, for a fraction of the work), else on the general
+    /// route, which reports any error.
+    fn cam_at(
+        &mut self,
+        engagement: &Engagement,
+        constants: Option<&Steady>,
+        at: i64,
+        place: Place,
+    ) -> Result<CamAt, EngineError> {
+        if let Some(cam) = constants.and_then(|c| c.sample(at, &self.curve, &mut self.cursor)) {
+            return Ok(CamAt {
+                slave: cam.slave,
+                velocity_ratio: cam.velocity_ratio,
+            });
+        }
+        let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
+        Ok(CamAt {
+            slave: cam.slave,
+            velocity_ratio: cam.velocity_ratio,
+        })
     }
 }
 
@@ -178,7 +225,7 @@ impl<C: CamCurve> CamAxis<C> {
 mod tests {
     extern crate std;
 
-    use core::num::NonZeroU64;
+    use core::num::{NonZeroU32, NonZeroU64};
 
     use ecam_core::PointTable;
     use proptest::prelude::*;
@@ -186,7 +233,10 @@ mod tests {
 
     use super::super::phase::{Armed, Phase};
     use crate::coupling::Engagement;
-    use crate::{AxisConfig, CamAxis, Coupling, RampIn, SlaveAlign, StartMode, TickInput, Zoom};
+    use crate::{
+        AxisConfig, CamAxis, Coupling, RampDirection, RampIn, RampInLimits, SlaveAlign, StartMode,
+        TickInput, Zoom,
+    };
 
     fn table(slaves: &[i64], step: i64) -> PointTable {
         let pairs: Vec<(i64, i64)> = slaves
@@ -243,6 +293,7 @@ mod tests {
             after_edge in any::<bool>(),
             ramp_in in proptest::option::of(1u64..3000),
             requeue in proptest::option::of(-3i64..4),
+            limits in proptest::option::of(0u8..3),
             start in -100_000i64..100_000,
             steps in proptest::collection::vec(-500i64..3000, 1..60),
         ) {
@@ -259,6 +310,16 @@ mod tests {
                 return Ok(());
             };
             axis.set_slave_position(slave).unwrap();
+            axis.set_ramp_in_limits(limits.map(|direction| RampInLimits {
+                max_velocity: NonZeroU32::new(2_000_000).unwrap(),
+                max_acceleration: NonZeroU64::new(400_000_000).unwrap(),
+                direction: match direction {
+                    0 => RampDirection::Either,
+                    1 => RampDirection::Positive,
+                    _ => RampDirection::Negative,
+                },
+                max_jerk: NonZeroU64::new(100_000_000_000),
+            }));
             axis.arm().unwrap();
             if let Some(factor) = requeue {
                 let scaled: Vec<i64> = slaves.iter().map(|s| s * factor).collect();
@@ -287,6 +348,62 @@ mod tests {
                 let a = axis.tick(&input);
                 let b = reference.tick(&input);
                 prop_assert_eq!(a, b, "tick {} at master {}", i, master);
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+        /// What sizing a ramp-in under limits reads of the cam at the
+        /// engage master is the same from the 64-bit constants as on the
+        /// general route (`cam_at` takes the first where it can).
+        #[test]
+        fn the_cam_at_engage_is_the_same_by_either_route(
+            slaves in proptest::collection::vec(-20_000i64..20_000, 2..12),
+            step in 1i64..3000,
+            coupling in prop_oneof![
+                Just(Coupling::Periodic),
+                Just(Coupling::Repeat { min_stroke: 1 }),
+            ],
+            align in prop_oneof![
+                Just(SlaveAlign::Relative),
+                Just(SlaveAlign::Absolute),
+                Just(SlaveAlign::NearestEquivalent),
+                (-5000i64..5000).prop_map(SlaveAlign::Offset),
+            ],
+            mzoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
+            szoom in (prop_oneof![(-19i32..-1), (1i32..20)], 1u16..20),
+            at in -10_000_000i64..10_000_000,
+            slave in -1_000_000i64..1_000_000,
+            strokes in -3i128..4,
+        ) {
+            let config = AxisConfig {
+                coupling,
+                slave_align: align,
+                master_zoom: Zoom::signed(mzoom.0, mzoom.1).unwrap(),
+                slave_zoom: Zoom::signed(szoom.0, szoom.1).unwrap(),
+                ..AxisConfig::default()
+            };
+            let Ok(mut axis) = CamAxis::new(table(&slaves, step), config) else {
+                return Ok(());
+            };
+            let mut cursor = ecam_core::Cursor::new();
+            let Ok((mut engagement, place)) = Engagement::placed(
+                &axis.geometry, &axis.config, &axis.curve, &mut cursor, at, slave,
+            ) else {
+                return Ok(());
+            };
+            // As a restricted direction moves it.
+            engagement.add_strokes(strokes);
+            let constants = engagement.steady(&axis.geometry);
+            let fast = axis.cam_at(&engagement, constants.as_ref(), at, place);
+            let general = axis.cam_at(&engagement, None, at, place);
+            match (fast, general) {
+                (Ok(a), Ok(b)) => {
+                    prop_assert_eq!(a.slave, b.slave);
+                    prop_assert_eq!(a.velocity_ratio.to_bits(), b.velocity_ratio.to_bits());
+                }
+                (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
             }
         }
     }
