@@ -58,6 +58,12 @@ impl OffsetRamp {
     }
 
     /// The whole change has been ramped in at `master`.
+    /// The engagement the ramp ends on: `engagement` with the whole
+    /// change (what [`OffsetRamp::apply`] gives once it is finished).
+    pub(crate) fn ended(&self, engagement: &Engagement) -> Result<Engagement, EngineError> {
+        engagement.shifted(self.input_num, self.output)
+    }
+
     pub(crate) fn finished(&self, master: i64) -> bool {
         self.span.finished(master)
     }

@@ -111,7 +111,11 @@ impl<C: CamCurve> Coupled<'_, C> {
             let mut constants = match engaged_offsets {
                 Some(ramp) if offsets_end => {
                     base = ramp.apply(&base, master).ok()?;
-                    base.steady(geo)?
+                    // Taken when the change was asked for, if they could be.
+                    match lane.target {
+                        Some(target) => target,
+                        None => base.steady(geo)?,
+                    }
                 }
                 _ if scaling_end => lane.target?,
                 _ => lane.cam,

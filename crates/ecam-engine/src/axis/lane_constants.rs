@@ -9,6 +9,8 @@ use crate::steady::Steady;
 pub(super) struct LaneConstants {
     /// On the axis' geometry.
     pub(super) cam: Steady,
-    /// On a slave-scaling ramp's target geometry, while one runs.
+    /// Where the change under way ends: on a slave-scaling ramp's target
+    /// geometry, or of the engagement an offset ramp ends on (taken when
+    /// the change is asked for; missing, the lane takes them itself).
     pub(super) target: Option<Steady>,
 }

@@ -164,7 +164,13 @@ impl<C: CamCurve> CamAxis<C> {
                 let from = i64::try_from(engaged.followed >> 32).unwrap_or(i64::MAX);
                 let ramp = OffsetRamp::new(change, from, mden);
                 engaged.underway.begin(Change::Offsets(ramp, None))?;
+                // The lane's constants, and those of the engagement the
+                // ramp ends on, taken here rather than in the cycle.
                 engaged.take_lane_constants(&self.geometry);
+                let end = ramp.ended(&engaged.engagement);
+                if let Some(lane) = engaged.lane.as_mut() {
+                    lane.target = end.ok().and_then(|e| e.steady(&self.geometry));
+                }
                 Ok(())
             }
             _ => Err(EngineError::NotRunning),
