@@ -15,11 +15,8 @@ use crate::coupling::{Engagement, Place};
 use crate::ramp::Ramp;
 use crate::ramp_in::{RampDirection, RampInLimits};
 use crate::rounding::exact_f64;
-use crate::{EngineError, RampIn};
-
-use crate::StartMode;
-
 use crate::steady::Steady;
+use crate::{EngineError, RampIn, StartMode};
 
 use super::CamAxis;
 use super::lane_constants::LaneConstants;
