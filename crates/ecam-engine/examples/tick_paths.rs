@@ -1,7 +1,8 @@
 //! The ecam half of `scripts/bench-side-by-side`'s `tick-worst-instr`:
 //! drives one axis through the paths of `tick` that cost most (a master
 //! jump needing a table search, a seam, a table switch with a blend, a
-//! ramp-in, stops, the first tick after engaging, faults) and through a
+//! ramp-in, stops, the first tick after engaging, faults, a master between
+//! whole counts) and through a
 //! stretch of steady ticks, calling every tick it measures through one
 //! function, `instr_probe`, that does nothing else. Run under
 //! `valgrind --tool=callgrind --collect-atstart=no
@@ -162,6 +163,22 @@ fn steady() -> Result<(), String> {
         d.probe("steady");
     }
     d.end("steady");
+    Ok(())
+}
+
+fn fractions() -> Result<(), String> {
+    // A settled cam followed between whole counts (an exact time base or
+    // a coarse master's estimate): quarter, half and three-quarter counts.
+    let mut d = engaged(common::config(0), 1000)?;
+    for i in 0..200u32 {
+        d.master += d.speed;
+        let input = TickInput {
+            master_fraction: 0x4000_0000u32.wrapping_mul(i % 3 + 1),
+            ..d.input()
+        };
+        d.probe_at("between whole counts", &input);
+    }
+    d.end("between whole counts");
     Ok(())
 }
 
@@ -391,8 +408,9 @@ fn faults() -> Result<(), String> {
 type Scenario = fn() -> Result<(), String>;
 
 /// The scenarios, by name.
-const SCENARIOS: [(&str, Scenario); 9] = [
+const SCENARIOS: [(&str, Scenario); 10] = [
     ("steady", steady),
+    ("fractions", fractions),
     ("seam", seam),
     ("jumps", jumps),
     ("first_ticks", first_ticks),

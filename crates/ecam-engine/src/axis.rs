@@ -29,6 +29,7 @@ use crate::{
     StopKind, SyncWindow, TickInput, TickOutput,
 };
 
+mod between_counts;
 mod cam_out;
 mod engage;
 mod landing;
@@ -442,9 +443,9 @@ impl<C: CamCurve> CamAxis<C> {
             &mut events,
             &mut fault,
             &mut sample,
-            master,
-            estimate.fraction,
+            estimate,
             input.dt_us,
+            steady_allowed,
         );
         let pulses = self
             .pulse
@@ -556,10 +557,29 @@ impl<C: CamCurve> CamAxis<C> {
         events: &mut Events,
         fault: &mut Option<EngineError>,
         sample: &mut Option<FollowSample>,
-        master: i64,
-        fraction: u32,
+        at: MasterPosition,
         dt_us: u32,
+        steady_allowed: bool,
     ) {
+        let (master, fraction) = (at.counts, at.fraction);
+        // A settled cam between whole counts: the steady tick's two
+        // samples (`between_counts.rs`), unless `steady_allowed` is off.
+        if steady_allowed
+            && fraction != 0
+            && let Phase::Running(engaged) = &mut self.phase
+            && let Some(followed) = engaged.between_counts_tick(
+                master,
+                fraction,
+                &self.curve,
+                &mut self.cursor,
+                self.geometry.jumps_at_seam,
+                events,
+            )
+        {
+            self.commanded = followed.slave;
+            *sample = Some(followed);
+            return;
+        }
         let Self {
             phase,
             curve,

@@ -1,0 +1,68 @@
+//! The steady tick between whole master counts: a settled cam whose
+//! master reading carries a fraction (an exact time base, or a coarse
+//! master's estimate). The general tick's rule is kept exactly: the
+//! command at the whole count, moved along the straight line to the next
+//! count's command by the fraction. Here both commands come from the
+//! steady tick's 64-bit constants, so such a tick costs two steady
+//! samples instead of the general tick's two 128-bit ones and the
+//! constants taken again (docs/engine.md, "Benchmarks"). Across a seam the
+//! general tick aims at the seam itself, which is a place, not a master
+//! count: that tick is left to it. The steady-vs-general property test
+//! compares the two.
+
+use ecam_core::{CamCurve, Cursor};
+
+use crate::Events;
+use crate::coupling::Place;
+
+use super::phase::Engaged;
+use super::{FollowSample, clamp_i64};
+
+impl<C: CamCurve> Engaged<C> {
+    /// One tick of a settled cam at whole count `master` plus `fraction`
+    /// (of 2³²), with the steady tick's constants taken; `None` (nothing
+    /// changed) leaves the tick to the general path: no constants, the
+    /// next count across a seam, or a value that leaves 64 bits.
+    #[inline(never)]
+    pub(super) fn between_counts_tick(
+        &mut self,
+        master: i64,
+        fraction: u32,
+        curve: &C,
+        cursor: &mut Cursor,
+        jumps_at_seam: bool,
+        events: &mut Events,
+    ) -> Option<FollowSample> {
+        let constants = self.underway.steady()?;
+        let cam = constants.sample(master, curve, cursor)?;
+        let next = constants.sample(master.saturating_add(1), curve, cursor)?;
+        if next.k != cam.k {
+            return None;
+        }
+        let gap = i128::from(next.slave) - i128::from(cam.slave);
+        let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
+        let slave = i64::try_from(i128::from(cam.slave) + step).ok()?;
+        let (k_engage, input_offset) = (constants.k_engage, constants.input_offset);
+        let k = i128::from(cam.k);
+        if self.place.k != k {
+            events.cycle_completed = true;
+            events.seam_jump |= jumps_at_seam;
+        }
+        self.place = Place {
+            k,
+            r_num: i128::from(cam.r_num),
+        };
+        self.followed = (i128::from(master) << 32) | i128::from(fraction);
+        Some(FollowSample {
+            master_in_cycle: cam.master_in_cycle,
+            master_in_cycle_raw: cam.master_in_cycle_raw,
+            cycle: clamp_i64(k - i128::from(k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
+            velocity_ratio: cam.velocity_ratio,
+            following: true,
+            input_offset,
+            slave,
+        })
+    }
+}
