@@ -22,6 +22,7 @@ use crate::pulse::PulseOutput;
 use crate::ramp_in::RampInLimits;
 use crate::speed::MasterSpeed;
 use crate::start::{StartStep, StartWatch};
+use crate::steady::{Steady, SteadySample};
 use crate::stop::{CycleEnd, StopAt};
 use crate::sync::active_windows;
 use crate::{
@@ -393,27 +394,22 @@ impl<C: CamCurve> CamAxis<C> {
             && let Some(constants) = engaged.underway.steady()
             && let Some(cam) = constants.sample(master, &self.curve, &mut self.cursor)
         {
-            engaged.followed = i128::from(master) << 32;
-            let k = i128::from(cam.k);
-            if engaged.place.k != k {
-                events.cycle_completed = true;
-                events.seam_jump |= self.geometry.jumps_at_seam;
-            }
-            engaged.place = Place {
-                k,
-                r_num: i128::from(cam.r_num),
-            };
-            settled = Some(FollowSample {
-                master_in_cycle: cam.master_in_cycle,
-                master_in_cycle_raw: cam.master_in_cycle_raw,
-                cycle: clamp_i64(k - i128::from(constants.k_engage)),
-                unzoomed: cam.unzoomed,
-                in_cycle_zoomed: cam.in_cycle_zoomed,
-                velocity_ratio: cam.velocity_ratio,
-                following: true,
-                input_offset: constants.input_offset,
-                slave: cam.slave,
-            });
+            let (place, followed) = (&mut engaged.place, &mut engaged.followed);
+            step_to(
+                place,
+                followed,
+                &cam,
+                i128::from(master) << 32,
+                self.geometry.jumps_at_seam,
+                &mut events,
+            );
+            settled = Some(FollowSample::of_steady(
+                &cam,
+                constants,
+                cam.slave,
+                cam.velocity_ratio,
+                true,
+            ));
         }
         let hz = effective_frequency(self.config.max_frequency_hz);
         // A running cam with a ramp, blend or change on top: the general
@@ -504,10 +500,10 @@ impl<C: CamCurve> CamAxis<C> {
         }
     }
 
-    /// The fast lane for an engaged phase (`lane.rs`); `None` for any
-    /// other phase or when the lane leaves the tick to the general path.
+    /// The phase and the rest of the axis borrowed apart: the phase is
+    /// large, so it is followed in place rather than moved out and back.
     #[inline(always)]
-    fn lane(&mut self, master: i64) -> Option<lane::Followed> {
+    fn split(&mut self) -> (&mut Phase<C>, Coupled<'_, C>) {
         let Self {
             phase,
             curve,
@@ -519,15 +515,25 @@ impl<C: CamCurve> CamAxis<C> {
             missed_policy,
             ..
         } = self;
-        let mut coupled = Coupled {
-            curve,
-            geometry,
-            cursor,
-            config,
-            retired,
-            commanded,
-            missed_policy: *missed_policy,
-        };
+        (
+            phase,
+            Coupled {
+                curve,
+                geometry,
+                cursor,
+                config,
+                retired,
+                commanded,
+                missed_policy: *missed_policy,
+            },
+        )
+    }
+
+    /// The fast lane for an engaged phase (`lane.rs`); `None` for any
+    /// other phase or when the lane leaves the tick to the general path.
+    #[inline(always)]
+    fn lane(&mut self, master: i64) -> Option<lane::Followed> {
+        let (phase, mut coupled) = self.split();
         match phase {
             Phase::Running(engaged) => coupled.follow_lane(engaged, None, master),
             Phase::Stopping(engaged, end) => {
@@ -580,26 +586,7 @@ impl<C: CamCurve> CamAxis<C> {
             *sample = Some(followed);
             return;
         }
-        let Self {
-            phase,
-            curve,
-            geometry,
-            cursor,
-            config,
-            retired,
-            commanded,
-            missed_policy,
-            ..
-        } = self;
-        let mut coupled = Coupled {
-            curve,
-            geometry,
-            cursor,
-            config,
-            retired,
-            commanded,
-            missed_policy: *missed_policy,
-        };
+        let (phase, mut coupled) = self.split();
         let followed = match phase {
             Phase::Running(engaged) => coupled.follow(engaged, None, master, fraction),
             Phase::Stopping(engaged, end) => {
@@ -965,6 +952,59 @@ struct FollowSample {
     input_offset: i64,
     /// The commanded slave.
     slave: i64,
+}
+
+impl FollowSample {
+    /// What the axis followed when the steady tick's `constants` gave
+    /// `cam`, with the command (`slave`, `velocity_ratio`) and whether it
+    /// is the cam itself (`following`) as the tick made them.
+    #[inline(always)]
+    fn of_steady(
+        cam: &SteadySample,
+        constants: &Steady,
+        slave: i64,
+        velocity_ratio: f64,
+        following: bool,
+    ) -> Self {
+        Self {
+            master_in_cycle: cam.master_in_cycle,
+            master_in_cycle_raw: cam.master_in_cycle_raw,
+            cycle: clamp_i64(i128::from(cam.k) - i128::from(constants.k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
+            velocity_ratio,
+            following,
+            input_offset: constants.input_offset,
+            slave,
+        }
+    }
+}
+
+/// Moves what an engaged axis followed (its `place` and `followed`
+/// master) to the steady sample `cam` at master `now` (counts × 2³² plus
+/// the fraction): a cycle completed (and a seam jump where the table
+/// jumps there) when `cam` lies in another cycle than the last tick's
+/// place. The two fields alone, so that the steady constants the sample
+/// came from can stay borrowed.
+#[inline(always)]
+fn step_to(
+    place: &mut Place,
+    followed: &mut i128,
+    cam: &SteadySample,
+    now: i128,
+    jumps_at_seam: bool,
+    events: &mut Events,
+) {
+    let k = i128::from(cam.k);
+    if place.k != k {
+        events.cycle_completed = true;
+        events.seam_jump |= jumps_at_seam;
+    }
+    *place = Place {
+        k,
+        r_num: i128::from(cam.r_num),
+    };
+    *followed = now;
 }
 
 /// `v` clamped into `i64`.

@@ -790,22 +790,13 @@ impl Engagement {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rounding::xorshift;
     use crate::{AxisConfig, Coupling, Zoom};
     use core::num::NonZeroU64;
     use ecam_core::PointTable;
 
     fn doc001() -> PointTable {
         PointTable::from_pairs(&[(0, 500), (10000, 1500), (20000, 1000), (30000, 2000)]).unwrap()
-    }
-
-    /// Pseudo-random words (xorshift64) from a non-zero seed.
-    fn xorshift(seed: u64) -> impl Iterator<Item = u64> {
-        core::iter::successors(Some(seed), |&x| {
-            let x = x ^ (x << 13);
-            let x = x ^ (x >> 7);
-            Some(x ^ (x << 17))
-        })
-        .skip(1)
     }
 
     /// The 64-bit sample is the 128-bit one wherever it gives a value, and

@@ -119,19 +119,21 @@ pub(crate) fn floor_div_rem(a: i64, b: i64) -> (i64, i64) {
     if r < 0 { (q - 1, r + b) } else { (q, r) }
 }
 
+/// Pseudo-random words (xorshift64) from a non-zero seed, for the tests
+/// that compare two routes over many values.
+#[cfg(test)]
+pub(crate) fn xorshift(seed: u64) -> impl Iterator<Item = u64> {
+    core::iter::successors(Some(seed), |&x| {
+        let x = x ^ (x << 13);
+        let x = x ^ (x >> 7);
+        Some(x ^ (x << 17))
+    })
+    .skip(1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Pseudo-random words (xorshift64) from a non-zero seed.
-    fn xorshift(seed: u64) -> impl Iterator<Item = u64> {
-        core::iter::successors(Some(seed), |&x| {
-            let x = x ^ (x << 13);
-            let x = x ^ (x >> 7);
-            Some(x ^ (x << 17))
-        })
-        .skip(1)
-    }
 
     #[test]
     fn floor_div_rem_is_div_euclid_and_rem_euclid() {

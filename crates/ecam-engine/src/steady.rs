@@ -134,37 +134,12 @@ impl Steady {
         let u = master
             .checked_mul(self.mnum)?
             .checked_add(self.offset_num)?;
+        // `div_euclid` here rather than `place`'s `floor_div_rem`: the
+        // same values, and the compiler makes the steady tick shorter so.
         let k = u.div_euclid(self.period_num);
         let r_num = u.rem_euclid(self.period_num);
-        let x = self.origin_f + r_num as f64 / self.mden_f;
-        let kin = curve.eval(x, cursor);
-        if !(kin.s.is_finite() && kin.v.is_finite()) {
-            return None;
-        }
-        let strokes = k.checked_add(self.shift)?;
-        let accumulated = strokes.checked_mul(self.stroke_snum)?;
-        let whole = accumulated.div_euclid(self.sden);
-        let rem = accumulated.rem_euclid(self.sden);
-        let fraction = round_to_i64((rem as f64 + kin.s * self.snum_f) / self.sden_f)?;
-        let slave = whole
-            .checked_add(fraction)?
-            .checked_add(self.output_offset)?;
-        let unzoomed = strokes
-            .checked_mul(self.stroke)?
-            .checked_add(round_to_i64(kin.s)?)?;
-        let in_cycle = kin.s * self.snum_f / self.sden_f;
-        Some(SteadySample {
-            k,
-            r_num,
-            slave,
-            unzoomed,
-            // Saturating, as the general path reports it.
-            in_cycle_zoomed: round_to_i64(in_cycle)
-                .unwrap_or_else(|| round_half_away(in_cycle) as i64),
-            velocity_ratio: kin.v * self.zoom_factor,
-            master_in_cycle: self.origin.checked_add(r_num / self.mden)?,
-            master_in_cycle_raw: r_num / self.mnum,
-        })
+        let kin = self.table(r_num, curve, cursor)?;
+        self.zoom(k, r_num, kin)
     }
 
     /// The cycle `k` and the offset `r_num` into it of `master` (as

@@ -13,10 +13,9 @@
 use ecam_core::{CamCurve, Cursor};
 
 use crate::Events;
-use crate::coupling::Place;
 
 use super::phase::Engaged;
-use super::{FollowSample, clamp_i64};
+use super::{FollowSample, step_to};
 
 impl<C: CamCurve> Engaged<C> {
     /// One tick of a settled cam at whole count `master` plus `fraction`
@@ -42,27 +41,16 @@ impl<C: CamCurve> Engaged<C> {
         let gap = i128::from(next.slave) - i128::from(cam.slave);
         let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
         let slave = i64::try_from(i128::from(cam.slave) + step).ok()?;
-        let (k_engage, input_offset) = (constants.k_engage, constants.input_offset);
-        let k = i128::from(cam.k);
-        if self.place.k != k {
-            events.cycle_completed = true;
-            events.seam_jump |= jumps_at_seam;
-        }
-        self.place = Place {
-            k,
-            r_num: i128::from(cam.r_num),
-        };
-        self.followed = (i128::from(master) << 32) | i128::from(fraction);
-        Some(FollowSample {
-            master_in_cycle: cam.master_in_cycle,
-            master_in_cycle_raw: cam.master_in_cycle_raw,
-            cycle: clamp_i64(k - i128::from(k_engage)),
-            unzoomed: cam.unzoomed,
-            in_cycle_zoomed: cam.in_cycle_zoomed,
-            velocity_ratio: cam.velocity_ratio,
-            following: true,
-            input_offset,
-            slave,
-        })
+        let sample = FollowSample::of_steady(&cam, constants, slave, cam.velocity_ratio, true);
+        let followed = (i128::from(master) << 32) | i128::from(fraction);
+        step_to(
+            &mut self.place,
+            &mut self.followed,
+            &cam,
+            followed,
+            jumps_at_seam,
+            events,
+        );
+        Some(sample)
     }
 }

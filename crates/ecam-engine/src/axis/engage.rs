@@ -229,20 +229,12 @@ mod tests {
     use std::vec::Vec;
 
     use super::super::phase::{Armed, Phase};
+    use super::super::steady_tests::table;
     use crate::coupling::Engagement;
     use crate::{
         AxisConfig, CamAxis, Coupling, RampDirection, RampIn, RampInLimits, SlaveAlign, StartMode,
         TickInput, Zoom,
     };
-
-    fn table(slaves: &[i64], step: i64) -> PointTable {
-        let pairs: Vec<(i64, i64)> = slaves
-            .iter()
-            .enumerate()
-            .map(|(i, &s)| (i as i64 * step, s))
-            .collect();
-        PointTable::from_pairs(&pairs).unwrap()
-    }
 
     /// The engagement an armed axis holds ready.
     fn ready(axis: &CamAxis<PointTable>) -> Option<super::ReadyEngagement> {

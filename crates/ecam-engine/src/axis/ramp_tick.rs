@@ -9,12 +9,11 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::coupling::Place;
 use crate::{Events, MasterPosition};
 
 use super::phase::Engaged;
 use super::underway::Underway;
-use super::{FollowSample, clamp_i64};
+use super::{FollowSample, step_to};
 
 impl<C: CamCurve> Engaged<C> {
     /// One tick at whole master count `master` of a cam whose ramp-in is
@@ -44,31 +43,20 @@ impl<C: CamCurve> Engaged<C> {
             counts: master,
             fraction: 0,
         });
-        let k = i128::from(cam.k);
-        if self.place.k != k {
-            events.cycle_completed = true;
-            events.seam_jump |= jumps_at_seam;
-        }
-        self.place = Place {
-            k,
-            r_num: i128::from(cam.r_num),
-        };
-        self.followed = i128::from(master) << 32;
+        let sample = FollowSample::of_steady(&cam, &constants, slave, velocity_ratio, !ramping);
+        step_to(
+            &mut self.place,
+            &mut self.followed,
+            &cam,
+            i128::from(master) << 32,
+            jumps_at_seam,
+            events,
+        );
         if ended {
             // Settled from here: the steady tick's constants are the lane's.
             self.underway.end_ramp_in();
             self.underway.settle(Some(constants));
         }
-        Some(FollowSample {
-            master_in_cycle: cam.master_in_cycle,
-            master_in_cycle_raw: cam.master_in_cycle_raw,
-            cycle: clamp_i64(k - i128::from(constants.k_engage)),
-            unzoomed: cam.unzoomed,
-            in_cycle_zoomed: cam.in_cycle_zoomed,
-            velocity_ratio,
-            following: !ramping,
-            input_offset: constants.input_offset,
-            slave,
-        })
+        Some(sample)
     }
 }

@@ -16,7 +16,8 @@ use crate::{
     SyncWindow, TickInput, Zoom,
 };
 
-fn table(slaves: &[i64], step: i64) -> PointTable {
+/// A table of `slaves` at masters `step` apart (shared with the engage tests).
+pub(super) fn table(slaves: &[i64], step: i64) -> PointTable {
     let pairs: Vec<(i64, i64)> = slaves
         .iter()
         .enumerate()
