@@ -12,7 +12,9 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::rounding::{floor_div_rem, round_half_away, round_to_i64};
+use crate::rounding::{
+    floor_div_rem, round_half_away, round_half_up, round_half_up_to_i64, round_to_i64,
+};
 use crate::start_rule;
 use crate::steady::Steady;
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
@@ -318,7 +320,9 @@ impl Geometry {
         self.floats.factor
     }
 
-    /// Exact zoomed value of `table + strokes × stroke`, rounded once.
+    /// Exact zoomed value of `table + strokes × stroke`, rounded once,
+    /// halves up (the same pulse on either side of a seam, see
+    /// [`crate::rounding::round_half_up_to_i64`]).
     pub(crate) fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
         if let Some(value) = i64::try_from(strokes)
             .ok()
@@ -330,7 +334,7 @@ impl Geometry {
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
         let (whole, rem) = div_floor(accumulated, self.sden);
-        let fraction = round_half_away((to_f64(rem) + table * self.floats.snum) / self.floats.sden);
+        let fraction = round_half_up((to_f64(rem) + table * self.floats.snum) / self.floats.sden);
         if !fraction.is_finite() || fraction.abs() > 1e36 {
             return Err(EngineError::SlaveOverflow);
         }
@@ -348,7 +352,8 @@ impl Geometry {
         let n = self.narrow.as_ref()?;
         let accumulated = strokes.checked_mul(n.stroke_snum)?;
         let (whole, rem) = floor_div_rem(accumulated, n.sden);
-        let fraction = round_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
+        let fraction =
+            round_half_up_to_i64((rem as f64 + table * self.floats.snum) / self.floats.sden)?;
         whole.checked_add(fraction)
     }
 }

@@ -43,6 +43,45 @@ pub(crate) fn round_to_i64(v: f64) -> Option<i64> {
     }
 }
 
+/// `v` rounded to the nearest whole number, halves up: `floor(v + ½)`
+/// taken exactly. The cam law rounds with it (docs/engine.md, "The
+/// coupling law") because it commutes with whole numbers: `n +
+/// round_half_up(y) = round_half_up(n + y)`. The law splits a value into
+/// a whole part and a fraction, and that split differs on the two sides of
+/// a seam (cycle `k`'s end, cycle `k + 1`'s start) for the same value; a
+/// rounding that depends on the split (halves away from zero) could put
+/// the two sides a pulse apart, a reversal the master never made. `None`
+/// when the result is not finite or leaves ±9.2·10^18.
+#[inline(always)]
+pub(crate) fn round_half_up_to_i64(v: f64) -> Option<i64> {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64;
+        // Exact, as in `round_half_away`: a negative half stays at the
+        // truncation (up), only a fraction below it goes down.
+        let fraction = v - whole as f64;
+        Some(whole + i64::from(fraction >= 0.5) - i64::from(fraction < -0.5))
+    } else {
+        // Beyond 2^52 every float is whole: it is its own rounding.
+        let r = libm::round(v);
+        (r > -9.2e18 && r < 9.2e18).then_some(r as i64)
+    }
+}
+
+/// [`round_half_up_to_i64`] as a float, for the 128-bit route (any size;
+/// NaN and infinities pass through for the caller to report).
+#[inline]
+pub(crate) fn round_half_up(v: f64) -> f64 {
+    if v > -4.5e15 && v < 4.5e15 {
+        let whole = v as i64 as f64;
+        let fraction = v - whole;
+        let up = if fraction >= 0.5 { 1.0 } else { 0.0 };
+        let down = if fraction < -0.5 { 1.0 } else { 0.0 };
+        whole + up - down
+    } else {
+        libm::round(v)
+    }
+}
+
 /// `v as f64`, bit for bit, without the 128-bit library routine where
 /// `v` fits 64 bits (nearly always).
 #[inline]
@@ -265,5 +304,81 @@ mod tests {
                 assert_eq!(round_to_i64(w), reference(w), "{w}");
             }
         }
+    }
+
+    /// `floor(v + ½)` taken exactly: the floor and the exact remainder
+    /// above it (no float addition that could round a value just under a
+    /// half up to it).
+    fn half_up_reference(v: f64) -> f64 {
+        if !v.is_finite() || v.abs() >= 4.5e15 {
+            return libm::round(v);
+        }
+        let floor = libm::floor(v);
+        if v - floor >= 0.5 { floor + 1.0 } else { floor }
+    }
+
+    #[test]
+    fn round_half_up_is_floor_of_v_plus_a_half() {
+        let same = |v: f64| {
+            let (a, b) = (round_half_up(v), half_up_reference(v));
+            let int = (b > -9.2e18 && b < 9.2e18).then_some(b as i64);
+            (a == b || (a.is_nan() && b.is_nan())) && round_half_up_to_i64(v) == int
+        };
+        for v in [
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            -2.5,
+            -0.5000000000000001,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4.5e15 - 0.5,
+            -4.5e15 + 0.5,
+            9.3e18,
+            1e300,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert!(same(v), "{v}");
+        }
+        assert_eq!(round_half_up_to_i64(-0.5), Some(0));
+        assert_eq!(round_half_up_to_i64(-1.5), Some(-1));
+        assert_eq!(round_half_up_to_i64(-1.5000001), Some(-2));
+        for x in xorshift(0x6A09_E667_F3BC_C909).take(100_000) {
+            let v = f64::from_bits(x);
+            let scaled = (x >> 11) as f64 / (1u64 << 53) as f64 * 1e6 - 5e5;
+            let halves = ((x >> 20) % 20_001) as f64 * 0.5 - 5000.0;
+            assert!(
+                same(v) && same(scaled) && same(halves),
+                "{v} {scaled} {halves}"
+            );
+        }
+    }
+
+    /// The property the cam law needs: a whole number added before or
+    /// after the rounding gives the same result (halves away from zero
+    /// does not: -0.5 + 1 against 0.5).
+    #[test]
+    fn round_half_up_commutes_with_whole_numbers() {
+        let mut words = xorshift(0xBB67_AE85_84CA_A73B);
+        for _ in 0..100_000 {
+            let (a, b) = (words.next().unwrap_or(1), words.next().unwrap_or(1));
+            let n = (a >> 44) as i64 - (1 << 19);
+            // Quarters, so exact halves come up often.
+            let y = ((b >> 40) as i64 - (1 << 23)) as f64 / 4.0;
+            assert_eq!(
+                round_half_up_to_i64(n as f64 + y),
+                round_half_up_to_i64(y).map(|r| r + n),
+                "{n} {y}"
+            );
+        }
+        assert_ne!(
+            round_to_i64(-0.5).map(|r| r + 1),
+            round_to_i64(0.5),
+            "halves away from zero depend on the split"
+        );
     }
 }

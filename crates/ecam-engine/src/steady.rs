@@ -14,7 +14,7 @@
 
 use ecam_core::{CamCurve, Cursor};
 
-use crate::rounding::{floor_div_rem, round_half_away, round_to_i64};
+use crate::rounding::{floor_div_rem, round_half_away, round_half_up_to_i64, round_to_i64};
 
 /// The constants of one settled engagement (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -177,7 +177,7 @@ impl Steady {
         let strokes = k.checked_add(self.shift)?;
         let accumulated = strokes.checked_mul(self.stroke_snum)?;
         let (whole, rem) = floor_div_rem(accumulated, self.sden);
-        let fraction = round_to_i64((rem as f64 + kin.s * self.snum_f) / self.sden_f)?;
+        let fraction = round_half_up_to_i64((rem as f64 + kin.s * self.snum_f) / self.sden_f)?;
         let slave = whole
             .checked_add(fraction)?
             .checked_add(self.output_offset)?;

@@ -443,3 +443,55 @@ fn a_master_step_above_the_guard_faults_instead_of_reversing() {
     assert_eq!(out.slave, 8_000, "held where it was");
     assert!(!out.state.is_active());
 }
+
+/// A seam whose command is an exact half pulse: the cycle's end (the
+/// table's last value plus `k` strokes) and the next cycle's start (its
+/// first value plus `k + 1`) are the same value split differently into
+/// whole and fraction. Between whole counts the tick aims at the seam from
+/// the old cycle; the next count takes it from the new one. Rounded halves
+/// away from zero, the two sides came out a pulse apart, and a falling cam
+/// stepped back up by one (found by `starts` at 30 000 cases: a motion
+/// processor's cam on a coarse master, slave zoom −2/4).
+#[test]
+fn a_seam_on_an_exact_half_pulse_never_steps_back() {
+    use ecam_core::CamCurve;
+    for (table, num, den) in [
+        (vec![(0, 0), (294, 47)], -2, 4),
+        (vec![(0, 0), (294, 47)], 2, 4),
+        (vec![(0, 0), (100, 5), (300, 31)], -1, 2),
+        (vec![(0, 0), (120, -45)], 3, 6),
+        (vec![(0, 0), (120, -45)], -3, 6),
+    ] {
+        let table = PointTable::from_pairs(&table).unwrap();
+        let zoom = Zoom::signed(num, den).unwrap();
+        let direction = (table.stroke() * i64::from(num)).signum();
+        let config = AxisConfig {
+            coupling: Coupling::Repeat { min_stroke: 1 },
+            slave_zoom: zoom,
+            ..AxisConfig::default()
+        };
+        let mut axis = CamAxis::new(table.clone(), config).unwrap();
+        axis.set_max_frequency(1_000_000_000);
+        axis.arm().unwrap();
+        let mut last: Option<TickOutput> = None;
+        // Quarter counts through 20 seams, each one landing on a whole count.
+        for quarter in 0..(table.master_span() * 20 * 4) {
+            let out = axis.tick(&TickInput {
+                master_fraction: ((quarter % 4) as u32) << 30,
+                ..TickInput::at(quarter / 4, TICK_US)
+            });
+            if let Some(last) = last {
+                let step = out.slave - last.slave;
+                assert!(
+                    step == 0 || step.signum() == direction,
+                    "zoom {num}/{den}, master {}+{}/4: {} to {}",
+                    quarter / 4,
+                    quarter % 4,
+                    last.slave,
+                    out.slave
+                );
+            }
+            last = Some(out);
+        }
+    }
+}
