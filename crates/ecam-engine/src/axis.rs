@@ -857,16 +857,29 @@ impl<C: CamCurve> Coupled<'_, C> {
             // cam past the seam is not where the slave goes. Aiming beyond
             // it would command a slave the switch then takes back, a
             // reversal the master never made.
-            let aim = if ahead.place.k != place.k {
-                if ahead.place.k > place.k {
-                    self.geometry.cycle_end(place.k)
-                } else {
-                    Geometry::cycle_start(place.k)
+            // A table waiting there with a blend: aim where the blend
+            // will be (it starts before the seam, see `seam_blend_aim`).
+            let blend_aim = match stop_at {
+                None if ahead.place.k > place.k => {
+                    self.seam_blend_aim(engaged, place.k, next_master)
                 }
-            } else {
-                ahead.place
+                _ => None,
             };
-            let (_, next_slave, _, _) = self.command_at(engaged, aim, next_master)?;
+            let next_slave = match blend_aim {
+                Some(value) => value,
+                None => {
+                    let aim = if ahead.place.k != place.k {
+                        if ahead.place.k > place.k {
+                            self.geometry.cycle_end(place.k)
+                        } else {
+                            Geometry::cycle_start(place.k)
+                        }
+                    } else {
+                        ahead.place
+                    };
+                    self.command_at(engaged, aim, next_master)?.1
+                }
+            };
             let gap = i128::from(next_slave) - i128::from(slave);
             let step = (gap * i128::from(fraction) + (1 << 31)) >> 32;
             slave =

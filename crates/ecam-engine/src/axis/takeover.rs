@@ -119,6 +119,48 @@ impl<C: CamCurve> Coupled<'_, C> {
         Ok(true)
     }
 
+    /// What the tick at whole count `next` commands when it takes the
+    /// table queued for the seam that ends cycle `from_k` with a blend:
+    /// the blend's command there (a ramp-in on top). `None` when no table
+    /// waits with a blend, or when the landing fails (the tick that lands
+    /// reports it).
+    ///
+    /// The ticks between the last whole count before such a seam and the
+    /// next one move towards this value: the blend starts at that last
+    /// count, on the old cam there, so it does not pass through the seam's
+    /// own value. Aimed at the seam instead, the slave could go past where
+    /// the blend then starts from and step back (a coarse master's estimate
+    /// crossing the seam between whole counts).
+    pub(super) fn seam_blend_aim(
+        &self,
+        engaged: &Engaged<C>,
+        from_k: i128,
+        next: i64,
+    ) -> Option<i64> {
+        let Some(Change::Waiting(Next::Seam(queued))) = engaged.underway.change() else {
+            return None;
+        };
+        queued.blend?;
+        let landing = self
+            .old(&engaged.engagement)
+            .switch_at_seam(
+                *self.cursor,
+                &queued.curve,
+                queued.then,
+                queued.blend,
+                from_k,
+                true,
+            )
+            .ok()?;
+        let blended = landing.blend.ok()??.command(next).ok()?.slave;
+        Some(
+            engaged
+                .ramp_in()
+                .and_then(|ramp| ramp.blend(next, blended))
+                .unwrap_or(blended),
+        )
+    }
+
     /// Puts a landing in place: the new engagement, geometry and table
     /// (the old one retired) or scaling, then its blend (whose error, if
     /// any, is reported with the rest in place).

@@ -183,6 +183,56 @@ fn a_switch_during_an_end_of_cycle_stop_is_refused_and_idle_replaces() {
     assert!(axis.take_retired_curve().is_some());
 }
 
+/// A table queued for the seam with a blend, the seam between two whole
+/// master counts and the master followed with its fraction (an exact time
+/// base; a coarse master's estimate is the same): the blend starts at the
+/// last whole count before the seam, on the old cam there, so the ticks
+/// between that count and the next move towards the blend's command, not
+/// the seam's. Here the seam's value is a half pulse (rounded up) and the
+/// last count's just below it (rounded down): aimed at the seam, the slave
+/// went a pulse up and stepped back to where the blend began (found by
+/// `switches_keep_the_slave_continuous_and_safe` at 3000 cases).
+#[test]
+fn a_blended_seam_switch_between_whole_counts_never_steps_back() {
+    // Master zoom 4: the seam of cycle 0 at master 433.75; slave zoom
+    // 1/2: there the cam is 932.5, at master 433 it is 932.47.
+    let old = PointTable::from_pairs(&[(0, 0), (1387, 1858), (1735, 1865)]).unwrap();
+    for (eighths, distance) in [(8u32, 1u64), (8, 3), (8, 50), (4, 3), (2, 3)] {
+        let config = AxisConfig {
+            master_zoom: Zoom::new(4, 1).unwrap(),
+            slave_zoom: Zoom::new(1, 2).unwrap(),
+            max_frequency_hz: 1_000_000_000,
+            ..repeat()
+        };
+        let mut axis = running(old.clone(), config);
+        axis.switch_curve(
+            line(1),
+            SwitchAt::NextSeam {
+                blend: blend(distance),
+            },
+        )
+        .unwrap();
+        let mut last = axis.commanded();
+        let mut switched = false;
+        for step in 0..(600 * eighths) {
+            let out = axis.tick(&TickInput {
+                master_fraction: ((u64::from(step % eighths) << 32) / u64::from(eighths)) as u32,
+                ..TickInput::at(i64::from(step / eighths), TICK_US)
+            });
+            assert!(
+                out.slave >= last,
+                "blend {distance}, master {}+{}/{eighths}: {last} to {}",
+                step / eighths,
+                step % eighths,
+                out.slave
+            );
+            switched |= out.events.table_switched;
+            last = out.slave;
+        }
+        assert!(switched);
+    }
+}
+
 /// A monotonic table and its steepest slope (slave per master count).
 fn any_monotonic_points() -> impl Strategy<Value = (PointTable, f64)> {
     prop::collection::vec((1i64..400, 0i64..900), 1..10).prop_map(|steps| {
