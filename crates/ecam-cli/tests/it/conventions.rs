@@ -176,9 +176,17 @@ fn each_generator_says_what_it_is() {
 #[test]
 fn a_long_run_shows_a_progress_bar_on_a_terminal_only() {
     // `script` gives the run a terminal; a pipe (the second run) never
-    // sees the bar. The run takes well over a second of real time.
+    // sees the bar. The run takes well over a second of real time: 30 s
+    // simulated in a debug build, 1000 s in an optimised one (`cargo test
+    // --release`), which simulates them some 15 times faster.
     let ecam_bin = env!("CARGO_BIN_EXE_ecam");
-    let args = "plc run ../../examples/plc/decam_cyclic.il --wire Y1:X0 --ms 30000 --dump D2001";
+    let ms = if cfg!(debug_assertions) {
+        30_000
+    } else {
+        300_000
+    };
+    let args =
+        format!("plc run ../../examples/plc/decam_cyclic.il --wire Y1:X0 --ms {ms} --dump D2001");
     let Ok(out) = Command::new("script")
         .args(["-qec", &format!("{ecam_bin} {args}"), "/dev/null"])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
