@@ -4,7 +4,7 @@
 //! through engages, ramp-ins, seams, jumps, master fractions, online offset
 //! and scaling changes, switches with blends and stops.
 
-use core::num::NonZeroU64;
+use core::num::{NonZeroU32, NonZeroU64};
 
 use ecam_core::PointTable;
 use proptest::prelude::*;
@@ -12,8 +12,8 @@ use std::vec;
 use std::vec::Vec;
 
 use crate::{
-    AxisConfig, CamAxis, Coupling, OffsetChange, RampIn, SlaveAlign, StopKind, SwitchAt,
-    SyncWindow, TickInput, Zoom,
+    AxisConfig, CamAxis, Coupling, OffsetChange, RampDirection, RampIn, RampInLimits, SlaveAlign,
+    StopKind, SwitchAt, SyncWindow, TickInput, Zoom,
 };
 
 /// A table of `slaves` at masters `step` apart (shared with the engage tests).
@@ -114,6 +114,7 @@ proptest! {
         start in -100_000i64..100_000,
         ramp_in in proptest::option::of(1u64..3000),
         turn in proptest::option::of(0i64..5000),
+        limits in proptest::option::of((0u8..3, -100_000i64..100_000)),
         moves in moves(),
     ) {
         let config = AxisConfig {
@@ -139,6 +140,20 @@ proptest! {
         let Ok(mut fast) = CamAxis::new(table(&slaves, step), config) else {
             return Ok(());
         };
+        // A ramp-in under limits, from a slave away from the cam.
+        if let Some((direction, slave)) = limits {
+            fast.set_slave_position(slave).unwrap();
+            fast.set_ramp_in_limits(Some(RampInLimits {
+                max_velocity: NonZeroU32::new(2_000_000).unwrap(),
+                max_acceleration: NonZeroU64::new(400_000_000).unwrap(),
+                direction: match direction {
+                    0 => RampDirection::Either,
+                    1 => RampDirection::Positive,
+                    _ => RampDirection::Negative,
+                },
+                max_jerk: NonZeroU64::new(100_000_000_000),
+            }));
+        }
         fast.arm().unwrap();
         let mut general = fast.clone();
         let mut master = start;
