@@ -306,7 +306,13 @@ proptest::proptest! {
         let target = i32::from(base) + i32::from(offset);
         if (0..8512).contains(&target) {
             proptest::prop_assert!(errors.is_empty(), "{:?}", errors);
-            proptest::prop_assert_eq!(word(&plc, target as u16), value);
+            // The scan times are the scan's own: it writes them at END,
+            // after the program read back what it wrote (found at 5000
+            // cases: D5168Z0 with Z0 = 2842 is D8010).
+            let target = target as u16;
+            if !ecam_plc::special::D_SCAN_TIME.contains(&target) {
+                proptest::prop_assert_eq!(word(&plc, target), value);
+            }
             proptest::prop_assert_eq!(word(&plc, 8100), value);
         } else {
             proptest::prop_assert_eq!(errors.len(), 2);
