@@ -222,19 +222,16 @@ impl<C: CamCurve> CamAxis<C> {
 mod tests {
     extern crate std;
 
-    use core::num::{NonZeroU32, NonZeroU64};
+    use core::num::NonZeroU64;
 
     use ecam_core::PointTable;
     use proptest::prelude::*;
     use std::vec::Vec;
 
     use super::super::phase::{Armed, Phase};
-    use super::super::steady_tests::table;
+    use super::super::steady_tests::{limits_towards, table};
     use crate::coupling::Engagement;
-    use crate::{
-        AxisConfig, CamAxis, Coupling, RampDirection, RampIn, RampInLimits, SlaveAlign, StartMode,
-        TickInput, Zoom,
-    };
+    use crate::{AxisConfig, CamAxis, Coupling, RampIn, SlaveAlign, StartMode, TickInput, Zoom};
 
     /// The engagement an armed axis holds ready.
     fn ready(axis: &CamAxis<PointTable>) -> Option<super::ReadyEngagement> {
@@ -299,16 +296,7 @@ mod tests {
                 return Ok(());
             };
             axis.set_slave_position(slave).unwrap();
-            axis.set_ramp_in_limits(limits.map(|direction| RampInLimits {
-                max_velocity: NonZeroU32::new(2_000_000).unwrap(),
-                max_acceleration: NonZeroU64::new(400_000_000).unwrap(),
-                direction: match direction {
-                    0 => RampDirection::Either,
-                    1 => RampDirection::Positive,
-                    _ => RampDirection::Negative,
-                },
-                max_jerk: NonZeroU64::new(100_000_000_000),
-            }));
+            axis.set_ramp_in_limits(limits.map(limits_towards));
             axis.arm().unwrap();
             if let Some(factor) = requeue {
                 let scaled: Vec<i64> = slaves.iter().map(|s| s * factor).collect();

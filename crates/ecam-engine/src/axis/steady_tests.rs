@@ -16,6 +16,21 @@ use crate::{
     StopKind, SwitchAt, SyncWindow, TickInput, Zoom,
 };
 
+/// Ramp-in limits with a jerk limit, either way (0), positive (1) or
+/// negative (2) only (shared with the engage tests).
+pub(super) fn limits_towards(direction: u8) -> RampInLimits {
+    RampInLimits {
+        max_velocity: NonZeroU32::new(2_000_000).unwrap(),
+        max_acceleration: NonZeroU64::new(400_000_000).unwrap(),
+        direction: match direction {
+            0 => RampDirection::Either,
+            1 => RampDirection::Positive,
+            _ => RampDirection::Negative,
+        },
+        max_jerk: NonZeroU64::new(100_000_000_000),
+    }
+}
+
 /// A table of `slaves` at masters `step` apart (shared with the engage tests).
 pub(super) fn table(slaves: &[i64], step: i64) -> PointTable {
     let pairs: Vec<(i64, i64)> = slaves
@@ -143,16 +158,7 @@ proptest! {
         // A ramp-in under limits, from a slave away from the cam.
         if let Some((direction, slave)) = limits {
             fast.set_slave_position(slave).unwrap();
-            fast.set_ramp_in_limits(Some(RampInLimits {
-                max_velocity: NonZeroU32::new(2_000_000).unwrap(),
-                max_acceleration: NonZeroU64::new(400_000_000).unwrap(),
-                direction: match direction {
-                    0 => RampDirection::Either,
-                    1 => RampDirection::Positive,
-                    _ => RampDirection::Negative,
-                },
-                max_jerk: NonZeroU64::new(100_000_000_000),
-            }));
+            fast.set_ramp_in_limits(Some(limits_towards(direction)));
         }
         fast.arm().unwrap();
         let mut general = fast.clone();
