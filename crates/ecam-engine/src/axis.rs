@@ -860,8 +860,8 @@ impl<C: CamCurve> Coupled<'_, C> {
             // A table waiting there with a blend: aim where the blend
             // will be (it starts before the seam, see `seam_blend_aim`).
             let blend_aim = match stop_at {
-                None if ahead.place.k > place.k => {
-                    self.seam_blend_aim(engaged, place.k, next_master)
+                None if ahead.place.k != place.k => {
+                    self.seam_blend_aim(engaged, place.k, ahead.place.k > place.k, next_master)
                 }
                 _ => None,
             };

@@ -120,10 +120,11 @@ impl<C: CamCurve> Coupled<'_, C> {
     }
 
     /// What the tick at whole count `next` commands when it takes the
-    /// table queued for the seam that ends cycle `from_k` with a blend:
-    /// the blend's command there (a ramp-in on top). `None` when no table
-    /// waits with a blend, or when the landing fails (the tick that lands
-    /// reports it).
+    /// table queued for the seam of cycle `from_k` with a blend (its end
+    /// when `forward`, its start when a negative master zoom runs the
+    /// cycles backwards): the blend's command there (a ramp-in on top).
+    /// `None` when no table waits with a blend, or when the landing fails
+    /// (the tick that lands reports it).
     ///
     /// The ticks between the last whole count before such a seam and the
     /// next one move towards this value: the blend starts at that last
@@ -135,6 +136,7 @@ impl<C: CamCurve> Coupled<'_, C> {
         &self,
         engaged: &Engaged<C>,
         from_k: i128,
+        forward: bool,
         next: i64,
     ) -> Option<i64> {
         let Some(Change::Waiting(Next::Seam(queued))) = engaged.underway.change() else {
@@ -149,7 +151,7 @@ impl<C: CamCurve> Coupled<'_, C> {
                 queued.then,
                 queued.blend,
                 from_k,
-                true,
+                forward,
             )
             .ok()?;
         let blended = landing.blend.ok()??.command(next).ok()?.slave;
