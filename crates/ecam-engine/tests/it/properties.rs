@@ -90,10 +90,15 @@ proptest! {
         total_pulses += out.pulses;
         // The start rule: the strokes of the cycle the cam starts in are the
         // ones that put the slave nearest where it stood (0), either way,
-        // since this table turns back.
+        // since this table turns back; of two equally near, the one ahead
+        // in the cam's direction (up here: found at 20 000 cases, master
+        // 147 185 500 between −5833⅓ and +5833⅓).
         let cycle = (7 * i128::from(first_master)).div_euclid(3 * 4000);
         let shift = (-cycle - 2..=-cycle + 2)
-            .min_by_key(|&s| expected(first_master, accumulate, s)[0].abs())
+            .min_by_key(|&s| {
+                let v = expected(first_master, accumulate, s)[0];
+                (v.abs(), -v)
+            })
             .unwrap();
         prop_assert!(expected(first_master, accumulate, shift).contains(&i128::from(out.slave)),
             "start at {}: slave {}", first_master, out.slave);
