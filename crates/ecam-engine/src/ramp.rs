@@ -32,6 +32,12 @@ impl Ramp {
     /// The blended position for `cam` at `master`, or `None` once the ramp
     /// is complete (the caller then follows the cam).
     pub(crate) fn blend(&self, master: i64, cam: i64) -> Option<i64> {
+        // Where it starts the weight is 0: the slave holds, exactly (no
+        // float of the gap, which a gap beyond 2^53 pulses would round),
+        // and the engaging tick of a ramp-in skips the arithmetic.
+        if master == self.span.from() {
+            return Some(self.hold);
+        }
         if self.span.finished(master) {
             return None;
         }
@@ -49,6 +55,10 @@ impl Ramp {
 
     /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
     pub(crate) fn weight(&self, master: i64) -> f64 {
+        // Where it starts, `quintic(0)`, without the division.
+        if master == self.span.from() {
+            return 0.0;
+        }
         quintic(self.span.progress(master).min(1.0))
     }
 }
@@ -74,5 +84,33 @@ mod tests {
         let first = ramp.blend(1, 1).unwrap_or(i64::MAX);
         assert_eq!(first, 0);
         assert!(ramp.weight(2000) == 1.0);
+    }
+
+    /// Where a ramp starts the slave holds exactly, however far the cam
+    /// is (a float of a gap beyond 2^53 pulses is not exact), and the
+    /// cam's weight is 0.
+    #[test]
+    fn the_start_holds_exactly_whatever_the_gap() {
+        let distance = NonZeroU64::new(1000).unwrap();
+        for (hold, cam) in [
+            (i64::MAX - 3, -(1i64 << 60)),
+            ((1i64 << 53) + 1, -7),
+            (-5, 5),
+            (12_345, 12_345),
+        ] {
+            let ramp = Ramp::new(RampIn { distance }, -20, hold);
+            assert_eq!(ramp.blend(-20, cam), Some(hold), "{hold} {cam}");
+            assert_eq!(ramp.weight(-20).to_bits(), 0.0f64.to_bits());
+            // One count on, the cam's share is tiny but the ramp runs.
+            assert!(ramp.weight(-19) > 0.0 && ramp.weight(-21) > 0.0);
+        }
+        // The blend's own arithmetic at the start, for an ordinary gap,
+        // gives the same position.
+        let ramp = Ramp::new(RampIn { distance }, 0, 700);
+        let gap = exact_f64(700 - 300);
+        assert_eq!(
+            Some(300 + round_to_i128((1.0 - quintic(0.0)) * gap) as i64),
+            ramp.blend(0, 300)
+        );
     }
 }
