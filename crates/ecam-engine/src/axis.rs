@@ -382,7 +382,19 @@ impl<C: CamCurve> CamAxis<C> {
                 .max_master_step
                 .is_none_or(|limit| step <= limit.get());
         if !quiet {
-            self.supervise(input, step, edge, master, &mut events, &mut fault);
+            // The engaging tick of a ramp-in at a whole count comes back
+            // answered from the engagement (`engage.rs`).
+            let whole = steady_allowed && estimate.fraction == 0;
+            if let Some(opened) =
+                self.supervise(input, step, edge, master, whole, &mut events, &mut fault)
+            {
+                let hz = effective_frequency(self.config.max_frequency_hz);
+                self.commanded = opened.slave;
+                let pulses = self
+                    .pulse
+                    .step(self.commanded, input.output_enabled, hz, input.dt_us);
+                return self.report::<false>(master, Some(opened), pulses, events, fault);
+            }
         }
 
         // A settled cam at a whole master count: the steady tick, from the
@@ -450,17 +462,22 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     /// The checks before following: output inhibit, the master-step
-    /// guard, and an armed axis' start (which may engage the cam).
+    /// guard, and an armed axis' start (which may engage the cam); the
+    /// engaging tick's sample when the engagement answered it (`whole`:
+    /// the tick is at a whole master count on the fast route, see
+    /// `engage.rs`).
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     fn supervise(
         &mut self,
         input: &TickInput,
         step: u64,
         edge: bool,
         master: i64,
+        whole: bool,
         events: &mut Events,
         fault: &mut Option<EngineError>,
-    ) {
+    ) -> Option<FollowSample> {
         if !input.output_enabled && self.state().is_active() {
             self.halt();
             events.stopped = true;
@@ -489,8 +506,13 @@ impl<C: CamCurve> CamAxis<C> {
             _ => StartStep::Waiting,
         };
         if let StartStep::Engage(at) = start {
-            match self.engage(at) {
-                Ok(()) => events.engaged = true,
+            // Answered only where the tick's own master is the engage
+            // master (a start position the master passed engages behind it).
+            match self.engage(at, whole && at == master) {
+                Ok(opened) => {
+                    events.engaged = true;
+                    return opened;
+                }
                 Err(e) => {
                     *fault = Some(e);
                     self.halt();
@@ -498,6 +520,7 @@ impl<C: CamCurve> CamAxis<C> {
                 }
             }
         }
+        None
     }
 
     /// The phase and the rest of the axis borrowed apart: the phase is

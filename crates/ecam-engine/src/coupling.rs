@@ -16,7 +16,7 @@ use crate::rounding::{
     floor_div_rem, round_half_away, round_half_up, round_half_up_to_i64, round_to_i64,
 };
 use crate::start_rule;
-use crate::steady::Steady;
+use crate::steady::{Steady, Table};
 use crate::{AxisConfig, Coupling, EngineError, MasterAlign, SlaveAlign};
 
 /// How far the table extends along the master.
@@ -460,10 +460,12 @@ impl Engagement {
         master_at: i64,
         slave_now: i64,
     ) -> Result<Self, EngineError> {
-        Self::placed(geo, config, curve, cursor, master_at, slave_now).map(|(e, _)| e)
+        Self::placed(geo, config, curve, cursor, master_at, slave_now).map(|(e, _, _)| e)
     }
 
-    /// [`Engagement::new`], and the place of `master_at` under it.
+    /// [`Engagement::new`], with the place of `master_at` under it and
+    /// the table's value and slope there (what the engaging tick follows:
+    /// [`Engagement::sample_of`] gives its sample without a second lookup).
     pub(crate) fn placed<C: CamCurve + ?Sized>(
         geo: &Geometry,
         config: &AxisConfig,
@@ -471,7 +473,7 @@ impl Engagement {
         cursor: &mut Cursor,
         master_at: i64,
         slave_now: i64,
-    ) -> Result<(Self, Place), EngineError> {
+    ) -> Result<(Self, Place, Table), EngineError> {
         let zoomed = geo.zoomed_master(master_at);
         let t_engage = match config.master_align {
             MasterAlign::Absolute => zoomed,
@@ -480,7 +482,7 @@ impl Engagement {
             MasterAlign::StartAtUnzoomed(v) => i128::from(v) * geo.mnum,
         };
         let place = geo.locate(t_engage);
-        let (table, _) = table_value(curve, cursor, geo.table_x(place))?;
+        let (table, slope) = table_value(curve, cursor, geo.table_x(place))?;
         let target = i128::from(slave_now);
         let (strokes, valued) =
             start_rule::strokes_at_start(geo.strokes(), config.slave_align, target, |n| {
@@ -522,6 +524,7 @@ impl Engagement {
                 span,
             },
             place,
+            Table { s: table, v: slope },
         ))
     }
 
@@ -723,10 +726,22 @@ impl Engagement {
         cursor: &mut Cursor,
         place: Place,
     ) -> Result<Sample, EngineError> {
-        let (table, slope) = table_value(curve, cursor, geo.table_x(place))?;
-        match self.sample_narrow(geo, place, table, slope) {
+        let (s, v) = table_value(curve, cursor, geo.table_x(place))?;
+        self.sample_of(geo, place, Table { s, v })
+    }
+
+    /// [`Engagement::sample`] for the table's value and slope at `place`
+    /// known already (`table`, as [`Engagement::placed`] gives them).
+    #[inline]
+    pub(crate) fn sample_of(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: Table,
+    ) -> Result<Sample, EngineError> {
+        match self.sample_narrow(geo, place, table.s, table.v) {
             Some(sample) => Ok(sample),
-            None => self.sample_wide(geo, place, table, slope),
+            None => self.sample_wide(geo, place, table.s, table.v),
         }
     }
 

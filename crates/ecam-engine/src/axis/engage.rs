@@ -11,36 +11,29 @@ use core::num::NonZeroU64;
 
 use ecam_core::CamCurve;
 
-use crate::coupling::{Engagement, Place};
+use crate::coupling::{Engagement, Place, Sample};
 use crate::ramp::Ramp;
 use crate::ramp_in::{RampDirection, RampInLimits};
 use crate::rounding::exact_f64;
-use crate::steady::Steady;
+use crate::steady::Table;
 use crate::{EngineError, RampIn, StartMode};
 
-use super::CamAxis;
-use super::lane_constants::LaneConstants;
 use super::phase::{Armed, Engaged, Phase};
 use super::underway::Underway;
+use super::{CamAxis, FollowSample, clamp_i64};
 
 /// An engagement worked out before the tick that engages: of master `at`
 /// from slave `slave`, on the table, geometry and configuration the axis
 /// had when it was armed (they cannot change while it is armed without
-/// preparing it again, see [`CamAxis::prepare_engagement`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// preparing it again, see [`CamAxis::prepare_engagement`]), with the
+/// table's value and slope at the place.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct ReadyEngagement {
     at: i64,
     slave: i64,
     engagement: Engagement,
     place: Place,
-}
-
-/// The cam's command at the engage master: what sizing a ramp-in under
-/// limits needs of it.
-#[derive(Clone, Copy, Debug)]
-struct CamAt {
-    slave: i64,
-    velocity_ratio: f64,
+    table: Table,
 }
 
 impl<C: CamCurve> CamAxis<C> {
@@ -65,11 +58,12 @@ impl<C: CamCurve> CamAxis<C> {
                     self.commanded,
                 )
                 .ok()
-                .map(|(engagement, place)| ReadyEngagement {
+                .map(|(engagement, place, table)| ReadyEngagement {
                     at: position,
                     slave: self.commanded,
                     engagement,
                     place,
+                    table,
                 })
             }
             _ => None,
@@ -77,20 +71,32 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     /// Engages the cam at master `at` from the slave where it stands.
-    pub(super) fn engage(&mut self, at: i64) -> Result<(), EngineError> {
+    ///
+    /// With a ramp-in, the engaging tick commands the slave where it
+    /// stands (the ramp's weight is 0 where it starts): at a whole master
+    /// count on the fast route (`whole`), that tick's sample is given
+    /// back from the engagement's own table lookup, so the tick needs
+    /// neither the lane nor its constants (the next tick takes them).
+    /// The general route (`whole` off) follows the tick as any other, and
+    /// the steady-vs-general property test holds the two the same.
+    pub(super) fn engage(
+        &mut self,
+        at: i64,
+        whole: bool,
+    ) -> Result<Option<FollowSample>, EngineError> {
         // Prepared at arm when it is of this master and slave (the slave
         // may have been moved since, see `discard_backlog`).
         let ready = match &self.phase {
             Phase::Armed(Armed {
                 ready: Some(ready), ..
             }) if ready.at == at && ready.slave == self.commanded => {
-                Some((ready.engagement, ready.place))
+                Some((ready.engagement, ready.place, ready.table))
             }
             _ => None,
         };
-        // The place of `at` comes with it (the table input there is the
-        // one the engagement fixed).
-        let (mut engagement, place) = match ready {
+        // The place of `at` and the table there come with it (the table
+        // input there is the one the engagement fixed).
+        let (mut engagement, place, table) = match ready {
             Some(ready) => ready,
             None => Engagement::placed(
                 &self.geometry,
@@ -101,54 +107,91 @@ impl<C: CamCurve> CamAxis<C> {
                 self.commanded,
             )?,
         };
-        // Under limits the lane's constants are taken to size the ramp,
-        // and kept for the ramp-in tick.
-        let (ramp_in, constants) = match self.ramp_limits {
-            Some(limits) => self.limited_ramp(limits, &mut engagement, at, place)?,
+        // Under limits the cam at `at` sizes the ramp, and is the
+        // engaging tick's sample.
+        let (ramp_in, mut cam) = match self.ramp_limits {
+            Some(limits) => {
+                let (ramp, cam) = self.limited_ramp(limits, &mut engagement, place, table)?;
+                (ramp, Some(cam))
+            }
             None => (self.config.ramp_in, None),
         };
+        let ramp = ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded));
         self.phase = Phase::Running(Engaged {
             engagement,
             place,
             followed: i128::from(at) << 32,
-            underway: Underway::at_engage(ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded))),
+            underway: Underway::at_engage(ramp),
             lane: None,
             plan: None,
         });
+        let Phase::Running(engaged) = &mut self.phase else {
+            return Ok(None);
+        };
         // Without a ramp-in the cam is settled from the first tick: its
         // constants taken here let that tick be a steady one (set in
         // place: the phase is not built twice).
-        // With one, the ramp-in tick follows the cam with the lane's
-        // constants: taken here too.
-        if let Phase::Running(engaged) = &mut self.phase {
-            if engaged.underway.is_settled() {
-                engaged
-                    .underway
-                    .settle(engaged.engagement.steady(&self.geometry));
-            } else {
-                if let Some(cam) = constants {
-                    engaged.lane = Some(LaneConstants { cam, target: None });
-                }
-                engaged.take_lane_constants(&self.geometry);
-            }
+        let Some(ramp) = ramp else {
+            engaged
+                .underway
+                .settle(engaged.engagement.steady(&self.geometry));
+            return Ok(None);
+        };
+        // A one-shot of no length ends where it engages: the general
+        // tick's business.
+        let ends_here = engaged
+            .engagement
+            .span
+            .is_some_and(|(begin, end)| end <= begin);
+        if !whole || ends_here {
+            // The ramp-in tick follows the cam with the lane's constants.
+            engaged.take_lane_constants(&self.geometry);
+            return Ok(None);
         }
-        Ok(())
+        if cam.is_none() {
+            // An error here is the general tick's to report, as it would.
+            cam = engaged
+                .engagement
+                .sample_of(&self.geometry, place, table)
+                .ok();
+        }
+        let Some(cam) = cam else {
+            engaged.take_lane_constants(&self.geometry);
+            return Ok(None);
+        };
+        // What the general tick follows at `at`: the place the engagement
+        // fixed, the slave held (the ramp's start).
+        let Some(slave) = ramp.blend(at, cam.slave) else {
+            engaged.take_lane_constants(&self.geometry);
+            return Ok(None);
+        };
+        Ok(Some(FollowSample {
+            master_in_cycle: self.geometry.input_in_cycle(place),
+            master_in_cycle_raw: self.geometry.raw_in_cycle(place),
+            cycle: clamp_i64(place.k.saturating_sub(engaged.engagement.k_engage)),
+            unzoomed: cam.unzoomed,
+            in_cycle_zoomed: cam.in_cycle_zoomed,
+            velocity_ratio: cam.velocity_ratio * ramp.weight(at),
+            following: false,
+            input_offset: engaged.engagement.input_offset(&self.geometry),
+            slave,
+        }))
     }
 
-    /// The ramp-in that keeps to `limits` for the engagement at master
-    /// `at` (at `place`), after moving its target by whole strokes for a
-    /// restricted direction; with the lane's constants of the engagement
-    /// as it ends up, when they could be taken.
+    /// The ramp-in that keeps to `limits` for the engagement at `place`
+    /// (the table's value and slope there `table`), after moving its
+    /// target by whole strokes for a restricted direction; with the cam's
+    /// sample there under the engagement as it ends up.
     fn limited_ramp(
         &mut self,
         limits: RampInLimits,
         engagement: &mut Engagement,
-        at: i64,
         place: Place,
-    ) -> Result<(Option<RampIn>, Option<Steady>), EngineError> {
+        table: Table,
+    ) -> Result<(Option<RampIn>, Sample), EngineError> {
         let hold = i128::from(self.commanded);
-        let mut constants = engagement.steady(&self.geometry);
-        let mut cam = self.cam_at(engagement, constants.as_ref(), at, place)?;
+        let geo = &self.geometry;
+        let mut cam = engagement.sample_of(geo, place, table)?;
         let wrong_way = |slave: i64| {
             let gap = i128::from(slave) - hold;
             match limits.direction {
@@ -158,7 +201,7 @@ impl<C: CamCurve> CamAxis<C> {
             }
         };
         if wrong_way(cam.slave) {
-            let stroke = self.geometry.stroke_pulses();
+            let stroke = geo.stroke_pulses();
             if stroke == 0.0 {
                 return Err(EngineError::RampDirection);
             }
@@ -169,14 +212,14 @@ impl<C: CamCurve> CamAxis<C> {
                 _ => 1.0,
             };
             let n = strokes * toward * libm::copysign(1.0, stroke);
+            // Whole strokes move the cam's output, not its place: the
+            // table there is the same.
             engagement.add_strokes(n as i128);
-            constants = engagement.steady(&self.geometry);
-            cam = self.cam_at(engagement, constants.as_ref(), at, place)?;
+            cam = engagement.sample_of(geo, place, table)?;
             if wrong_way(cam.slave) {
                 // Rounding left it a pulse short: one stroke more.
                 engagement.add_strokes(libm::copysign(1.0, n) as i128);
-                constants = engagement.steady(&self.geometry);
-                cam = self.cam_at(engagement, constants.as_ref(), at, place)?;
+                cam = engagement.sample_of(geo, place, table)?;
             }
         }
         let gap = exact_f64(i128::from(cam.slave) - hold);
@@ -190,31 +233,7 @@ impl<C: CamCurve> CamAxis<C> {
             (None, None) => NonZeroU64::new(libm::ceil(1.875 * libm::fabs(gap)).max(1.0) as u64),
         }
         .map(|distance| RampIn { distance });
-        Ok((ramp, constants))
-    }
-
-    /// The cam at master `at` (at `place`) under `engagement`: from its
-    /// 64-bit `constants` when they hold it (the same values, see
-    /// `steady.rs`, for a fraction of the work), else on the general
-    /// route, which reports any error.
-    fn cam_at(
-        &mut self,
-        engagement: &Engagement,
-        constants: Option<&Steady>,
-        at: i64,
-        place: Place,
-    ) -> Result<CamAt, EngineError> {
-        if let Some(cam) = constants.and_then(|c| c.sample(at, &self.curve, &mut self.cursor)) {
-            return Ok(CamAt {
-                slave: cam.slave,
-                velocity_ratio: cam.velocity_ratio,
-            });
-        }
-        let cam = engagement.sample(&self.geometry, &self.curve, &mut self.cursor, place)?;
-        Ok(CamAt {
-            slave: cam.slave,
-            velocity_ratio: cam.velocity_ratio,
-        })
+        Ok((ramp, cam))
     }
 }
 
@@ -308,7 +327,7 @@ mod tests {
                 &axis.geometry, &axis.config, &axis.curve, &mut cursor, position, slave,
             );
             prop_assert_eq!(ready(&axis).is_some(), fresh.is_ok());
-            if let (Some(ready), Ok((engagement, place))) = (ready(&axis), fresh) {
+            if let (Some(ready), Ok((engagement, place, _))) = (ready(&axis), fresh) {
                 prop_assert_eq!((ready.engagement, ready.place), (engagement, place));
             }
             let mut reference = unprepared(&axis);
@@ -331,16 +350,21 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(512))]
-        /// What sizing a ramp-in under limits reads of the cam at the
-        /// engage master is the same from the 64-bit constants as on the
-        /// general route (`cam_at` takes the first where it can).
+        /// The engaging tick's sample, from the table value and slope the
+        /// engagement looked up (what sizing a ramp-in under limits reads
+        /// and a ramp-in's engaging tick reports), is the general route's
+        /// sample with its own lookup, and the steady constants' sample
+        /// where they hold it (what the lane reads on the ticks after),
+        /// also after a restricted direction moved it by whole strokes.
         #[test]
-        fn the_cam_at_engage_is_the_same_by_either_route(
+        fn the_engaging_sample_is_the_same_by_every_route(
             slaves in proptest::collection::vec(-20_000i64..20_000, 2..12),
             step in 1i64..3000,
             coupling in prop_oneof![
                 Just(Coupling::Periodic),
                 Just(Coupling::Repeat { min_stroke: 1 }),
+                Just(Coupling::Normal),
+                Just(Coupling::OneShot { repeats: 2 }),
             ],
             align in prop_oneof![
                 Just(SlaveAlign::Relative),
@@ -361,24 +385,41 @@ mod tests {
                 slave_zoom: Zoom::signed(szoom.0, szoom.1).unwrap(),
                 ..AxisConfig::default()
             };
-            let Ok(mut axis) = CamAxis::new(table(&slaves, step), config) else {
+            let Ok(axis) = CamAxis::new(table(&slaves, step), config) else {
                 return Ok(());
             };
+            let geo = &axis.geometry;
             let mut cursor = ecam_core::Cursor::new();
-            let Ok((mut engagement, place)) = Engagement::placed(
-                &axis.geometry, &axis.config, &axis.curve, &mut cursor, at, slave,
+            let Ok((mut engagement, place, kin)) = Engagement::placed(
+                geo, &axis.config, &axis.curve, &mut cursor, at, slave,
             ) else {
                 return Ok(());
             };
             // As a restricted direction moves it.
             engagement.add_strokes(strokes);
-            let constants = engagement.steady(&axis.geometry);
-            let fast = axis.cam_at(&engagement, constants.as_ref(), at, place);
-            let general = axis.cam_at(&engagement, None, at, place);
-            match (fast, general) {
+            let known = engagement.sample_of(geo, place, kin);
+            let mut fresh = ecam_core::Cursor::new();
+            let general = engagement.sample(geo, &axis.curve, &mut fresh, place);
+            match (known, general) {
                 (Ok(a), Ok(b)) => {
+                    prop_assert_eq!(a.place, b.place);
                     prop_assert_eq!(a.slave, b.slave);
+                    prop_assert_eq!(a.unzoomed, b.unzoomed);
+                    prop_assert_eq!(a.in_cycle_zoomed, b.in_cycle_zoomed);
                     prop_assert_eq!(a.velocity_ratio.to_bits(), b.velocity_ratio.to_bits());
+                    let steady = engagement
+                        .steady(geo)
+                        .and_then(|c| Some((c, c.sample(at, &axis.curve, &mut fresh)?)));
+                    if let Some((constants, s)) = steady {
+                        prop_assert_eq!((i128::from(s.k), i128::from(s.r_num)), (place.k, place.r_num));
+                        prop_assert_eq!(s.slave, a.slave);
+                        prop_assert_eq!(s.unzoomed, a.unzoomed);
+                        prop_assert_eq!(s.in_cycle_zoomed, a.in_cycle_zoomed);
+                        prop_assert_eq!(s.velocity_ratio.to_bits(), a.velocity_ratio.to_bits());
+                        prop_assert_eq!(s.master_in_cycle, geo.input_in_cycle(place));
+                        prop_assert_eq!(s.master_in_cycle_raw, geo.raw_in_cycle(place));
+                        prop_assert_eq!(constants.input_offset, engagement.input_offset(geo));
+                    }
                 }
                 (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
             }

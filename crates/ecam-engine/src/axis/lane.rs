@@ -45,13 +45,9 @@ impl<C: CamCurve> Coupled<'_, C> {
         // A ramp-in alone: the steady tick with the ramp on top.
         if stop_at.is_none() && engaged.underway.ramps_in_alone() {
             let mut events = Events::default();
-            if let Some(sample) = engaged.ramp_in_tick(
-                master,
-                self.curve,
-                self.cursor,
-                self.geometry.jumps_at_seam,
-                &mut events,
-            ) {
+            if let Some(sample) =
+                engaged.ramp_in_tick(master, self.curve, self.cursor, self.geometry, &mut events)
+            {
                 return Some((false, sample, events));
             }
         }

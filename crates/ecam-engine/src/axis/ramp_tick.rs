@@ -9,8 +9,10 @@
 
 use ecam_core::{CamCurve, Cursor};
 
+use crate::coupling::Geometry;
 use crate::{Events, MasterPosition};
 
+use super::lane_constants::LaneConstants;
 use super::phase::Engaged;
 use super::underway::Underway;
 use super::{FollowSample, step_to};
@@ -27,12 +29,19 @@ impl<C: CamCurve> Engaged<C> {
         master: i64,
         curve: &C,
         cursor: &mut Cursor,
-        jumps_at_seam: bool,
+        geometry: &Geometry,
         events: &mut Events,
     ) -> Option<FollowSample> {
         let Underway::RampIn(ramp, None) = &self.underway else {
             return None;
         };
+        // The engaging tick leaves them to this one (`engage.rs`).
+        if self.lane.is_none() {
+            self.lane = self
+                .engagement
+                .steady(geometry)
+                .map(|cam| LaneConstants { cam, target: None });
+        }
         let constants = self.lane.as_ref()?.cam;
         let cam = constants.sample(master, curve, cursor)?;
         let (slave, velocity_ratio, ramping) = match ramp.blend(master, cam.slave) {
@@ -49,7 +58,7 @@ impl<C: CamCurve> Engaged<C> {
             &mut self.followed,
             &cam,
             i128::from(master) << 32,
-            jumps_at_seam,
+            geometry.jumps_at_seam,
             events,
         );
         if ended {
