@@ -43,6 +43,7 @@ mod prepared;
 mod ramp_tick;
 #[cfg(test)]
 mod steady_tests;
+mod switch_tick;
 mod takeover;
 mod underway;
 

@@ -51,6 +51,17 @@ impl<C: CamCurve> Coupled<'_, C> {
                 return Some((false, sample, events));
             }
         }
+        // A switch or a seam table waiting alone: their own ticks
+        // (`switch_tick.rs`).
+        if stop_at.is_none()
+            && let Some(followed) = match engaged.underway.waiting_alone() {
+                Some(true) => self.seam_tick(engaged, master),
+                Some(false) => self.switch_tick(engaged, master),
+                None => None,
+            }
+        {
+            return Some(followed);
+        }
         let at = MasterPosition {
             counts: master,
             fraction: 0,
@@ -318,7 +329,7 @@ impl<C: CamCurve> Coupled<'_, C> {
                 engaged,
                 kind,
                 i,
-                engagement,
+                engagement.as_ref(),
                 shifted.as_ref(),
                 blend_ended,
                 landed_cursor,
@@ -348,7 +359,7 @@ impl<C: CamCurve> Coupled<'_, C> {
 
 /// What a switch in the lane came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Landed {
+pub(super) enum Landed {
     /// The table queued for the seam.
     Seam,
     /// The switch waiting for its position or the next tick.
@@ -362,45 +373,48 @@ impl<C: CamCurve> Coupled<'_, C> {
     /// (`engagement` when its blend is over already, then without the
     /// blend), geometry and constants.
     #[allow(clippy::too_many_arguments)]
-    fn land_prepared(
+    pub(super) fn land_prepared(
         &mut self,
         engaged: &mut Engaged<C>,
         kind: Landed,
         i: usize,
-        engagement: Option<Engagement>,
+        engagement: Option<&Engagement>,
         constants: Option<&Steady>,
         blend_ended: bool,
         cursor: Cursor,
     ) {
+        let prepared = engaged.plan.as_ref().and_then(|plan| plan.landing(i));
+        // The switch taken, nothing changes beside the ramp-in and the
+        // switch's blend.
+        let blend = prepared.and_then(|p| p.blend).filter(|_| !blend_ended);
         let takeover = match kind {
-            Landed::Seam => engaged
-                .underway
-                .take_seam_table()
-                .map(|queued| Takeover::Table(queued.curve)),
-            Landed::Switch => engaged
-                .underway
-                .take_switch()
-                .map(|pending| pending.takeover),
+            Landed::Seam => {
+                let queued = engaged.underway.take_seam_table();
+                if let Some(blend) = blend {
+                    engaged.underway.start_blend(blend);
+                }
+                queued.map(|queued| Takeover::Table(queued.curve))
+            }
+            Landed::Switch => engaged.underway.land_switch(blend),
         };
         // Copied field by field where they go, the plan dropped after.
-        if let Some(prepared) = engaged.plan.as_ref().and_then(|plan| plan.landing(i)) {
+        if let Some(prepared) = prepared {
             if let Some(zoom) = prepared.master_zoom {
                 self.config.master_zoom = zoom;
             }
-            engaged.engagement = engagement.unwrap_or(prepared.engagement);
-            // The switch taken, nothing changes beside the ramp-in.
-            if let Some(blend) = prepared.blend.filter(|_| !blend_ended) {
-                engaged.underway.start_blend(blend);
-            }
+            engaged.engagement = *engagement.unwrap_or(&prepared.engagement);
             *self.geometry = prepared.geometry;
-            let cam = *constants.unwrap_or(&prepared.constants);
+            let cam = constants.unwrap_or(&prepared.constants);
             match engaged.lane.as_mut() {
                 Some(lane) => {
-                    lane.cam = cam;
+                    lane.cam = *cam;
                     lane.target = None;
                 }
                 None => {
-                    engaged.lane = Some(LaneConstants { cam, target: None });
+                    engaged.lane = Some(LaneConstants {
+                        cam: *cam,
+                        target: None,
+                    });
                 }
             }
         }

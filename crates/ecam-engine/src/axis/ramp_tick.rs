@@ -32,17 +32,30 @@ impl<C: CamCurve> Engaged<C> {
         geometry: &Geometry,
         events: &mut Events,
     ) -> Option<FollowSample> {
-        let Underway::RampIn(ramp, None) = &self.underway else {
+        let Self {
+            engagement,
+            place,
+            followed,
+            underway,
+            lane,
+            ..
+        } = self;
+        let Underway::RampIn(ramp, None) = underway else {
             return None;
         };
-        // The engaging tick leaves them to this one (`engage.rs`).
-        if self.lane.is_none() {
-            self.lane = self
-                .engagement
-                .steady(geometry)
-                .map(|cam| LaneConstants { cam, target: None });
-        }
-        let constants = self.lane.as_ref()?.cam;
+        // The engaging tick leaves them to this one (`engage.rs`), taken
+        // in place.
+        let constants = match lane {
+            Some(lane) => &lane.cam,
+            None => {
+                &lane
+                    .insert(LaneConstants {
+                        cam: engagement.steady(geometry)?,
+                        target: None,
+                    })
+                    .cam
+            }
+        };
         let cam = constants.sample(master, curve, cursor)?;
         let (slave, velocity_ratio, ramping) = match ramp.blend(master, cam.slave) {
             Some(blended) => (blended, cam.velocity_ratio * ramp.weight(master), true),
@@ -52,10 +65,10 @@ impl<C: CamCurve> Engaged<C> {
             counts: master,
             fraction: 0,
         });
-        let sample = FollowSample::of_steady(&cam, &constants, slave, velocity_ratio, !ramping);
+        let sample = FollowSample::of_steady(&cam, constants, slave, velocity_ratio, !ramping);
         step_to(
-            &mut self.place,
-            &mut self.followed,
+            place,
+            followed,
             &cam,
             i128::from(master) << 32,
             geometry.jumps_at_seam,
@@ -63,8 +76,9 @@ impl<C: CamCurve> Engaged<C> {
         );
         if ended {
             // Settled from here: the steady tick's constants are the lane's.
-            self.underway.end_ramp_in();
-            self.underway.settle(Some(constants));
+            let constants = *constants;
+            underway.end_ramp_in();
+            underway.settle(Some(constants));
         }
         Some(sample)
     }

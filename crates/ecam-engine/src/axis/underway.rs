@@ -20,13 +20,13 @@
 
 use core::num::NonZeroU64;
 
-use crate::EngineError;
 use crate::blend::Blend;
 use crate::offset_ramp::OffsetRamp;
 use crate::ramp::Ramp;
 use crate::scaling::ScalingRamp;
 use crate::steady::Steady;
 use crate::switch::{Pending, Takeover};
+use crate::{EngineError, Zoom};
 
 use super::AfterPass;
 
@@ -121,6 +121,17 @@ impl<C> Underway<C> {
     #[inline(always)]
     pub(super) fn waits_alone_for_seam(&self) -> bool {
         matches!(self, Self::Changing(Change::Waiting(Next::Seam(_))))
+    }
+
+    /// A table waits alone, with no ramp-in beside it: `Some(true)` for
+    /// the next seam, `Some(false)` for a switch position or the next
+    /// tick.
+    #[inline(always)]
+    pub(super) fn waiting_alone(&self) -> Option<bool> {
+        match self {
+            Self::Changing(Change::Waiting(next)) => Some(matches!(next, Next::Seam(_))),
+            _ => None,
+        }
     }
 
     /// Nothing is under way.
@@ -268,6 +279,34 @@ impl<C> Underway<C> {
                 None
             }
         }
+    }
+
+    /// Takes a switch that fired out of a change that is only that switch
+    /// and starts its `blend`, if any, beside the ramp-in, in place: what
+    /// takes over is swapped out of the waiting switch (a master scaling
+    /// left behind, which holds no table) and the variant rewritten where
+    /// it is, so the enum is never moved (it is some 450 bytes, and the
+    /// tick a switch lands in is one of the dearest, docs/engine.md,
+    /// "Benchmarks"). [`Underway::take_switch`] and
+    /// [`Underway::start_blend`] in one step; `None`, with nothing
+    /// changed, when no switch waits alone.
+    pub(super) fn land_switch(&mut self, blend: Option<Blend>) -> Option<Takeover<C>> {
+        let (Self::RampIn(_, Some(Change::Waiting(Next::Switch(pending))))
+        | Self::Changing(Change::Waiting(Next::Switch(pending)))) = self
+        else {
+            return None;
+        };
+        let takeover = core::mem::replace(
+            &mut pending.takeover,
+            Takeover::MasterScaling(Zoom::default()),
+        );
+        // Each variant written where it goes (no whole-enum temporary).
+        match (self, blend) {
+            (Self::RampIn(_, slot), blend) => *slot = blend.map(|blend| Change::Blend(blend, None)),
+            (this, Some(blend)) => *this = Self::Changing(Change::Blend(blend, None)),
+            (this, None) => *this = Self::Settled,
+        }
+        Some(takeover)
     }
 
     /// Takes the table queued for the seam out of a change that is only
@@ -465,6 +504,54 @@ mod tests {
         assert!(underway.ramp_in().is_some() && underway.change().is_none());
         underway.end_ramp_in();
         assert!(underway.is_settled());
+    }
+
+    /// Landing a switch in place is taking it and starting its blend:
+    /// with or without a blend, beside a ramp-in or not; a seam table or
+    /// a switch behind a blend is not a switch waiting alone.
+    #[test]
+    fn landing_a_switch_in_place_is_taking_it_and_starting_its_blend() {
+        let ramp = Ramp::new(
+            crate::RampIn {
+                distance: NonZeroU64::MIN,
+            },
+            0,
+            0,
+        );
+        let end = crate::blend::BlendEnd {
+            slave: 10,
+            velocity_ratio: 1.0,
+        };
+        let blend = Blend::start(0, NonZeroU64::MIN, 0, 1.0, [end, end]).unwrap();
+        for ramp_in in [None, Some(ramp)] {
+            for with in [None, Some(blend)] {
+                let mut landed = Underway::at_engage(ramp_in);
+                landed.wait(switch()).unwrap();
+                let mut taken = landed.clone();
+                let takeover = landed.land_switch(with);
+                assert!(matches!(takeover, Some(Takeover::Table(()))));
+                assert!(taken.take_switch().is_some());
+                if let Some(blend) = with {
+                    taken.start_blend(blend);
+                }
+                assert_eq!(landed.ramp_in(), taken.ramp_in());
+                assert_eq!(
+                    landed.change().and_then(Change::blend),
+                    taken.change().and_then(Change::blend)
+                );
+                assert_eq!(landed.is_settled(), taken.is_settled());
+                assert_eq!(landed.change().is_none(), taken.change().is_none());
+            }
+        }
+        let mut seam_table = Underway::at_engage(None);
+        seam_table.wait(seam()).unwrap();
+        assert!(seam_table.land_switch(None).is_none());
+        assert!(seam_table.change().is_some_and(Change::waiting));
+        let mut behind = Underway::at_engage(None);
+        behind.begin(Change::Blend(blend, None)).unwrap();
+        behind.wait(switch()).unwrap();
+        assert!(behind.land_switch(None).is_none());
+        assert!(behind.change().and_then(Change::blend).is_some());
     }
 
     #[test]
