@@ -75,6 +75,7 @@ impl<C: CamCurve> CamAxis<C> {
                 // any ramp or blend.
                 engaged.underway.wait(Next::Seam(queued))?;
                 self.plan_waiting();
+                self.clear_retired_slot();
             }
             Phase::Idle | Phase::Armed(_) | Phase::Finished | Phase::Velocity(_) => {
                 self.geometry = geometry;
@@ -128,6 +129,7 @@ impl<C: CamCurve> CamAxis<C> {
                     blend,
                 )))?;
                 self.plan_waiting();
+                self.clear_retired_slot();
                 Ok(())
             }
             Phase::Stopping(..) => Err(EngineError::Busy),
@@ -135,6 +137,14 @@ impl<C: CamCurve> CamAxis<C> {
                 self.queue_curve(curve)
             }
         }
+    }
+
+    /// Drops a retired table the caller has not taken back, here rather
+    /// than in the tick: the tick that lands the table now waiting (or
+    /// ends the run with it) retires the running one into this slot, and
+    /// overwriting a table there would free it inside the control cycle.
+    fn clear_retired_slot(&mut self) {
+        drop(self.retired.take());
     }
 
     /// True while a queued table waits for the next seam, a master
@@ -261,6 +271,9 @@ impl<C: CamCurve> CamAxis<C> {
     }
 
     /// The table the last switch or replacement retired, if not yet taken.
+    /// It is kept until a new table is queued on the running cam, which
+    /// drops it (a tick never frees a table: the tick that switches puts
+    /// the old one here, and the slot is empty by then).
     pub fn take_retired_curve(&mut self) -> Option<C> {
         self.retired.take()
     }

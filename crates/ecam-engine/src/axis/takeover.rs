@@ -42,12 +42,17 @@ impl<C: CamCurve> CamAxis<C> {
             }
             None => None,
         };
-        if let Some(curve) = next
-            && let Ok(geometry) = Geometry::new(&curve, &self.config)
-        {
-            self.geometry = geometry;
-            self.cursor = Cursor::new();
-            self.retired = Some(core::mem::replace(&mut self.curve, curve));
+        if let Some(curve) = next {
+            match Geometry::new(&curve, &self.config) {
+                Ok(geometry) => {
+                    self.geometry = geometry;
+                    self.cursor = Cursor::new();
+                    self.retired = Some(core::mem::replace(&mut self.curve, curve));
+                }
+                // A table that no longer fits the configuration is handed
+                // back as retired rather than freed in the tick.
+                Err(_) => self.retired = Some(curve),
+            }
         }
     }
 }

@@ -532,3 +532,97 @@ fn a_blend_passed_within_the_switch_tick_is_not_held() {
     }
     assert!(!axis.is_blending());
 }
+
+/// A table that counts how many of its kind were dropped, and where: the
+/// tick must never free one (docs/engine.md, "Changing the table").
+struct Counted {
+    table: PointTable,
+    drops: std::rc::Rc<std::cell::Cell<usize>>,
+}
+
+impl Drop for Counted {
+    fn drop(&mut self) {
+        self.drops.set(self.drops.get() + 1);
+    }
+}
+
+impl CamCurve for Counted {
+    fn master_first(&self) -> i64 {
+        self.table.master_first()
+    }
+    fn master_last(&self) -> i64 {
+        self.table.master_last()
+    }
+    fn slave_first(&self) -> i64 {
+        self.table.slave_first()
+    }
+    fn slave_last(&self) -> i64 {
+        self.table.slave_last()
+    }
+    fn segment_count(&self) -> usize {
+        self.table.segment_count()
+    }
+    fn eval(&self, master: f64, cursor: &mut ecam_core::Cursor) -> ecam_core::Kinematics {
+        self.table.eval(master, cursor)
+    }
+}
+
+/// A caller that never takes the retired tables back: each new request
+/// drops the one retired before (outside the tick), so the ticks that
+/// switch, at once, at a position, at the seam or by ending a run with a
+/// table waiting, free nothing.
+#[test]
+fn a_switch_tick_never_frees_a_table_the_caller_left_retired() {
+    let drops = std::rc::Rc::new(std::cell::Cell::new(0));
+    let counted = |slope| Counted {
+        table: line(slope),
+        drops: drops.clone(),
+    };
+    let mut axis = CamAxis::new(counted(1), repeat()).unwrap();
+    axis.arm().unwrap();
+    let master = std::cell::Cell::new(0i64);
+    let run = |axis: &mut CamAxis<Counted>, ticks: usize| {
+        for _ in 0..ticks {
+            master.set(master.get() + 7);
+            let before = drops.get();
+            let out = axis.tick(&TickInput::at(master.get(), TICK_US));
+            assert!(out.fault.is_none(), "{out:?}");
+            assert_eq!(
+                drops.get(),
+                before,
+                "a tick freed a table at {}",
+                master.get()
+            );
+        }
+    };
+    run(&mut axis, 3);
+    for i in 0..4 {
+        let at = match i {
+            0 => SwitchAt::Now { blend: None },
+            1 => SwitchAt::MasterPosition {
+                position: master.get() + 200,
+                blend: blend(50),
+            },
+            2 => SwitchAt::NextSeam { blend: None },
+            _ => SwitchAt::Now { blend: blend(30) },
+        };
+        let slope = 2 + i;
+        axis.switch_curve(counted(slope), at).unwrap();
+        run(&mut axis, 400);
+        assert!(!axis.has_queued_curve(), "request {i} never landed");
+    }
+    // A table waiting when the run ends takes over then, also without
+    // freeing the one retired before it.
+    axis.switch_curve(
+        counted(9),
+        SwitchAt::MasterPosition {
+            position: i64::MAX / 2,
+            blend: None,
+        },
+    )
+    .unwrap();
+    axis.stop(StopKind::EndOfCycle);
+    run(&mut axis, 400);
+    assert_eq!(axis.state(), AxisState::Finished);
+    assert!(axis.take_retired_curve().is_some());
+}
