@@ -559,7 +559,30 @@ impl<C: CamCurve> CamAxis<C> {
     fn lane(&mut self, master: i64) -> Option<lane::Followed> {
         let (phase, mut coupled) = self.split();
         match phase {
-            Phase::Running(engaged) => coupled.follow_lane(engaged, None, master),
+            Phase::Running(engaged) => {
+                // A ramp-in alone, a switch or a seam table waiting alone:
+                // their own ticks (`ramp_tick.rs`, `switch_tick.rs`),
+                // called from here so that they skip the lane's frame too.
+                let alone = if engaged.underway.ramps_in_alone() {
+                    let mut events = Events::default();
+                    engaged
+                        .ramp_in_tick(
+                            master,
+                            coupled.curve,
+                            coupled.cursor,
+                            coupled.geometry,
+                            &mut events,
+                        )
+                        .map(|sample| (false, sample, events))
+                } else {
+                    match engaged.underway.waiting_alone() {
+                        Some(true) => coupled.seam_tick(engaged, master),
+                        Some(false) => coupled.switch_tick(engaged, master),
+                        None => None,
+                    }
+                };
+                alone.or_else(|| coupled.follow_lane(engaged, None, master))
+            }
             Phase::Stopping(engaged, end) => {
                 let end = *end;
                 coupled.follow_lane(engaged, Some(&end), master)

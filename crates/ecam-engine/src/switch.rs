@@ -152,17 +152,27 @@ impl Trigger {
         let mut missed = false;
         let at = match self {
             Self::Position(p) => {
-                // The whole count at or beyond `previous` in the direction
-                // of travel, for the turn's place of `p`.
-                let forward = now >= previous;
-                let from = if forward {
-                    (previous + ((1 << 32) - 1)) >> 32
-                } else {
-                    previous >> 32
+                // On a single-turn master, the turn's place of `p` at or
+                // beyond the whole count at `previous` in the direction of
+                // travel (worked out only there: a linear master's `p` is
+                // the position itself).
+                let p = match turn {
+                    None => p,
+                    Some(_) => {
+                        let forward = now >= previous;
+                        let from = if forward {
+                            (previous + ((1 << 32) - 1)) >> 32
+                        } else {
+                            previous >> 32
+                        };
+                        let from = i64::try_from(from).unwrap_or(if from < 0 {
+                            i64::MIN
+                        } else {
+                            i64::MAX
+                        });
+                        crate::turn_position::nearest(p, turn, from, forward)
+                    }
                 };
-                let from =
-                    i64::try_from(from).unwrap_or(if from < 0 { i64::MIN } else { i64::MAX });
-                let p = crate::turn_position::nearest(p, turn, from, forward);
                 let fixed = i128::from(p) << 32;
                 let passed = low <= fixed && fixed <= high;
                 missed = passed && now < previous;

@@ -42,26 +42,6 @@ impl<C: CamCurve> Coupled<'_, C> {
         stop_at: Option<&CycleEnd>,
         master: i64,
     ) -> Option<Followed> {
-        // A ramp-in alone: the steady tick with the ramp on top.
-        if stop_at.is_none() && engaged.underway.ramps_in_alone() {
-            let mut events = Events::default();
-            if let Some(sample) =
-                engaged.ramp_in_tick(master, self.curve, self.cursor, self.geometry, &mut events)
-            {
-                return Some((false, sample, events));
-            }
-        }
-        // A switch or a seam table waiting alone: their own ticks
-        // (`switch_tick.rs`).
-        if stop_at.is_none()
-            && let Some(followed) = match engaged.underway.waiting_alone() {
-                Some(true) => self.seam_tick(engaged, master),
-                Some(false) => self.switch_tick(engaged, master),
-                None => None,
-            }
-        {
-            return Some(followed);
-        }
         let at = MasterPosition {
             counts: master,
             fraction: 0,

@@ -290,6 +290,7 @@ impl<C> Underway<C> {
     /// "Benchmarks"). [`Underway::take_switch`] and
     /// [`Underway::start_blend`] in one step; `None`, with nothing
     /// changed, when no switch waits alone.
+    #[inline(always)]
     pub(super) fn land_switch(&mut self, blend: Option<Blend>) -> Option<Takeover<C>> {
         let (Self::RampIn(_, Some(Change::Waiting(Next::Switch(pending))))
         | Self::Changing(Change::Waiting(Next::Switch(pending)))) = self
