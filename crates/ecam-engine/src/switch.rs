@@ -140,6 +140,7 @@ impl Trigger {
     /// `blending`, a due switch waits for the blend to end and then takes
     /// effect as an at-once switch. Changes nothing itself, so a caller
     /// can look before it commits.
+    #[inline]
     pub(crate) fn fires(
         self,
         previous: i128,
