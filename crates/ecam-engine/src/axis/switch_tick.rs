@@ -19,7 +19,7 @@ use super::lane::{Followed, Landed};
 use super::phase::Engaged;
 use super::prepared::Prepared;
 use super::underway::{Change, Next, Underway};
-use super::{Coupled, FollowSample, clamp_i64, step_to};
+use super::{Coupled, FollowSample, step_to};
 
 impl<C: CamCurve> Coupled<'_, C> {
     /// One tick at whole master count `master` of a running cam with a
@@ -218,17 +218,7 @@ fn follow_landing<C: CamCurve>(prepared: &Prepared, curve: &C, master: i64) -> O
         }
         None => (cam.slave, cam.velocity_ratio),
     };
-    let sample = FollowSample {
-        master_in_cycle: cam.master_in_cycle,
-        master_in_cycle_raw: cam.master_in_cycle_raw,
-        cycle: clamp_i64(i128::from(k) - i128::from(constants.k_engage)),
-        unzoomed: cam.unzoomed,
-        in_cycle_zoomed: cam.in_cycle_zoomed,
-        velocity_ratio,
-        following: blend.is_none(),
-        input_offset: constants.input_offset,
-        slave,
-    };
+    let sample = FollowSample::of_steady(&cam, constants, slave, velocity_ratio, blend.is_none());
     Some(Landing {
         sample,
         shift,
