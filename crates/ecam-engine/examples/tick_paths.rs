@@ -28,8 +28,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use ecam_core::PointTable;
 use ecam_engine::{
-    AxisConfig, AxisState, CamAxis, OffsetChange, RampDirection, RampIn, RampInLimits, StartMode,
-    StopKind, SwitchAt, TickInput, TickOutput, Zoom,
+    AxisConfig, AxisState, CamAxis, OffsetChange, RampDirection, RampIn, RampInLimits, SlaveAlign,
+    StartMode, StopKind, SwitchAt, TickInput, TickOutput, Zoom,
 };
 
 #[path = "../benches/common/mod.rs"]
@@ -279,6 +279,27 @@ fn ramp_ins() -> Result<(), String> {
     d.axis.arm().map_err(|e| format!("arm: {e}"))?;
     d.probe_while("ramp-in under limits", 400, |o| !o.following);
     d.end("ramp-in under limits");
+
+    // The same limits with the slave ahead of the cam (the output offset
+    // kept, not fitted to the slave as a relative start does): the cam
+    // is behind, so the positive direction adds whole strokes to it.
+    let mut d = Driver::new(AxisConfig {
+        slave_align: SlaveAlign::Offset(0),
+        ..common::config(0)
+    })?;
+    d.axis.set_ramp_in_limits(Some(RampInLimits {
+        max_velocity: NonZeroU32::new(2_000_000).unwrap_or(NonZeroU32::MIN),
+        max_acceleration: nonzero(400_000_000),
+        direction: RampDirection::Positive,
+        max_jerk: Some(nonzero(100_000_000_000)),
+    }));
+    d.run_for(20);
+    d.axis
+        .set_slave_position(40_000)
+        .map_err(|e| format!("slave: {e}"))?;
+    d.axis.arm().map_err(|e| format!("arm: {e}"))?;
+    d.probe_while("ramp-in under limits, strokes added", 400, |o| !o.following);
+    d.end("ramp-in under limits, strokes added");
     Ok(())
 }
 

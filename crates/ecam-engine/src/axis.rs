@@ -19,7 +19,7 @@ use crate::config::effective_frequency;
 use crate::coupling::{Engagement, Geometry, Place, Sample};
 use crate::master::TurnUnwrap;
 use crate::pulse::PulseOutput;
-use crate::ramp_in::RampInLimits;
+use crate::ramp_in::{LimitedLength, RampInLimits};
 use crate::speed::MasterSpeed;
 use crate::start::{StartStep, StartWatch};
 use crate::steady::{Steady, SteadySample};
@@ -79,6 +79,10 @@ pub struct CamAxis<C> {
     pending_events: Events,
     /// Limits a ramp-in keeps to ([`CamAxis::set_ramp_in_limits`]).
     ramp_limits: Option<RampInLimits>,
+    /// What sizes the ramp-in under limits that engaged on the last tick,
+    /// unsized (`Ramp::to_size`): the next tick sizes it before anything
+    /// reads it ([`CamAxis::size_ramp_in`]).
+    ramp_sizing: Option<LimitedLength>,
     /// What a backward pass of an activation position does.
     missed_policy: MissedActivation,
     /// An activation was missed since the last arm, engage or switch.
@@ -111,6 +115,7 @@ impl<C: CamCurve> CamAxis<C> {
             last_start_input: false,
             pending_events: Events::default(),
             ramp_limits: None,
+            ramp_sizing: None,
             missed_policy: MissedActivation::StartNow,
             missed: false,
             speed: MasterSpeed::new(),
@@ -553,10 +558,30 @@ impl<C: CamCurve> CamAxis<C> {
         )
     }
 
+    /// Sizes the ramp-in under limits the last tick engaged with, if
+    /// any (`Ramp::to_size`): what every tick that may read a ramp-in
+    /// calls first. Taken either way: an engagement that ended since
+    /// leaves nothing to size.
+    #[inline(always)]
+    fn size_ramp_in(&mut self) {
+        if let Some(length) = self.ramp_sizing.take() {
+            self.size_ramp_in_now(length);
+        }
+    }
+
+    /// [`CamAxis::size_ramp_in`]'s work, out of line: one tick in a run.
+    #[inline(never)]
+    fn size_ramp_in_now(&mut self, length: LimitedLength) {
+        if let Phase::Running(engaged) | Phase::Stopping(engaged, _) = &mut self.phase {
+            engaged.underway.size_ramp_in(length.distance());
+        }
+    }
+
     /// The fast lane for an engaged phase (`lane.rs`); `None` for any
     /// other phase or when the lane leaves the tick to the general path.
     #[inline(always)]
     fn lane(&mut self, master: i64) -> Option<lane::Followed> {
+        self.size_ramp_in();
         let (phase, mut coupled) = self.split();
         match phase {
             Phase::Running(engaged) => {
@@ -615,6 +640,7 @@ impl<C: CamCurve> CamAxis<C> {
         steady_allowed: bool,
     ) {
         let (master, fraction) = (at.counts, at.fraction);
+        self.size_ramp_in();
         // A settled cam between whole counts: the steady tick's two
         // samples (`between_counts.rs`), unless `steady_allowed` is off.
         if steady_allowed

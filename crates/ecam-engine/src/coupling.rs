@@ -14,6 +14,7 @@ use ecam_core::{CamCurve, Cursor};
 
 use crate::rounding::{
     floor_div_rem, round_half_away, round_half_up, round_half_up_to_i64, round_to_i64,
+    whole_to_i128,
 };
 use crate::start_rule;
 use crate::steady::{Steady, Table};
@@ -79,20 +80,27 @@ struct NarrowGeometry {
     stroke_snum: i64,
     /// Positive.
     sden: i64,
+    /// `stroke × snum / sden` where it is a whole number: the pulses one
+    /// stroke adds to the zoomed value, exactly (see
+    /// [`Engagement::slave_after_strokes`]).
+    whole_stroke: Option<i64>,
 }
 
 impl NarrowGeometry {
     fn of(geo: &Geometry) -> Option<Self> {
         let narrow = |v: i128| i64::try_from(v).ok();
         let stroke = narrow(geo.stroke)?;
+        let stroke_snum = stroke.checked_mul(narrow(geo.snum)?)?;
+        let sden = narrow(geo.sden).filter(|&d| d > 0)?;
         Some(Self {
             origin_num: narrow(geo.origin_num)?,
             period_num: narrow(geo.period_num).filter(|&p| p > 0)?,
             mnum: narrow(geo.mnum)?,
             mden: narrow(geo.mden).filter(|&d| d > 0)?,
             stroke,
-            stroke_snum: stroke.checked_mul(narrow(geo.snum)?)?,
-            sden: narrow(geo.sden).filter(|&d| d > 0)?,
+            stroke_snum,
+            sden,
+            whole_stroke: (stroke_snum % sden == 0).then_some(stroke_snum / sden),
         })
     }
 }
@@ -244,6 +252,7 @@ impl Geometry {
     }
 
     /// Where table input `t_num` lies.
+    #[inline]
     pub(crate) fn locate(&self, t_num: i128) -> Place {
         // In 64 bits when the input and the offset from the origin fit
         // (the same place: nothing saturates there).
@@ -299,6 +308,7 @@ impl Geometry {
     }
 
     /// Table input (after zoom, floor) of a place.
+    #[inline(always)]
     pub(crate) fn input_in_cycle(&self, place: Place) -> i64 {
         // In 64 bits where the offset into the cycle fits (a place's is
         // never negative, so the floor is the quotient), as the steady
@@ -316,6 +326,7 @@ impl Geometry {
 
     /// The same place in master counts before zoom (floor; a master zoom
     /// running the table backwards counts the travel the same way).
+    #[inline(always)]
     pub(crate) fn raw_in_cycle(&self, place: Place) -> i64 {
         if let Some(n) = &self.narrow
             && let Ok(r) = i64::try_from(place.r_num)
@@ -412,16 +423,6 @@ pub(crate) fn to_f64(v: i128) -> f64 {
     }
 }
 
-/// A whole float (already rounded, finite) as an integer.
-#[inline]
-fn whole_to_i128(v: f64) -> i128 {
-    if v.abs() < 9.0e18 {
-        i128::from(v as i64)
-    } else {
-        v as i128
-    }
-}
-
 fn clamp_i64(v: i128) -> i64 {
     i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
 }
@@ -453,6 +454,16 @@ pub(crate) struct Sample {
     pub(crate) velocity_ratio: f64,
 }
 
+/// What placing an engagement found at its own place: the table's
+/// value and slope there, and the table's value zoomed at the start
+/// rule's strokes (what the output offset was fixed from), so that the
+/// engaging tick's sample does not zoom the table a second time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AtEngage {
+    pub(crate) table: Table,
+    pub(crate) zoomed: i128,
+}
+
 fn table_value<C: CamCurve + ?Sized>(
     curve: &C,
     cursor: &mut Cursor,
@@ -481,8 +492,10 @@ impl Engagement {
     }
 
     /// [`Engagement::new`], with the place of `master_at` under it and
-    /// the table's value and slope there (what the engaging tick follows:
-    /// [`Engagement::sample_of`] gives its sample without a second lookup).
+    /// the table's value and slope there and the slave the cam commands
+    /// there (what the engaging tick follows:
+    /// [`Engagement::sample_at_engage`] gives its sample without a second
+    /// lookup).
     pub(crate) fn placed<C: CamCurve + ?Sized>(
         geo: &Geometry,
         config: &AxisConfig,
@@ -490,7 +503,7 @@ impl Engagement {
         cursor: &mut Cursor,
         master_at: i64,
         slave_now: i64,
-    ) -> Result<(Self, Place, Table), EngineError> {
+    ) -> Result<(Self, Place, AtEngage), EngineError> {
         let zoomed = geo.zoomed_master(master_at);
         let t_engage = match config.master_align {
             MasterAlign::Absolute => zoomed,
@@ -508,9 +521,16 @@ impl Engagement {
         // The stroke count of the cycle the master is in is `strokes`:
         // cycles count from there, not from the table's origin.
         let shift = strokes.saturating_sub(place.k);
+        // The 64-bit route in place (the engaging tick's), else the call.
         let on_table = match valued {
             Some(value) => value,
-            None => geo.zoomed(strokes, table)?,
+            None => match i64::try_from(strokes)
+                .ok()
+                .and_then(|strokes| geo.zoomed_narrow(strokes, table))
+            {
+                Some(value) => i128::from(value),
+                None => geo.zoomed(strokes, table)?,
+            },
         };
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
@@ -541,7 +561,10 @@ impl Engagement {
                 span,
             },
             place,
-            Table { s: table, v: slope },
+            AtEngage {
+                table: Table { s: table, v: slope },
+                zoomed: on_table,
+            },
         ))
     }
 
@@ -694,6 +717,7 @@ impl Engagement {
     }
 
     /// Document 002 `CamInputOffset`, in table counts (floor).
+    #[inline(always)]
     pub(crate) fn input_offset(&self, geo: &Geometry) -> i64 {
         match (
             i64::try_from(self.input_offset_num),
@@ -708,6 +732,7 @@ impl Engagement {
     /// The 64-bit constants of this engagement on `geo` for the steady
     /// tick ([`crate::steady`]); `None` for a one-shot or a normal cam
     /// (their place is clamped) or when a constant leaves 64 bits.
+    #[inline]
     pub(crate) fn steady(&self, geo: &Geometry) -> Option<Steady> {
         if geo.extent != Extent::Cyclic || self.span.is_some() || geo.mnum <= 0 {
             return None;
@@ -762,6 +787,113 @@ impl Engagement {
         }
     }
 
+    /// [`Engagement::sample_of`] at the engagement's own place, as
+    /// [`Engagement::placed`] left it (`at`): the same sample, from the
+    /// zoomed value it worked out there.
+    #[inline]
+    pub(crate) fn sample_at_engage(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        at: AtEngage,
+    ) -> Result<Sample, EngineError> {
+        match self.slave_at_engage(at) {
+            Some(slave) => self.sample_with_slave(geo, place, at.table, slave),
+            None => self.sample_of(geo, place, at.table),
+        }
+    }
+
+    /// The slave the cam commands at the engagement's own place, as
+    /// [`Engagement::placed`] left it (`at`), from the zoomed value it
+    /// worked out there: [`Engagement::sample_of`]'s slave. The strokes
+    /// there are the start rule's, `place.k + shift`, unless the shift
+    /// saturated (never for a place of a 64-bit master); `None` then, or
+    /// where the slave leaves 64 bits: the full sample decides.
+    #[inline]
+    pub(crate) fn slave_at_engage(&self, at: AtEngage) -> Option<i64> {
+        if self.shift == i128::MAX || self.shift == i128::MIN {
+            return None;
+        }
+        at.zoomed
+            .checked_add(self.output_offset)
+            .and_then(|slave| i64::try_from(slave).ok())
+    }
+
+    /// [`Engagement::sample_of`]'s slave alone, for the table's value and
+    /// slope at `place` (`table`): the zoomed value and the output offset,
+    /// without the rest of the sample (what a restricted ramp-in
+    /// direction checks after adding strokes).
+    ///
+    /// # Errors
+    /// As [`Engagement::sample_of`].
+    pub(crate) fn slave_of(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: Table,
+    ) -> Result<i64, EngineError> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let slave = narrow(place.k)
+            .zip(narrow(self.shift))
+            .and_then(|(k, shift)| k.checked_add(shift))
+            .and_then(|strokes| geo.zoomed_narrow(strokes, table.s))
+            .zip(narrow(self.output_offset))
+            .and_then(|(zoomed, offset)| zoomed.checked_add(offset));
+        match slave {
+            Some(slave) => Ok(slave),
+            None => self.sample_of(geo, place, table).map(|sample| sample.slave),
+        }
+    }
+
+    /// [`Engagement::slave_of`] after `n` strokes were added, from the
+    /// slave before (`before`): where one stroke zooms to a whole number
+    /// of pulses (stroke × slave numerator a multiple of the denominator,
+    /// as with a slave zoom of 1), each stroke adds exactly that many to
+    /// the zoomed value (the cycle's remainder is 0 for every stroke
+    /// count, so the rounded fraction is the same), and the slave moves
+    /// by `n` of them. Used only where the 64-bit route would give a
+    /// value for the new strokes; else zoomed again.
+    ///
+    /// # Errors
+    /// As [`Engagement::sample_of`].
+    #[inline]
+    pub(crate) fn slave_after_strokes(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: Table,
+        before: i64,
+        n: i128,
+    ) -> Result<i64, EngineError> {
+        let moved = geo.narrow.as_ref().and_then(|g| {
+            let per_stroke = g.whole_stroke?;
+            let strokes = i64::try_from(place.k.checked_add(self.shift)?).ok()?;
+            strokes.checked_mul(g.stroke_snum)?;
+            before.checked_add(i64::try_from(n).ok()?.checked_mul(per_stroke)?)
+        });
+        match moved {
+            Some(slave) => Ok(slave),
+            None => self.slave_of(geo, place, table),
+        }
+    }
+
+    /// [`Engagement::sample_of`] where its slave is known already
+    /// (`slave`, from [`Engagement::slave_of`] or
+    /// [`Engagement::slave_at_engage`]): the rest of the sample around it.
+    #[inline(always)]
+    pub(crate) fn sample_with_slave(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: Table,
+        slave: i64,
+    ) -> Result<Sample, EngineError> {
+        match self.sample_around(geo, place, table.s, table.v, slave) {
+            Some(sample) => Ok(sample),
+            None => self.sample_of(geo, place, table),
+        }
+    }
+
     /// [`Engagement::sample`] in 64-bit integers, for the table value
     /// `table` and slope `slope` at `place`: the same steps in the same
     /// order as [`Engagement::sample_wide`] (as the steady tick takes them),
@@ -777,10 +909,27 @@ impl Engagement {
     ) -> Option<Sample> {
         let narrow = |v: i128| i64::try_from(v).ok();
         let strokes = narrow(place.k)?.checked_add(narrow(self.shift)?)?;
-        let stroke = narrow(geo.stroke)?;
         let slave = geo
             .zoomed_narrow(strokes, table)?
             .checked_add(narrow(self.output_offset)?)?;
+        self.sample_around(geo, place, table, slope, slave)
+    }
+
+    /// The rest of [`Engagement::sample_narrow`] around the slave it
+    /// commands (`slave`): the unzoomed value, the zoomed value in the
+    /// cycle and the velocity ratio.
+    #[inline]
+    fn sample_around(
+        &self,
+        geo: &Geometry,
+        place: Place,
+        table: f64,
+        slope: f64,
+        slave: i64,
+    ) -> Option<Sample> {
+        let narrow = |v: i128| i64::try_from(v).ok();
+        let strokes = narrow(place.k)?.checked_add(narrow(self.shift)?)?;
+        let stroke = narrow(geo.stroke)?;
         let unzoomed = strokes
             .checked_mul(stroke)?
             .checked_add(round_to_i64(table)?)?;

@@ -9,6 +9,8 @@
 //! with the cam's velocity and acceleration. The blend is a pure function of
 //! the master, like the cam itself.
 
+use core::num::NonZeroU64;
+
 use crate::master_ramp::{MasterRamp, quintic};
 use crate::rounding::{exact_f64, round_to_i128};
 use crate::{MasterPosition, RampIn};
@@ -16,17 +18,55 @@ use crate::{MasterPosition, RampIn};
 /// A ramp in progress.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Ramp {
-    span: MasterRamp,
+    from: i64,
     hold: i64,
+    /// `None` until a ramp under limits is sized (`Ramp::to_size`).
+    distance: Option<NonZeroU64>,
 }
 
 impl Ramp {
     /// A ramp starting at master `from_master` with the slave at `hold`.
     pub(crate) fn new(ramp: RampIn, from_master: i64, hold: i64) -> Self {
         Self {
-            span: MasterRamp::new(from_master, ramp.distance),
+            from: from_master,
             hold,
+            distance: Some(ramp.distance),
         }
+    }
+
+    /// A ramp under limits whose distance is not worked out yet: where a
+    /// ramp starts it holds the slave whatever its length, so the tick
+    /// that engages leaves the sizing (`ramp_in::LimitedLength`) to the
+    /// next, which sizes it before it reads it ([`Ramp::size`];
+    /// docs/engine.md, "Benchmarks"). Read unsized, it is a ramp at its
+    /// start: the slave held, the weight 0, not finished.
+    pub(crate) fn to_size(from_master: i64, hold: i64) -> Self {
+        Self {
+            from: from_master,
+            hold,
+            distance: None,
+        }
+    }
+
+    /// Gives an unsized ramp its distance; a sized one keeps its own.
+    #[inline]
+    pub(crate) fn size(&mut self, distance: NonZeroU64) {
+        if self.distance.is_none() {
+            self.distance = Some(distance);
+        }
+    }
+
+    /// Its distance is known.
+    pub(crate) fn sized(&self) -> bool {
+        self.distance.is_some()
+    }
+
+    /// The master travel it runs over, once sized.
+    #[inline]
+    fn span(&self) -> Option<MasterRamp> {
+        debug_assert!(self.sized(), "a ramp read before it was sized");
+        self.distance
+            .map(|distance| MasterRamp::new(self.from, distance))
     }
 
     /// The blended position for `cam` at `master`, or `None` once the ramp
@@ -35,13 +75,16 @@ impl Ramp {
         // Where it starts the weight is 0: the slave holds, exactly (no
         // float of the gap, which a gap beyond 2^53 pulses would round),
         // and the engaging tick of a ramp-in skips the arithmetic.
-        if master == self.span.from() {
+        if master == self.from {
             return Some(self.hold);
         }
-        if self.span.finished(master) {
+        let Some(span) = self.span() else {
+            return Some(self.hold);
+        };
+        if span.finished(master) {
             return None;
         }
-        let w = quintic(self.span.progress(master));
+        let w = quintic(span.progress(master));
         let gap = exact_f64(i128::from(self.hold) - i128::from(cam));
         let offset = round_to_i128((1.0 - w) * gap);
         i64::try_from(i128::from(cam) + offset).ok()
@@ -50,23 +93,23 @@ impl Ramp {
     /// The ramp is over at `at` (its whole distance travelled by the
     /// position itself, fraction included): the axis drops it then.
     pub(crate) fn finished_at(&self, at: MasterPosition) -> bool {
-        self.span.finished_at(at)
+        self.span().is_some_and(|span| span.finished_at(at))
     }
 
     /// Velocity weight `w(u)` of the cam at `master` (for the reported ratio).
     pub(crate) fn weight(&self, master: i64) -> f64 {
         // Where it starts, `quintic(0)`, without the division.
-        if master == self.span.from() {
+        if master == self.from {
             return 0.0;
         }
-        quintic(self.span.progress(master).min(1.0))
+        self.span()
+            .map_or(0.0, |span| quintic(span.progress(master).min(1.0)))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use core::num::NonZeroU64;
 
     #[test]
     fn blends_from_hold_onto_the_cam() {

@@ -24,6 +24,7 @@
 use core::num::{NonZeroU32, NonZeroU64};
 
 use crate::EngineError;
+use crate::rounding::ceil_whole;
 
 /// Which way the slave may move to close the gap at ramp-in.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -60,29 +61,46 @@ const W3: f64 = 60.0;
 const J1: f64 = 60.0;
 
 impl RampInLimits {
-    /// The shortest ramp distance (master counts) for a gap `gap` (pulses),
-    /// a cam velocity ratio `ratio` and a master speed `speed` (counts/s);
-    /// `None` for a master at rest (no speed to size it for).
+    /// Whether a ramp-in can keep to the velocity limit at all: not when
+    /// the cam alone, with velocity ratio `ratio` at master speed `speed`
+    /// (counts/s), needs more than the limit allows for a catch-up. A
+    /// master at rest (or a speed that is no number) sizes nothing and
+    /// passes.
     ///
     /// # Errors
-    /// [`EngineError::RampInLimits`] when the cam alone, at this speed, needs
-    /// more than the velocity limit allows for a catch-up.
-    pub(crate) fn distance(
-        &self,
-        gap: f64,
-        ratio: f64,
-        speed: f64,
-    ) -> Result<Option<u64>, EngineError> {
+    /// [`EngineError::RampInLimits`] when it cannot.
+    pub(crate) fn check_room(&self, ratio: f64, speed: f64) -> Result<(), EngineError> {
         let v = libm::fabs(speed);
-        if v == 0.0 || !v.is_finite() {
-            return Ok(None);
+        if !(v > 0.0 && v < f64::INFINITY) {
+            return Ok(());
         }
-        let (g, r) = (libm::fabs(gap), libm::fabs(ratio));
-        let room = f64::from(self.max_velocity.get()) - H * r * v;
-        if room <= 0.0 {
+        if self.room(libm::fabs(ratio), v) <= 0.0 {
             return Err(EngineError::RampInLimits);
         }
-        let d_v = W1 * g * v / room;
+        Ok(())
+    }
+
+    /// The velocity left for the catch-up over the cam's own at `r × v`.
+    fn room(&self, r: f64, v: f64) -> f64 {
+        f64::from(self.max_velocity.get()) - H * r * v
+    }
+
+    /// The shortest ramp distance (master counts) for a gap `gap` (pulses),
+    /// a cam velocity ratio `ratio` and a master speed `speed` (counts/s)
+    /// that [`RampInLimits::check_room`] passed; `None` for a master at
+    /// rest (no speed to size it for).
+    ///
+    /// Every figure the axis passes is finite and bounded (a gap and a
+    /// travel between 64-bit positions, at least a µs per tick), so the
+    /// distance is a finite float; one that were not (or beyond 64 bits)
+    /// would be the longest ramp there is.
+    pub(crate) fn shortest(&self, gap: f64, ratio: f64, speed: f64) -> Option<u64> {
+        let v = libm::fabs(speed);
+        if !(v > 0.0 && v < f64::INFINITY) {
+            return None;
+        }
+        let (g, r) = (libm::fabs(gap), libm::fabs(ratio));
+        let d_v = W1 * g * v / self.room(r, v);
         let a = W2 * g * v * v;
         let b = H1 * r * v * v;
         let c = self.max_acceleration.get() as f64;
@@ -92,37 +110,111 @@ impl RampInLimits {
             Some(j) => jerk_distance(g, r, v, j.get() as f64),
             None => 0.0,
         };
-        let d = libm::ceil(d_v.max(d_a).max(d_j)).max(1.0);
-        if !d.is_finite() {
-            return Err(EngineError::RampInLimits);
-        }
-        Ok(Some(if d >= 1.8e19 { u64::MAX } else { d as u64 }))
+        let d = ceil_whole(d_v.max(d_a).max(d_j)).max(1.0);
+        Some(if d < 1.8e19 { d as u64 } else { u64::MAX })
+    }
+
+    /// [`RampInLimits::check_room`], then [`RampInLimits::shortest`].
+    #[cfg(test)]
+    fn distance(&self, gap: f64, ratio: f64, speed: f64) -> Result<Option<u64>, EngineError> {
+        self.check_room(ratio, speed)?;
+        Ok(self.shortest(gap, ratio, speed))
+    }
+}
+
+/// What sizes a ramp-in under limits, as the engaging tick found it: the
+/// gap the ramp closes and the cam's velocity ratio where it engages,
+/// the master's speed bound then, and the ramp-in distance configured
+/// (the ramp is at least that long). Built only where the room check
+/// passed, so the distance it gives is always one to run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LimitedLength {
+    limits: RampInLimits,
+    gap: f64,
+    ratio: f64,
+    speed: f64,
+    configured: Option<NonZeroU64>,
+}
+
+impl LimitedLength {
+    /// The figures of a ramp-in under `limits` (see the type).
+    ///
+    /// # Errors
+    /// [`EngineError::RampInLimits`] where the room check fails.
+    pub(crate) fn new(
+        limits: RampInLimits,
+        gap: f64,
+        ratio: f64,
+        speed: f64,
+        configured: Option<NonZeroU64>,
+    ) -> Result<Self, EngineError> {
+        limits.check_room(ratio, speed)?;
+        Ok(Self {
+            limits,
+            gap,
+            ratio,
+            speed,
+            configured,
+        })
+    }
+
+    /// The ramp's master distance: the shortest the limits allow, or the
+    /// configured one if longer. A master at rest gives no speed to size
+    /// for: then the configured distance, or one master count per 1/1.875
+    /// pulse of gap (the quintic's steepest slope is 1.875).
+    pub(crate) fn distance(&self) -> NonZeroU64 {
+        let needed = self.limits.shortest(self.gap, self.ratio, self.speed);
+        let counts = match (needed, self.configured.map(NonZeroU64::get)) {
+            (Some(a), Some(b)) => a.max(b),
+            (Some(d), None) | (None, Some(d)) => d,
+            (None, None) => ceil_whole(1.875 * libm::fabs(self.gap)).max(1.0) as u64,
+        };
+        // Never 0 (each arm is at least 1): the saturating form only
+        // spares an unwrap.
+        NonZeroU64::MIN.saturating_add(counts.saturating_sub(1))
     }
 }
 
 /// The smallest whole `D ≥ 1` with `j D³ − J1 |r| V³ D − W3 |g| V³ ≥ 0`
 /// (the left side has one positive root and grows beyond it), as a float.
 ///
-/// A bounded amount of work, for the tick that engages: Newton's method
-/// from `∛(q/j) + √(p/j)`, which lies at or above the root (the cubic is
-/// convex there, so every step stays above it and moves down), a fixed
-/// number of steps, then the whole counts around the estimate checked
-/// with the cubic itself. `distance` rounds the largest of the three
-/// distances up to a whole count, so this gives what it gave when the
-/// root was bisected to the last bit (tested), except where the root
-/// lies within rounding of a whole count.
+/// A bounded amount of work, for the tick that sizes the ramp: Newton's
+/// method from close to the root, a fixed number of steps, then the
+/// whole counts around the estimate checked with the cubic itself.
+/// Divided by `j`, the cubic is `D³ − P D − Q`; with `a = √P` and
+/// `b = ∛Q`, both `a + Q / 2P` and `b + P / 3b` leave it at or above 0
+/// (put them in: what is left is `3a e² + e³` with `e = Q / 2P`, and
+/// `P³ / 27b³`), so the smaller is at or above the root and within 3 % of
+/// it, the worst being near `Q² = P³ / 8`. `b` is taken from
+/// [`cube_root_start`], within a few parts in a thousand, so the start may
+/// lie a little below the root; one step then puts it above (the cubic
+/// is convex and rising beyond `√(P/3)`, and the start is beyond it), and
+/// from there every step moves down to the root, a handful reaching it to
+/// the last bits (at most six over the figures the tests draw).
+/// `distance` rounds the largest of the three distances up to a whole
+/// count, so this gives what it gave when the root was bisected to the
+/// last bit (tested), except where the root lies within rounding of a
+/// whole count.
 fn jerk_distance(g: f64, r: f64, v: f64, j: f64) -> f64 {
     let v3 = v * v * v;
     let (p, q) = (J1 * r * v3, W3 * g * v3);
     let excess = |d: f64| j * d * d * d - p * d - q;
-    let at_one = excess(1.0);
-    if at_one.is_nan() {
-        return f64::NAN;
+    let (pj, qj) = (p / j, q / j);
+    let a = libm::sqrt(pj);
+    let mut d = if qj > 0.0 {
+        let b = cube_root_start(qj);
+        let from_q = b + pj / (3.0 * b);
+        if pj > 0.0 {
+            from_q.min(a + qj / (2.0 * pj))
+        } else {
+            from_q
+        }
+    } else {
+        a
+    };
+    if excess(d) < 0.0 {
+        d -= excess(d) / (3.0 * j * d * d - p);
     }
-    if at_one >= 0.0 {
-        return 1.0;
-    }
-    let mut d = libm::cbrt(q / j) + libm::sqrt(p / j);
     for _ in 0..NEWTON_STEPS {
         let slope = 3.0 * j * d * d - p;
         let next = d - excess(d) / slope;
@@ -136,7 +228,7 @@ fn jerk_distance(g: f64, r: f64, v: f64, j: f64) -> f64 {
     }
     // The estimate is within a count of the root: take the first whole
     // count the cubic accepts, looking a few counts either side.
-    let mut whole = libm::ceil(d).max(1.0);
+    let mut whole = ceil_whole(d).max(1.0);
     for _ in 0..WHOLE_STEPS {
         if whole > 1.0 && excess(whole - 1.0) >= 0.0 {
             whole -= 1.0;
@@ -147,7 +239,20 @@ fn jerk_distance(g: f64, r: f64, v: f64, j: f64) -> f64 {
         }
     }
     // Not settled within its steps (extreme figures): bisect, as before.
-    libm::ceil(jerk_root_bisected(g, r, v, j)).max(1.0)
+    ceil_whole(jerk_root_bisected(g, r, v, j)).max(1.0)
+}
+
+/// A start for the cube root of `x` (positive, finite, not subnormal):
+/// the exponent divided by three in the float's bits (with the constant
+/// that centres the error, a few per cent), then one Newton step for
+/// `y³ = x` (a few parts in a thousand). Only a start for
+/// [`jerk_distance`], which settles the root on its cubic; `libm::cbrt`
+/// rounds correctly but costs some 130 instructions, and its first call
+/// in a process some 270 more (it looks up the CPU's features then),
+/// which would land in a control tick.
+fn cube_root_start(x: f64) -> f64 {
+    let y = f64::from_bits(x.to_bits() / 3 + 0x2A9F_7893_782D_A1CE);
+    y - (y - x / (y * y)) / 3.0
 }
 
 /// The root of [`jerk_distance`]'s cubic, bisected to the last bit on a
@@ -177,10 +282,10 @@ fn jerk_root_bisected(g: f64, r: f64, v: f64, j: f64) -> f64 {
     high
 }
 
-/// Newton steps of [`jerk_distance`]: from its start, which is at most
-/// about twice the root, a dozen steps reach the root to a few units in
-/// the last place.
-const NEWTON_STEPS: usize = 16;
+/// Newton steps of [`jerk_distance`]: from its start, within 3 % of the
+/// root, six steps at most reach it to a few units in the last place;
+/// the rest are a margin for figures at the ends of the range.
+const NEWTON_STEPS: usize = 8;
 /// Whole counts [`jerk_distance`] may move from its estimate.
 const WHOLE_STEPS: usize = 4;
 
@@ -225,6 +330,59 @@ mod tests {
             l.distance(0.0, 10.0, 1000.0),
             Err(EngineError::RampInLimits)
         );
+    }
+
+    proptest::proptest! {
+        /// A ramp under limits is as long as the limits need, at least
+        /// the configured distance, and at rest the configured distance
+        /// or one count per 1/1.875 pulse of gap; where the room check
+        /// fails nothing is kept. Any figures: never 0, never a panic.
+        #[test]
+        fn a_limited_length_is_the_longer_of_needed_and_configured(
+            gap in proptest::prop_oneof![-1e6f64..1e6, -1.8e19f64..1.8e19],
+            ratio in proptest::prop_oneof![-3f64..3.0, -1e12f64..1e12],
+            speed in proptest::prop_oneof![0f64..1e6, 0f64..1.8e25, proptest::strategy::Just(0.0)],
+            configured in proptest::option::of(1u64..u64::MAX),
+            velocity in 1u32..u32::MAX,
+            acceleration in 1u64..u64::MAX,
+            jerk in proptest::option::of(1u64..u64::MAX),
+        ) {
+            let limits = RampInLimits {
+                max_velocity: NonZeroU32::new(velocity).unwrap(),
+                max_acceleration: NonZeroU64::new(acceleration).unwrap(),
+                direction: RampDirection::Either,
+                max_jerk: jerk.and_then(NonZeroU64::new),
+            };
+            let configured = configured.and_then(NonZeroU64::new);
+            let kept = LimitedLength::new(limits, gap, ratio, speed, configured);
+            let room = f64::from(velocity) - H * ratio.abs() * speed;
+            if speed > 0.0 && room <= 0.0 {
+                proptest::prop_assert_eq!(kept, Err(EngineError::RampInLimits));
+                return Ok(());
+            }
+            let d = kept.unwrap().distance().get();
+            let at_least = configured.map_or(1, NonZeroU64::get);
+            proptest::prop_assert!(d >= at_least);
+            match limits.shortest(gap, ratio, speed) {
+                Some(needed) => proptest::prop_assert_eq!(d, needed.max(at_least)),
+                None => {
+                    proptest::prop_assert_eq!(speed, 0.0);
+                    let by_gap = libm::ceil(1.875 * gap.abs()).max(1.0) as u64;
+                    proptest::prop_assert_eq!(d, configured.map_or(by_gap, NonZeroU64::get));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_cube_root_start_is_within_a_few_parts_in_a_thousand() {
+        for i in -400..=400 {
+            for m in [1.0, 1.7, 2.9, 5.3, 9.99] {
+                let x = m * libm::pow(10.0, f64::from(i) / 4.0);
+                let start = cube_root_start(x);
+                assert!((start / libm::cbrt(x) - 1.0).abs() < 2e-3, "{x}");
+            }
+        }
     }
 
     #[test]

@@ -119,6 +119,25 @@ fn wide_unsigned_to_f64(v: u128) -> f64 {
     v as f64
 }
 
+/// `libm::ceil(v)` in a few instructions: below 2^52 a float's whole
+/// part is one truncating conversion away, and from there up every float
+/// is whole already (as are the infinities; NaN stays NaN). The same
+/// value, except that a `v` in (−1, 0) gives +0 where `libm::ceil` gives
+/// −0, which compare equal.
+#[inline]
+pub(crate) fn ceil_whole(v: f64) -> f64 {
+    if libm::fabs(v) < 4_503_599_627_370_496.0 {
+        let truncated = v as i64 as f64;
+        if truncated < v {
+            truncated + 1.0
+        } else {
+            truncated
+        }
+    } else {
+        v
+    }
+}
+
 /// `v.ceil() as i128` (saturating, NaN as 0) with one conversion where
 /// the result fits 64 bits; the same integer.
 #[inline]
@@ -131,7 +150,19 @@ pub(crate) fn ceil_to_i128(v: f64) -> i128 {
     }
 }
 
-/// The 128-bit conversion of [`ceil_to_i128`], out of line (see [`wide_to_f64`]).
+/// A whole float (already rounded) as an integer, saturating (NaN as 0):
+/// one conversion below ±9·10¹⁸, the 128-bit one beyond, out of line.
+#[inline]
+pub(crate) fn whole_to_i128(v: f64) -> i128 {
+    if v > -9.0e18 && v < 9.0e18 {
+        i128::from(v as i64)
+    } else {
+        wide_from_f64(v)
+    }
+}
+
+/// The 128-bit conversion of [`ceil_to_i128`] and [`whole_to_i128`], out
+/// of line (see [`wide_to_f64`]).
 #[cold]
 #[inline(never)]
 fn wide_from_f64(v: f64) -> i128 {
@@ -234,6 +265,46 @@ mod tests {
             f64::NAN,
         ] {
             assert_eq!(ceil_to_i128(v), libm::ceil(v) as i128, "{v}");
+        }
+    }
+
+    #[test]
+    fn ceil_whole_is_libm_ceil() {
+        let same = |v: f64| {
+            let (a, b) = (ceil_whole(v), libm::ceil(v));
+            a == b || (a.is_nan() && b.is_nan())
+        };
+        let edges = [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            1.0 + f64::EPSILON,
+            -1.0000001,
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            4_503_599_627_370_496.0,
+            9.3e18,
+            -9.3e18,
+            1e300,
+            f64::MIN_POSITIVE,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        for v in edges {
+            assert!(same(v), "{v}");
+        }
+        let mut words = xorshift(0x0DDB_A11C_0FFE_E000);
+        for _ in 0..100_000 {
+            let bits = words.next().unwrap_or(0);
+            // Any float, and floats of every size near whole counts.
+            let near =
+                (bits % 1_000_000) as f64 * 0.25 * libm::exp2(f64::from((bits >> 40) as u8 % 64));
+            for v in [f64::from_bits(bits), near, -near, near + 0.5] {
+                assert!(same(v), "{v}");
+            }
         }
     }
 

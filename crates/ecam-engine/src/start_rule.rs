@@ -45,6 +45,11 @@ pub(crate) struct StrokeGeometry {
 /// ([`SlaveAlign::Absolute`], [`SlaveAlign::NearestEquivalent`]) on a cam
 /// with a stroke looks for the equivalent position; every other start
 /// counts the engage cycle as cycle 0.
+///
+/// Inlined where it is called, with the search out of line: every other
+/// start (a relative slave, the default) is then a test of the rule, not
+/// a call (the engaging tick, docs/engine.md "Benchmarks").
+#[inline(always)]
 pub(crate) fn strokes_at_start(
     geo: StrokeGeometry,
     align: SlaveAlign,
@@ -65,6 +70,7 @@ pub(crate) fn strokes_at_start(
 /// cam's forward direction, or nearest either way on a table that turns
 /// back, and `value` there. Each place is valued once (the engage tick
 /// pays for every one).
+#[inline(never)]
 fn equivalent(
     geo: StrokeGeometry,
     slave: i128,

@@ -7,16 +7,13 @@
 //! engages takes it if nothing it depends on moved since: the same
 //! engagement, off the real-time path (docs/engine.md, "Benchmarks").
 
-use core::num::NonZeroU64;
-
 use ecam_core::CamCurve;
 
-use crate::coupling::{Engagement, Place, Sample};
+use crate::coupling::{AtEngage, Engagement, Place, Sample};
 use crate::ramp::Ramp;
-use crate::ramp_in::{RampDirection, RampInLimits};
-use crate::rounding::exact_f64;
-use crate::steady::Table;
-use crate::{EngineError, RampIn, StartMode};
+use crate::ramp_in::{LimitedLength, RampDirection, RampInLimits};
+use crate::rounding::{ceil_whole, exact_f64, whole_to_i128};
+use crate::{EngineError, StartMode};
 
 use super::phase::{Armed, Engaged, Phase};
 use super::underway::Underway;
@@ -25,15 +22,15 @@ use super::{CamAxis, FollowSample, clamp_i64};
 /// An engagement worked out before the tick that engages: of master `at`
 /// from slave `slave`, on the table, geometry and configuration the axis
 /// had when it was armed (they cannot change while it is armed without
-/// preparing it again, see [`CamAxis::prepare_engagement`]), with the
-/// table's value and slope at the place.
+/// preparing it again, see [`CamAxis::prepare_engagement`]), with what
+/// it found at its place (the table's value and slope, the slave).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct ReadyEngagement {
     at: i64,
     slave: i64,
     engagement: Engagement,
     place: Place,
-    table: Table,
+    found: AtEngage,
 }
 
 impl<C: CamCurve> CamAxis<C> {
@@ -58,12 +55,12 @@ impl<C: CamCurve> CamAxis<C> {
                     self.commanded,
                 )
                 .ok()
-                .map(|(engagement, place, table)| ReadyEngagement {
+                .map(|(engagement, place, found)| ReadyEngagement {
                     at: position,
                     slave: self.commanded,
                     engagement,
                     place,
-                    table,
+                    found,
                 })
             }
             _ => None,
@@ -90,13 +87,13 @@ impl<C: CamCurve> CamAxis<C> {
             Phase::Armed(Armed {
                 ready: Some(ready), ..
             }) if ready.at == at && ready.slave == self.commanded => {
-                Some((ready.engagement, ready.place, ready.table))
+                Some((ready.engagement, ready.place, ready.found))
             }
             _ => None,
         };
-        // The place of `at` and the table there come with it (the table
-        // input there is the one the engagement fixed).
-        let (mut engagement, place, table) = match ready {
+        // The place of `at` and what the cam gives there come with it
+        // (the table input there is the one the engagement fixed).
+        let (mut engagement, place, found) = match ready {
             Some(ready) => ready,
             None => Engagement::placed(
                 &self.geometry,
@@ -108,15 +105,21 @@ impl<C: CamCurve> CamAxis<C> {
             )?,
         };
         // Under limits the cam at `at` sizes the ramp, and is the
-        // engaging tick's sample.
-        let (ramp_in, mut cam) = match self.ramp_limits {
+        // engaging tick's sample. The ramp is sized where it is first
+        // read, after this (`CamAxis::size_ramp_in`): on the next tick
+        // when this one answers from the engagement (below), where the
+        // ramp holds the slave whatever its length (`Ramp::to_size`).
+        let (ramp, mut cam) = match self.ramp_limits {
             Some(limits) => {
-                let (ramp, cam) = self.limited_ramp(limits, &mut engagement, place, table)?;
-                (ramp, Some(cam))
+                let cam = self.limited_ramp(limits, &mut engagement, place, found)?;
+                (Some(Ramp::to_size(at, self.commanded)), Some(cam))
             }
-            None => (self.config.ramp_in, None),
+            None => {
+                self.ramp_sizing = None;
+                let ramp = self.config.ramp_in;
+                (ramp.map(|ramp| Ramp::new(ramp, at, self.commanded)), None)
+            }
         };
-        let ramp = ramp_in.map(|ramp| Ramp::new(ramp, at, self.commanded));
         self.phase = Phase::Running(Engaged {
             engagement,
             place,
@@ -152,7 +155,7 @@ impl<C: CamCurve> CamAxis<C> {
             // An error here is the general tick's to report, as it would.
             cam = engaged
                 .engagement
-                .sample_of(&self.geometry, place, table)
+                .sample_at_engage(&self.geometry, place, found)
                 .ok();
         }
         let Some(cam) = cam else {
@@ -178,20 +181,20 @@ impl<C: CamCurve> CamAxis<C> {
         }))
     }
 
-    /// The ramp-in that keeps to `limits` for the engagement at `place`
-    /// (the table's value and slope there `table`), after moving its
-    /// target by whole strokes for a restricted direction; with the cam's
-    /// sample there under the engagement as it ends up.
+    /// Keeps what sizes the ramp-in that keeps to `limits` for the
+    /// engagement at `place` (what the cam gives there `found`) for the
+    /// tick that sizes it (`ramp_sizing`), after moving its target by
+    /// whole strokes for a restricted direction; gives the cam's sample
+    /// there under the engagement as it ends up.
     fn limited_ramp(
         &mut self,
         limits: RampInLimits,
         engagement: &mut Engagement,
         place: Place,
-        table: Table,
-    ) -> Result<(Option<RampIn>, Sample), EngineError> {
+        found: AtEngage,
+    ) -> Result<Sample, EngineError> {
         let hold = i128::from(self.commanded);
         let geo = &self.geometry;
-        let mut cam = engagement.sample_of(geo, place, table)?;
         let wrong_way = |slave: i64| {
             let gap = i128::from(slave) - hold;
             match limits.direction {
@@ -200,40 +203,54 @@ impl<C: CamCurve> CamAxis<C> {
                 RampDirection::Negative => gap > 0,
             }
         };
-        if wrong_way(cam.slave) {
-            let stroke = geo.stroke_pulses();
-            if stroke == 0.0 {
-                return Err(EngineError::RampDirection);
+        // The slave alone while the strokes are chosen, the whole sample
+        // once, where they end up (the same sample, fewer steps).
+        let cam = match engagement.slave_at_engage(found) {
+            Some(slave) if !wrong_way(slave) => {
+                engagement.sample_with_slave(geo, place, found.table, slave)?
             }
-            let gap = exact_f64(i128::from(cam.slave) - hold);
-            let strokes = libm::ceil(libm::fabs(gap / stroke));
-            let toward = match limits.direction {
-                RampDirection::Negative => -1.0,
-                _ => 1.0,
-            };
-            let n = strokes * toward * libm::copysign(1.0, stroke);
-            // Whole strokes move the cam's output, not its place: the
-            // table there is the same.
-            engagement.add_strokes(n as i128);
-            cam = engagement.sample_of(geo, place, table)?;
-            if wrong_way(cam.slave) {
-                // Rounding left it a pulse short: one stroke more.
-                engagement.add_strokes(libm::copysign(1.0, n) as i128);
-                cam = engagement.sample_of(geo, place, table)?;
+            first => {
+                let mut slave = match first {
+                    Some(slave) => slave,
+                    None => engagement.sample_of(geo, place, found.table)?.slave,
+                };
+                if wrong_way(slave) {
+                    let stroke = geo.stroke_pulses();
+                    if stroke == 0.0 {
+                        return Err(EngineError::RampDirection);
+                    }
+                    let gap = exact_f64(i128::from(slave) - hold);
+                    let strokes = ceil_whole(libm::fabs(gap / stroke));
+                    let toward = match limits.direction {
+                        RampDirection::Negative => -1.0,
+                        _ => 1.0,
+                    };
+                    let n = strokes * toward * libm::copysign(1.0, stroke);
+                    // Whole strokes move the cam's output, not its place:
+                    // the table there is the same.
+                    let n = whole_to_i128(n);
+                    engagement.add_strokes(n);
+                    slave = engagement.slave_after_strokes(geo, place, found.table, slave, n)?;
+                    if wrong_way(slave) {
+                        // Rounding left it a pulse short: one stroke more.
+                        let one = if n < 0 { -1 } else { 1 };
+                        engagement.add_strokes(one);
+                        slave =
+                            engagement.slave_after_strokes(geo, place, found.table, slave, one)?;
+                    }
+                }
+                engagement.sample_with_slave(geo, place, found.table, slave)?
             }
-        }
+        };
         let gap = exact_f64(i128::from(cam.slave) - hold);
-        let needed = limits.distance(gap, cam.velocity_ratio, self.speed.bound())?;
-        let configured = self.config.ramp_in.map(|r| r.distance.get());
-        let ramp = match (needed, configured) {
-            (Some(a), Some(b)) => NonZeroU64::new(a.max(b)),
-            (Some(d), None) | (None, Some(d)) => NonZeroU64::new(d),
-            // A master at rest gives no speed to size the ramp for: one
-            // master count per 1/1.875 pulse of gap.
-            (None, None) => NonZeroU64::new(libm::ceil(1.875 * libm::fabs(gap)).max(1.0) as u64),
-        }
-        .map(|distance| RampIn { distance });
-        Ok((ramp, cam))
+        self.ramp_sizing = Some(LimitedLength::new(
+            limits,
+            gap,
+            cam.velocity_ratio,
+            self.speed.bound(),
+            self.config.ramp_in.map(|r| r.distance),
+        )?);
+        Ok(cam)
     }
 }
 
@@ -241,7 +258,7 @@ impl<C: CamCurve> CamAxis<C> {
 mod tests {
     extern crate std;
 
-    use core::num::NonZeroU64;
+    use core::num::{NonZeroU32, NonZeroU64};
 
     use ecam_core::PointTable;
     use proptest::prelude::*;
@@ -250,7 +267,9 @@ mod tests {
     use super::super::phase::{Armed, Phase};
     use super::super::steady_tests::{limits_towards, table};
     use crate::coupling::Engagement;
-    use crate::{AxisConfig, CamAxis, Coupling, RampIn, SlaveAlign, StartMode, TickInput, Zoom};
+    use crate::{
+        AxisConfig, CamAxis, Coupling, RampIn, RampInLimits, SlaveAlign, StartMode, TickInput, Zoom,
+    };
 
     /// The engagement an armed axis holds ready.
     fn ready(axis: &CamAxis<PointTable>) -> Option<super::ReadyEngagement> {
@@ -395,10 +414,30 @@ mod tests {
             ) else {
                 return Ok(());
             };
-            // As a restricted direction moves it.
-            engagement.add_strokes(strokes);
-            let known = engagement.sample_of(geo, place, kin);
+            // As the engaging tick reads it, with the slave `placed`
+            // worked out: the general sample, field for field.
             let mut fresh = ecam_core::Cursor::new();
+            let at_engage = engagement.sample_at_engage(geo, place, kin);
+            match (at_engage, engagement.sample(geo, &axis.curve, &mut fresh, place)) {
+                (Ok(a), Ok(b)) => {
+                    prop_assert_eq!(a.place, b.place);
+                    prop_assert_eq!(a.slave, b.slave);
+                    prop_assert_eq!(a.unzoomed, b.unzoomed);
+                    prop_assert_eq!(a.in_cycle_zoomed, b.in_cycle_zoomed);
+                    prop_assert_eq!(a.velocity_ratio.to_bits(), b.velocity_ratio.to_bits());
+                }
+                (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
+            }
+            // As a restricted direction moves it: the slave alone, from
+            // the one before (where it is known), and the whole sample.
+            let before = engagement.slave_of(geo, place, kin.table);
+            engagement.add_strokes(strokes);
+            let known = engagement.sample_of(geo, place, kin.table);
+            if let Ok(before) = before {
+                let after = engagement.slave_after_strokes(geo, place, kin.table, before, strokes);
+                prop_assert_eq!(after, engagement.slave_of(geo, place, kin.table));
+                prop_assert_eq!(after.ok(), known.ok().map(|k| k.slave));
+            }
             let general = engagement.sample(geo, &axis.curve, &mut fresh, place);
             match (known, general) {
                 (Ok(a), Ok(b)) => {
@@ -462,5 +501,95 @@ mod tests {
         let mut turning = CamAxis::new(curve, turn).unwrap();
         turning.arm().unwrap();
         assert!(ready(&turning).is_none());
+    }
+
+    /// A ramp-in under limits that engages on a tick the engagement
+    /// answers is sized on the next tick, from the figures of the tick
+    /// that engaged: limits changed in between (they are for the next
+    /// engagements) and the master's speed on the tick after do not
+    /// change it, and the ticks are those of an axis that sized it at
+    /// once (the general route); a stop before the next tick leaves
+    /// nothing for a later engagement to pick up.
+    #[test]
+    fn a_limited_ramp_is_sized_on_the_next_tick_from_the_engaging_figures() {
+        let curve = table(&[0, 700, 1500, 1000, 2600], 300);
+        let config = AxisConfig {
+            coupling: Coupling::Repeat { min_stroke: 1 },
+            ..AxisConfig::default()
+        };
+        let mut axis = CamAxis::new(curve, config).unwrap();
+        axis.set_slave_position(-4000).unwrap();
+        axis.set_ramp_in_limits(Some(limits_towards(1)));
+        let mut master = 0;
+        for _ in 0..40 {
+            master += 13;
+            let _ = axis.tick(&TickInput::at(master, 100));
+        }
+        axis.arm().unwrap();
+        master += 13;
+        let input = TickInput::at(master, 100);
+        let mut general = axis.clone();
+        assert!(axis.tick(&input).events.engaged);
+        assert!(general.step(&input, false).events.engaged);
+        // Held, unsized, the figures kept; the general route sized it.
+        let unsized_ramp = |a: &CamAxis<PointTable>| match &a.phase {
+            Phase::Running(engaged) => engaged.ramp_in().map(|ramp| !ramp.sized()),
+            _ => None,
+        };
+        assert_eq!(unsized_ramp(&axis), Some(true));
+        assert!(axis.ramp_sizing.is_some());
+        assert_eq!(unsized_ramp(&general), Some(false));
+        assert!(general.ramp_sizing.is_none());
+        // Other limits for later engagements, set before the next tick,
+        // and a master that then runs four times as fast.
+        axis.set_ramp_in_limits(Some(RampInLimits {
+            max_velocity: NonZeroU32::new(50_000).unwrap(),
+            ..limits_towards(0)
+        }));
+        general.set_ramp_in_limits(axis.ramp_limits);
+        let mut following = false;
+        for i in 0..2000 {
+            master += 52;
+            let input = TickInput::at(master, 100);
+            let a = axis.tick(&input);
+            let b = *general.step(&input, false);
+            assert_eq!(a, b, "tick {i}");
+            assert_eq!(unsized_ramp(&axis), unsized_ramp(&general));
+            following |= a.following;
+            if a.following {
+                break;
+            }
+        }
+        assert!(following, "the ramp ends");
+        assert!(axis.ramp_sizing.is_none());
+
+        // Stopped on the tick after engaging, before any tick sized it:
+        // the next engagement, without limits, has its own ramp.
+        let ramped = AxisConfig {
+            ramp_in: NonZeroU64::new(300).map(|distance| RampIn { distance }),
+            ..config
+        };
+        let mut axis = CamAxis::new(table(&[0, 700, 1500, 1000, 2600], 300), ramped).unwrap();
+        axis.set_slave_position(-4000).unwrap();
+        axis.set_ramp_in_limits(Some(limits_towards(0)));
+        for _ in 0..40 {
+            master += 13;
+            let _ = axis.tick(&TickInput::at(master, 100));
+        }
+        axis.arm().unwrap();
+        master += 13;
+        assert!(axis.tick(&TickInput::at(master, 100)).events.engaged);
+        assert!(axis.ramp_sizing.is_some());
+        axis.stop(crate::StopKind::Immediate);
+        axis.set_ramp_in_limits(None);
+        let mut fresh = axis.clone();
+        fresh.ramp_sizing = None;
+        axis.arm().unwrap();
+        fresh.arm().unwrap();
+        for i in 0..200 {
+            master += 13;
+            let input = TickInput::at(master, 100);
+            assert_eq!(axis.tick(&input), fresh.tick(&input), "tick {i}");
+        }
     }
 }

@@ -110,6 +110,14 @@ impl<C> Underway<C> {
         }
     }
 
+    /// Gives an unsized ramp-in its distance (`Ramp::to_size`).
+    #[inline(always)]
+    pub(super) fn size_ramp_in(&mut self, distance: NonZeroU64) {
+        if let Self::RampIn(ramp, _) = self {
+            ramp.size(distance);
+        }
+    }
+
     /// A ramp-in with nothing else under way (the ramp-in tick's case).
     #[inline(always)]
     pub(super) fn ramps_in_alone(&self) -> bool {
