@@ -264,29 +264,30 @@ fn ramp_ins() -> Result<(), String> {
     d.probe_while("ramp-in", 200, |o| !o.following);
     d.end("ramp-in");
 
-    let mut d = Driver::new(common::config(0))?;
-    d.axis.set_ramp_in_limits(Some(RampInLimits {
-        max_velocity: NonZeroU32::new(2_000_000).unwrap_or(NonZeroU32::MIN),
-        max_acceleration: nonzero(400_000_000),
-        direction: RampDirection::Positive,
-        max_jerk: Some(nonzero(100_000_000_000)),
-    }));
-    // The slave stands away from the cam, so the ramp has a gap to close.
-    d.run_for(20);
-    d.axis
-        .set_slave_position(-5000)
-        .map_err(|e| format!("slave: {e}"))?;
-    d.axis.arm().map_err(|e| format!("arm: {e}"))?;
+    // A relative slave: the cam is fitted to it, so the ramp has no gap
+    // and catches up the cam's velocity only.
+    let mut d = limited_ramp_in(common::config(0), -5000)?;
     d.probe_while("ramp-in under limits", 400, |o| !o.following);
     d.end("ramp-in under limits");
 
-    // The same limits with the slave ahead of the cam (the output offset
-    // kept, not fitted to the slave as a relative start does): the cam
-    // is behind, so the positive direction adds whole strokes to it.
-    let mut d = Driver::new(AxisConfig {
+    // The slave ahead of the cam (the output offset kept, not fitted to
+    // the slave): the cam is behind, so the positive direction adds whole
+    // strokes to it, and the ramp closes a gap.
+    let offset = AxisConfig {
         slave_align: SlaveAlign::Offset(0),
         ..common::config(0)
-    })?;
+    };
+    let mut d = limited_ramp_in(offset, 40_000)?;
+    d.probe_while("ramp-in under limits, strokes added", 400, |o| !o.following);
+    d.end("ramp-in under limits, strokes added");
+    Ok(())
+}
+
+/// An axis of `config` armed for a ramp-in under velocity, acceleration
+/// and jerk limits, positive direction only, from slave `slave`, the
+/// master running for 20 ticks first (so its speed is known).
+fn limited_ramp_in(config: AxisConfig, slave: i64) -> Result<Driver, String> {
+    let mut d = Driver::new(config)?;
     d.axis.set_ramp_in_limits(Some(RampInLimits {
         max_velocity: NonZeroU32::new(2_000_000).unwrap_or(NonZeroU32::MIN),
         max_acceleration: nonzero(400_000_000),
@@ -295,12 +296,10 @@ fn ramp_ins() -> Result<(), String> {
     }));
     d.run_for(20);
     d.axis
-        .set_slave_position(40_000)
+        .set_slave_position(slave)
         .map_err(|e| format!("slave: {e}"))?;
     d.axis.arm().map_err(|e| format!("arm: {e}"))?;
-    d.probe_while("ramp-in under limits, strokes added", 400, |o| !o.following);
-    d.end("ramp-in under limits, strokes added");
-    Ok(())
+    Ok(d)
 }
 
 fn switches() -> Result<(), String> {

@@ -289,6 +289,24 @@ mod tests {
         copy
     }
 
+    /// Two routes' samples are the same, field for field, or both fail.
+    fn same_sample(
+        a: Result<crate::coupling::Sample, crate::EngineError>,
+        b: Result<crate::coupling::Sample, crate::EngineError>,
+    ) -> Result<(), TestCaseError> {
+        match (a, b) {
+            (Ok(a), Ok(b)) => {
+                prop_assert_eq!(a.place, b.place);
+                prop_assert_eq!(a.slave, b.slave);
+                prop_assert_eq!(a.unzoomed, b.unzoomed);
+                prop_assert_eq!(a.in_cycle_zoomed, b.in_cycle_zoomed);
+                prop_assert_eq!(a.velocity_ratio.to_bits(), b.velocity_ratio.to_bits());
+            }
+            (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
+        }
+        Ok(())
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(256))]
         /// An engagement prepared at arm (and again after a table change
@@ -418,16 +436,7 @@ mod tests {
             // worked out: the general sample, field for field.
             let mut fresh = ecam_core::Cursor::new();
             let at_engage = engagement.sample_at_engage(geo, place, kin);
-            match (at_engage, engagement.sample(geo, &axis.curve, &mut fresh, place)) {
-                (Ok(a), Ok(b)) => {
-                    prop_assert_eq!(a.place, b.place);
-                    prop_assert_eq!(a.slave, b.slave);
-                    prop_assert_eq!(a.unzoomed, b.unzoomed);
-                    prop_assert_eq!(a.in_cycle_zoomed, b.in_cycle_zoomed);
-                    prop_assert_eq!(a.velocity_ratio.to_bits(), b.velocity_ratio.to_bits());
-                }
-                (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
-            }
+            same_sample(at_engage, engagement.sample(geo, &axis.curve, &mut fresh, place))?;
             // As a restricted direction moves it: the slave alone, from
             // the one before (where it is known), and the whole sample.
             let before = engagement.slave_of(geo, place, kin.table);
@@ -439,28 +448,20 @@ mod tests {
                 prop_assert_eq!(after.ok(), known.ok().map(|k| k.slave));
             }
             let general = engagement.sample(geo, &axis.curve, &mut fresh, place);
-            match (known, general) {
-                (Ok(a), Ok(b)) => {
-                    prop_assert_eq!(a.place, b.place);
-                    prop_assert_eq!(a.slave, b.slave);
-                    prop_assert_eq!(a.unzoomed, b.unzoomed);
-                    prop_assert_eq!(a.in_cycle_zoomed, b.in_cycle_zoomed);
-                    prop_assert_eq!(a.velocity_ratio.to_bits(), b.velocity_ratio.to_bits());
-                    let steady = engagement
-                        .steady(geo)
-                        .and_then(|c| Some((c, c.sample(at, &axis.curve, &mut fresh)?)));
-                    if let Some((constants, s)) = steady {
-                        prop_assert_eq!((i128::from(s.k), i128::from(s.r_num)), (place.k, place.r_num));
-                        prop_assert_eq!(s.slave, a.slave);
-                        prop_assert_eq!(s.unzoomed, a.unzoomed);
-                        prop_assert_eq!(s.in_cycle_zoomed, a.in_cycle_zoomed);
-                        prop_assert_eq!(s.velocity_ratio.to_bits(), a.velocity_ratio.to_bits());
-                        prop_assert_eq!(s.master_in_cycle, geo.input_in_cycle(place));
-                        prop_assert_eq!(s.master_in_cycle_raw, geo.raw_in_cycle(place));
-                        prop_assert_eq!(constants.input_offset, engagement.input_offset(geo));
-                    }
-                }
-                (a, b) => prop_assert_eq!(a.is_ok(), b.is_ok()),
+            same_sample(known, general)?;
+            // The steady constants' sample where they hold it.
+            let steady = engagement
+                .steady(geo)
+                .and_then(|c| Some((c, c.sample(at, &axis.curve, &mut fresh)?)));
+            if let (Ok(a), Some((constants, s))) = (known, steady) {
+                prop_assert_eq!((i128::from(s.k), i128::from(s.r_num)), (place.k, place.r_num));
+                prop_assert_eq!(s.slave, a.slave);
+                prop_assert_eq!(s.unzoomed, a.unzoomed);
+                prop_assert_eq!(s.in_cycle_zoomed, a.in_cycle_zoomed);
+                prop_assert_eq!(s.velocity_ratio.to_bits(), a.velocity_ratio.to_bits());
+                prop_assert_eq!(s.master_in_cycle, geo.input_in_cycle(place));
+                prop_assert_eq!(s.master_in_cycle_raw, geo.raw_in_cycle(place));
+                prop_assert_eq!(constants.input_offset, engagement.input_offset(geo));
             }
         }
     }
