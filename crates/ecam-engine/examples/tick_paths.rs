@@ -16,7 +16,10 @@
 //!
 //! `--only SCENARIO` runs one scenario and `--probe N` measures only its
 //! `N`th tick (to profile one tick: `callgrind_annotate` on a run without
-//! the dumps).
+//! the dumps). `--half-counts` gives every tick a master fraction of half
+//! a count, as a coarse master's estimate does (every tick between whole
+//! counts; the harness does not pass it: see docs/engine.md, "The
+//! one-tick transitions").
 //!
 //! Without valgrind it runs the same ticks natively (a quick check that
 //! every scenario does what its name says: each prints the state it ends
@@ -44,6 +47,12 @@ fn only_probe() -> Option<usize> {
         .skip_while(|a| a != "--probe")
         .nth(1)
         .and_then(|n| n.parse().ok())
+}
+
+/// `--half-counts`: every tick half a count past the master's count.
+fn half_counts() -> bool {
+    static HALF: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *HALF.get_or_init(|| std::env::args().any(|a| a == "--half-counts"))
 }
 
 /// Steady ticks measured for the reference mean.
@@ -75,7 +84,10 @@ impl Driver {
     }
 
     fn input(&self) -> TickInput {
-        TickInput::at(self.master, common::DT_US)
+        TickInput {
+            master_fraction: if half_counts() { 1 << 31 } else { 0 },
+            ..TickInput::at(self.master, common::DT_US)
+        }
     }
 
     /// One tick at the next master, not measured.

@@ -554,6 +554,7 @@ impl<C: CamCurve> CamAxis<C> {
                 retired,
                 commanded,
                 missed_policy: *missed_policy,
+                prepared: true,
             },
         )
     }
@@ -660,6 +661,7 @@ impl<C: CamCurve> CamAxis<C> {
             return;
         }
         let (phase, mut coupled) = self.split();
+        coupled.prepared = steady_allowed;
         let followed = match phase {
             Phase::Running(engaged) => coupled.follow(engaged, None, master, fraction),
             Phase::Stopping(engaged, end) => {
@@ -767,6 +769,11 @@ pub(super) struct Coupled<'a, C> {
     pub(super) retired: &'a mut Option<C>,
     pub(super) commanded: &'a mut i64,
     pub(super) missed_policy: MissedActivation,
+    /// The general tick may take a switch's prepared landing
+    /// (`takeover.rs`); off for the reference route (`steady_allowed`
+    /// off), which works every landing out, so that the steady-vs-general
+    /// property test holds the two to the same results.
+    pub(super) prepared: bool,
 }
 
 impl<C: CamCurve> Coupled<'_, C> {

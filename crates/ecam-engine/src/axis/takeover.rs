@@ -6,11 +6,13 @@
 use ecam_core::{CamCurve, Cursor};
 
 use crate::coupling::{Engagement, Geometry, Place};
+use crate::steady::Steady;
 use crate::switch::Takeover;
 use crate::{AxisConfig, EngineError};
 
 use super::landing::{Landing, Old};
 use super::phase::Engaged;
+use super::prepared::{Plan, Prepared};
 use super::underway::{Change, Next, Underway};
 use super::{CamAxis, Coupled};
 
@@ -68,6 +70,32 @@ impl<C: CamCurve> Coupled<'_, C> {
         }
     }
 
+    /// The landing prepared for this switch where the general tick
+    /// carries it out (`find` picks it from the plan), when the old cam's
+    /// constants are the ones it was prepared from: what
+    /// `landing.rs` would work out there, taken as the lane takes it
+    /// (`plan.rs`). `None` leaves it to `landing.rs`: no plan, none for
+    /// here, or the reference route (`prepared` off).
+    fn prepared_landing(
+        &self,
+        engaged: &Engaged<C>,
+        find: impl for<'p> FnOnce(&'p Plan, &Steady) -> Option<(usize, &'p Prepared)>,
+    ) -> Option<Landing> {
+        if !self.prepared {
+            return None;
+        }
+        let plan = engaged.plan.as_ref()?;
+        let old = engaged.engagement.steady(self.geometry)?;
+        let (_, prepared) = find(plan, &old)?;
+        Some(Landing {
+            engagement: prepared.engagement,
+            geometry: prepared.geometry,
+            cursor: prepared.cursor,
+            master_zoom: prepared.master_zoom,
+            blend: Ok(prepared.blend),
+        })
+    }
+
     /// Carries out a waiting position or at-once switch at master `at`
     /// (`landing.rs` says where it lands); the switch keeps waiting if its
     /// landing fails.
@@ -79,12 +107,16 @@ impl<C: CamCurve> Coupled<'_, C> {
         let Some(Change::Waiting(Next::Switch(pending))) = engaged.underway.change() else {
             return Ok(());
         };
-        let landing = self.old(&engaged.engagement).switch_at(
-            *self.cursor,
-            &pending.takeover,
-            pending.blend,
-            at,
-        )?;
+        let prepared = self.prepared_landing(engaged, |plan, old| plan.switch_landing(old, at));
+        let landing = match prepared {
+            Some(landing) => landing,
+            None => self.old(&engaged.engagement).switch_at(
+                *self.cursor,
+                &pending.takeover,
+                pending.blend,
+                at,
+            )?,
+        };
         engaged.plan = None;
         let takeover = engaged.underway.take_switch().map(|p| p.takeover);
         self.land(engaged, landing, takeover)
@@ -107,14 +139,20 @@ impl<C: CamCurve> Coupled<'_, C> {
         let Some(Change::Waiting(Next::Seam(queued))) = engaged.underway.change() else {
             return Ok(false);
         };
-        let landing = self.old(&engaged.engagement).switch_at_seam(
-            *self.cursor,
-            &queued.curve,
-            queued.then,
-            queued.blend,
-            from.k,
-            to.k > from.k,
-        )?;
+        let forward = to.k > from.k;
+        let prepared =
+            self.prepared_landing(engaged, |plan, old| plan.seam_landing(old, from.k, forward));
+        let landing = match prepared {
+            Some(landing) => landing,
+            None => self.old(&engaged.engagement).switch_at_seam(
+                *self.cursor,
+                &queued.curve,
+                queued.then,
+                queued.blend,
+                from.k,
+                forward,
+            )?,
+        };
         engaged.plan = None;
         let takeover = engaged
             .underway
