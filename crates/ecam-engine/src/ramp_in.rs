@@ -20,6 +20,11 @@
 //! distance is also at least the `D_j` that solves
 //! `V³ (60 |g| / D³ + 60 |r| / D²) = j_max`. The quintic keeps its shape:
 //! the limits only stretch it.
+//!
+//! The figures are the ones at engage; the engaging tick checks the room
+//! for the catch-up and keeps them ([`LimitedLength`]), and the distance
+//! is worked out from them on the next tick (docs/engine.md, "Ramp-in
+//! under limits").
 
 use core::num::{NonZeroU32, NonZeroU64};
 
