@@ -351,13 +351,23 @@ impl Geometry {
     /// Exact zoomed value of `table + strokes × stroke`, rounded once,
     /// halves up (the same pulse on either side of a seam, see
     /// [`crate::rounding::round_half_up_to_i64`]).
+    ///
+    /// Inlined where it is called (the engaging tick's), with the 128-bit
+    /// route out of line.
+    #[inline(always)]
     pub(crate) fn zoomed(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
-        if let Some(value) = i64::try_from(strokes)
+        match i64::try_from(strokes)
             .ok()
             .and_then(|strokes| self.zoomed_narrow(strokes, table))
         {
-            return Ok(i128::from(value));
+            Some(value) => Ok(i128::from(value)),
+            None => self.zoomed_wide(strokes, table),
         }
+    }
+
+    /// [`Geometry::zoomed`] in 128 bits (any value).
+    #[inline(never)]
+    fn zoomed_wide(&self, strokes: i128, table: f64) -> Result<i128, EngineError> {
         let accumulated = mul_exact(strokes, self.stroke)
             .and_then(|a| mul_exact(a, self.snum))
             .ok_or(EngineError::SlaveOverflow)?;
@@ -521,16 +531,9 @@ impl Engagement {
         // The stroke count of the cycle the master is in is `strokes`:
         // cycles count from there, not from the table's origin.
         let shift = strokes.saturating_sub(place.k);
-        // The 64-bit route in place (the engaging tick's), else the call.
         let on_table = match valued {
             Some(value) => value,
-            None => match i64::try_from(strokes)
-                .ok()
-                .and_then(|strokes| geo.zoomed_narrow(strokes, table))
-            {
-                Some(value) => i128::from(value),
-                None => geo.zoomed(strokes, table)?,
-            },
+            None => geo.zoomed(strokes, table)?,
         };
         let output_offset = match config.slave_align {
             SlaveAlign::Absolute | SlaveAlign::NearestEquivalent => 0,
@@ -832,14 +835,7 @@ impl Engagement {
         place: Place,
         table: Table,
     ) -> Result<i64, EngineError> {
-        let narrow = |v: i128| i64::try_from(v).ok();
-        let slave = narrow(place.k)
-            .zip(narrow(self.shift))
-            .and_then(|(k, shift)| k.checked_add(shift))
-            .and_then(|strokes| geo.zoomed_narrow(strokes, table.s))
-            .zip(narrow(self.output_offset))
-            .and_then(|(zoomed, offset)| zoomed.checked_add(offset));
-        match slave {
+        match self.slave_narrow(geo, place, table.s) {
             Some(slave) => Ok(slave),
             None => self.sample_of(geo, place, table).map(|sample| sample.slave),
         }
@@ -907,12 +903,19 @@ impl Engagement {
         table: f64,
         slope: f64,
     ) -> Option<Sample> {
+        let slave = self.slave_narrow(geo, place, table)?;
+        self.sample_around(geo, place, table, slope, slave)
+    }
+
+    /// The slave at `place` for the table value `table`, in 64 bits:
+    /// the zoomed value at the engagement's strokes there plus the
+    /// output offset; `None` as soon as a value would leave 64 bits.
+    #[inline(always)]
+    fn slave_narrow(&self, geo: &Geometry, place: Place, table: f64) -> Option<i64> {
         let narrow = |v: i128| i64::try_from(v).ok();
         let strokes = narrow(place.k)?.checked_add(narrow(self.shift)?)?;
-        let slave = geo
-            .zoomed_narrow(strokes, table)?
-            .checked_add(narrow(self.output_offset)?)?;
-        self.sample_around(geo, place, table, slope, slave)
+        geo.zoomed_narrow(strokes, table)?
+            .checked_add(narrow(self.output_offset)?)
     }
 
     /// The rest of [`Engagement::sample_narrow`] around the slave it
